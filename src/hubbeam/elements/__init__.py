@@ -1,0 +1,1 @@
+"""Element formulations: kinematics, energies, mass and forces of one element type each."""

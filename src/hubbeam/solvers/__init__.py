@@ -1,0 +1,1 @@
+"""Solvers: static equilibrium, modal analysis (and, later, generalized-alpha)."""

@@ -1,0 +1,138 @@
+"""Static equilibrium by Newton's method with load stepping (hub held at theta = 0).
+
+The applied loads (gravity, tip force and moment) grow linearly with a load factor from
+0 to 1 in ``load_steps`` equal steps. Each step starts from the previous equilibrium;
+a step whose Newton iteration does not converge is halved (up to ``max_cuts`` times)
+before the solver gives up with a message naming the load step and the residual.
+After every converged step the rotation chart is replaced when a tangent has come
+within 60 degrees of its singular direction (see :mod:`hubbeam.elements.ancf.chart`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import LinAlgError, solve_banded
+
+from hubbeam.elements.ancf.chart import remap_chart
+from hubbeam.solvers.errors import ConvergenceError
+from hubbeam.system.beam import ChartSingularityError, NODE_DOFS
+from hubbeam.system.model import HubBeamSystem
+
+#: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
+CHART_SWITCH_MARGIN = 0.5
+
+
+@dataclass
+class StaticSolution:
+    """Equilibrium: coordinates x = [theta, q], multipliers lambda (N, N m), chart F."""
+
+    x: np.ndarray
+    multipliers: np.ndarray
+    chart: np.ndarray
+    load_factor: float
+    newton_iterations: int
+    load_steps: int
+    chart_switches: int
+
+    @property
+    def q(self) -> np.ndarray:
+        return self.x[1:]
+
+
+def replace_chart_if_needed(system: HubBeamSystem, x: np.ndarray, F: np.ndarray, force: bool = False):
+    """(x, F, switched): x re-expressed in a better chart when the current one is near singular."""
+    beam = system.beam
+    q = x[1:]
+    if not force and beam.chart_margin(q, F) >= CHART_SWITCH_MARGIN:
+        return x, F, False
+    F_new = beam.better_chart(q)
+    nodes = remap_chart(q.reshape(beam.nodes, NODE_DOFS), beam.node_tangent_rates(q), F, F_new)
+    x_new = x.copy()
+    x_new[1:] = nodes.ravel()
+    return x_new, F_new, True
+
+
+def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter):
+    """Newton iterations at one load factor; returns (x, mu, iterations) or raises."""
+    m = mu.shape[0]
+    scale_x = max(system.beam.length, 1e-12)
+    norm = np.inf
+    for it in range(1, max_iter + 1):
+        res, ab, kl, ku, _ = system.static_equations(x, mu, F, factor)
+        norm = np.max(np.abs(res))
+        try:
+            dz = solve_banded((kl, ku), ab, -res, check_finite=False)
+        except (LinAlgError, ValueError) as exc:
+            raise ConvergenceError(f"singular Newton matrix ({exc})") from exc
+        if not np.all(np.isfinite(dz)):
+            raise ConvergenceError("non-finite Newton increment")
+        x = x.copy()
+        x[0] += dz[0]
+        mu = mu + dz[1 : 1 + m]
+        x[1:] += dz[1 + m :]
+        step = np.max(np.abs(dz[1 + m :])) / scale_x
+        if norm <= tol_force or step <= tol_step:
+            return x, mu, it, norm
+    raise ConvergenceError(f"residual {norm:.3e} N after {max_iter} iterations")
+
+
+def solve_static(
+    system: HubBeamSystem,
+    load_steps: int = 20,
+    max_iterations: int = 30,
+    max_cuts: int = 8,
+    x0: np.ndarray | None = None,
+    chart: np.ndarray | None = None,
+) -> StaticSolution:
+    """Equilibrium under the system's loads with the hub held at theta = 0.
+
+    Raises :class:`ConvergenceError` (with the last equilibrium in ``partial``) when a
+    load step cannot be completed even after ``max_cuts`` halvings.
+    """
+    if x0 is None:
+        x, F = system.initial_state(0.0)
+    else:
+        x, F = np.array(x0, dtype=float), np.array(chart, dtype=float)
+    m = system.n_constraints(held=True)
+    mu = np.zeros(m)
+    beam = system.beam
+    # force and step tolerances: relative to the loads, above the round-off floor of EA
+    Qfull, _ = system.external_load(x[1:], F, 1.0)
+    f_ref = max(np.max(np.abs(Qfull)), np.linalg.norm(system.tip_moment) / beam.length, 1e-9)
+    tol_force = 1e-9 * f_ref + 1e-13 * beam.section.stiffness[0]
+    tol_step = 1e-12
+    factor = 0.0
+    dfac = 1.0 / load_steps
+    iterations = 0
+    switches = 0
+    steps = 0
+    cuts = 0
+    while factor < 1.0 - 1e-14:
+        target = min(1.0, factor + dfac)
+        try:
+            x_new, mu_new, it, _ = _newton(system, x, mu, F, target, tol_force, tol_step, max_iterations)
+        except (ConvergenceError, ChartSingularityError) as exc:
+            if cuts >= max_cuts:
+                partial = StaticSolution(x, system.constraint_scale * mu, F, factor, iterations, steps, switches)
+                raise ConvergenceError(
+                    f"static equilibrium failed at load step {steps + 1} (load factor {target:.4g}, "
+                    f"last equilibrium at {factor:.4g}): {exc}. Try more load steps "
+                    f"(--set analysis.load_steps={4 * load_steps}) or more elements.",
+                    partial=partial,
+                ) from exc
+            dfac /= 2.0
+            cuts += 1
+            continue
+        iterations += it
+        steps += 1
+        x, mu, factor = x_new, mu_new, target
+        x, F, switched = replace_chart_if_needed(system, x, F)
+        if switched:
+            switches += 1
+            x, mu, it, _ = _newton(system, x, mu, F, factor, tol_force, tol_step, max_iterations)
+            iterations += it
+        if it <= 4 and cuts:
+            dfac = min(2.0 * dfac, 1.0 / load_steps)
+    return StaticSolution(x, system.constraint_scale * mu, F, factor, iterations, steps, switches)

@@ -1,0 +1,1 @@
+"""The hub-beam system: beam meshes, hub kinematics, constraints, loads and assembly."""

@@ -1,0 +1,189 @@
+"""A straight ANCF beam mesh: DOF layout, reference states, assembled terms, stations.
+
+The beam has ``n`` equal elements and n + 1 nodes; its coordinate vector q (8 (n + 1))
+is node-major with the node layout of :data:`DOF_NAMES` (paper Eq. 14). The chart F
+(see :mod:`hubbeam.elements.ancf.frame`) is part of the *state*: every method that
+needs it takes it explicitly.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hubbeam.elements.ancf import kernels
+from hubbeam.elements.ancf.chart import choose_director, frame_from_director
+from hubbeam.elements.ancf.frame import section_frame
+from hubbeam.elements.ancf.strain import strain_measures
+from hubbeam.elements.hermite import gauss_legendre, hermite
+from hubbeam.elements.section import Section
+
+#: Names of the 8 coordinates of an ANCF node (Eq. 14).
+DOF_NAMES = ("r_x", "r_y", "r_z", "r'_x", "r'_y", "r'_z", "theta_1", "theta_1'")
+NODE_DOFS = kernels.NODE_DOFS
+
+#: Gauss points per element for the strain energy, chosen by the convergence study in
+#: tests/elements/test_gauss_order.py (4 points give the energy of a strongly bent,
+#: twisted state to 1e-6 relative; 5 leave round-off).
+DEFAULT_GAUSS_POINTS = 5
+
+
+class ChartSingularityError(RuntimeError):
+    """A beam tangent reached the singular direction of the rotation chart."""
+
+
+@dataclass
+class AncfBeam:
+    """n equal ANCF elements over a beam of ``length`` (m) with one ``section``."""
+
+    length: float
+    elements: int
+    section: Section
+    gauss_points: int = DEFAULT_GAUSS_POINTS
+    _tables: tuple = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        xi, w = gauss_legendre(self.gauss_points)
+        S, dS, d2S = hermite(xi, self.element_length)
+        self._tables = (np.ascontiguousarray(S), np.ascontiguousarray(dS), np.ascontiguousarray(d2S), w)
+        self._stiffness = np.array(self.section.stiffness)
+
+    # ---------------------------------------------------------------- layout
+    @property
+    def element_length(self) -> float:
+        return self.length / self.elements
+
+    @property
+    def nodes(self) -> int:
+        return self.elements + 1
+
+    @property
+    def ndof(self) -> int:
+        return NODE_DOFS * self.nodes
+
+    def node_slice(self, node: int) -> slice:
+        node = node % self.nodes
+        return slice(NODE_DOFS * node, NODE_DOFS * (node + 1))
+
+    # ---------------------------------------------------------------- states
+    def straight_state(self, root: np.ndarray, frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Undeformed straight beam from ``root`` along frame[:, 0] with section frame ``frame``.
+
+        Returns (q, F): the coordinates and a chart whose director is the beam axis.
+        """
+        frame = np.asarray(frame, dtype=float)
+        F = frame_from_director(frame[:, 0])
+        T, m, n = section_frame(F.T @ frame[:, 0], 0.0)
+        m_g = F @ m
+        theta = np.arctan2(np.dot(frame[:, 1], F @ n), np.dot(frame[:, 1], m_g))
+        q = np.zeros(self.ndof)
+        for k in range(self.nodes):
+            s = self.node_slice(k)
+            q[s][0:3] = np.asarray(root, dtype=float) + k * self.element_length * frame[:, 0]
+            q[s][3:6] = frame[:, 0]
+            q[s][6] = theta
+        return q, F
+
+    # ---------------------------------------------------------------- energies
+    def elastic(self, q: np.ndarray, F: np.ndarray, tangent: bool = True):
+        """Strain energy U (J), internal force dU/dq (n_dof) and element tangents (n_el, 16, 16).
+
+        Raises :class:`ChartSingularityError` where a tangent is at the chart's singular direction.
+        """
+        S, dS, d2S, w = self._tables
+        force = np.empty(self.ndof)
+        blocks = np.empty((self.elements, 16, 16)) if tangent else np.empty((0, 16, 16))
+        U, margin = kernels.elastic_kernel(
+            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(F), self.element_length, S, dS, d2S, w,
+            self._stiffness, tangent, force, blocks,
+        )
+        if not margin > 1e-6 or not np.isfinite(U):
+            raise ChartSingularityError(
+                f"a beam tangent is at the singular direction of the rotation chart (1 + d.tau = {margin:.2e})"
+            )
+        return U, force, (blocks if tangent else None)
+
+    def chart_margin(self, q: np.ndarray, F: np.ndarray) -> float:
+        """min over Gauss points of 1 + d.tau (2 best, 0 singular)."""
+        return float(np.min(1.0 + self.gauss_tangents(q) @ F[:, 0]))
+
+    def mass_blocks(self, q: np.ndarray, F: np.ndarray) -> np.ndarray:
+        """Element mass matrices (n_el, 16, 16) of Eq. 35 (kg, kg m, kg m^2 blocks)."""
+        S, dS, _, w = self._tables
+        sec = self.section
+        out = np.empty((self.elements, 16, 16))
+        kernels.mass_kernel(
+            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(F), self.element_length, S, dS, w,
+            sec.mass_per_length, sec.density * sec.i_y, sec.density * sec.i_z, out,
+        )
+        return out
+
+    def distributed_load(self, per_length: np.ndarray) -> np.ndarray:
+        """Generalized force of a constant load per unit length (N/m, global), e.g. rho A g (Eq. 32)."""
+        S, _, _, w = self._tables
+        out = np.empty(self.ndof)
+        kernels.distributed_load(self.elements, self.element_length, S, w, np.asarray(per_length, dtype=float), out)
+        return out
+
+    # ---------------------------------------------------------------- stations
+    def locate(self, x: float) -> tuple[int, float]:
+        """Element index and local xi in [0, 1] of the station x (m from the root)."""
+        e = min(int(x / self.element_length), self.elements - 1)
+        return e, x / self.element_length - e
+
+    def interpolate(self, q: np.ndarray, x: float):
+        """r0, r0', r0'', theta_1, theta_1' at the station x (global components)."""
+        e, xi = self.locate(x)
+        S, dS, d2S = (a[0] for a in hermite(np.array([xi]), self.element_length))
+        qe = q[NODE_DOFS * e : NODE_DOFS * e + 16]
+        vec = np.array([qe[0:3], qe[3:6], qe[8:11], qe[11:14]])
+        ang = np.array([qe[6], qe[7], qe[14], qe[15]])
+        return S @ vec, dS @ vec, d2S @ vec, float(S @ ang), float(dS @ ang)
+
+    def strains(self, q: np.ndarray, F: np.ndarray, x: float) -> tuple[float, float, float, float]:
+        """(eps0, kappa1, kappa2, kappa3) at station x (1, 1/m)."""
+        _, u, v, phi, psi = self.interpolate(q, x)
+        return strain_measures(F.T @ u, F.T @ v, phi, psi)
+
+    def frame_at(self, q: np.ndarray, F: np.ndarray, x: float) -> np.ndarray:
+        """Section frame [tau m n] (3x3, global) at station x."""
+        _, u, _, phi, _ = self.interpolate(q, x)
+        T, m, n = section_frame(F.T @ u, phi)
+        return F @ np.column_stack([T, m, n])
+
+    def surface_strain(self, q: np.ndarray, F: np.ndarray, x: float, y: float, z: float) -> float:
+        """Fibre axial strain eps0 - y kappa3 + z kappa2 at section point (y, z) of station x."""
+        eps0, _, k2, k3 = self.strains(q, F, x)
+        return eps0 - y * k3 + z * k2
+
+    def gauss_tangents(self, q: np.ndarray) -> np.ndarray:
+        """Unit tangents at every Gauss point and node (rows)."""
+        _, dS, _, _ = self._tables
+        qn = q.reshape(self.nodes, NODE_DOFS)
+        pts = []
+        for e in range(self.elements):
+            vec = np.array([qn[e, 0:3], qn[e, 3:6], qn[e + 1, 0:3], qn[e + 1, 3:6]])
+            pts.append(dS @ vec)
+        t = np.vstack(pts + [qn[:, 3:6]])
+        return t / np.linalg.norm(t, axis=1, keepdims=True)
+
+    def node_tangent_rates(self, q: np.ndarray) -> np.ndarray:
+        """d(tau)/dx at each node, averaged over the elements that meet there (n_nodes, 3)."""
+        qn = q.reshape(self.nodes, NODE_DOFS)
+        _, dS, d2S = hermite(np.array([0.0, 1.0]), self.element_length)
+        acc = np.zeros((self.nodes, 3))
+        cnt = np.zeros(self.nodes)
+        for e in range(self.elements):
+            vec = np.array([qn[e, 0:3], qn[e, 3:6], qn[e + 1, 0:3], qn[e + 1, 3:6]])
+            for k, node in enumerate((e, e + 1)):
+                u, v = dS[k] @ vec, d2S[k] @ vec
+                L = np.linalg.norm(u)
+                t = u / L
+                acc[node] += (v - t * np.dot(t, v)) / L
+                cnt[node] += 1
+        return acc / cnt[:, None]
+
+    def better_chart(self, q: np.ndarray) -> np.ndarray:
+        """A chart whose director keeps every current tangent as far as possible from -d."""
+        return frame_from_director(choose_director(self.gauss_tangents(q)))

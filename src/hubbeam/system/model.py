@@ -1,0 +1,153 @@
+"""The hub-beam system (paper Sec. 4): coordinates, constraints, loads and their tangents.
+
+Coordinates x = [theta, q] (hub angle, beam coordinates); the clamp (and a drive, for
+a prescribed or fixed hub) adds constraints Phi(x, t) = 0 with multipliers lambda
+(Eq. 77). The Newton systems order the unknowns z = [theta, mu, q], mu = lambda / s,
+where s = EA / l (the axial stiffness of one element) scales the constraint rows to the
+size of the stiffness entries; with this order the matrix is banded.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hubbeam.system.assembly import add_block_banded, add_element_blocks_banded, add_element_blocks_dense
+from hubbeam.system.beam import AncfBeam
+from hubbeam.system.clamp import clamp_constraints
+from hubbeam.system.hub import DriveProfile, clamp_frame, hub_frame
+from hubbeam.system.loads import tip_moment_load
+
+
+@dataclass
+class HubBeamSystem:
+    """An ANCF beam clamped to a hub of radius R (m) with the section twisted by beta (rad)."""
+
+    beam: AncfBeam
+    radius: float = 0.0
+    twist: float = 0.0
+    motion: str = "fixed"  # "free" | "prescribed" | "fixed"
+    hub_inertia: float = 1.0  # kg m^2 about j0
+    hub_torque: float = 0.0  # N m, external torque on the hub (acts on theta)
+    drive: DriveProfile = field(default_factory=lambda: DriveProfile("rest"))
+    gravity: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    tip_force: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    tip_moment: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    damping: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        self.gravity = np.asarray(self.gravity, dtype=float)
+        self.tip_force = np.asarray(self.tip_force, dtype=float)
+        self.tip_moment = np.asarray(self.tip_moment, dtype=float)
+        self._gravity_load = self.beam.distributed_load(self.beam.section.mass_per_length * self.gravity)
+        self.constraint_scale = self.beam.section.stiffness[0] / self.beam.element_length
+
+    # ------------------------------------------------------------ layout
+    @property
+    def nx(self) -> int:
+        return 1 + self.beam.ndof
+
+    def n_constraints(self, held: bool) -> int:
+        return 7 if held else 6
+
+    def bandwidth(self, m: int) -> int:
+        return max(15, m + 8)
+
+    def initial_state(self, theta: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """Straight undeformed beam clamped to the hub at angle theta: (x, chart F)."""
+        frame = clamp_frame(theta, self.twist)
+        q, F = self.beam.straight_state(self.radius * hub_frame(theta)[:, 0], frame)
+        return np.concatenate([[theta], q]), F
+
+    def drive_angle(self, t: float, held: bool | None = None) -> float | None:
+        """theta_p(t) of the driving constraint, or None for a free hub."""
+        if held is None:
+            held = self.motion != "free"
+        if not held:
+            return None
+        if self.motion == "prescribed":
+            return self.drive(t)[0]
+        return 0.0
+
+    # ------------------------------------------------------------ loads
+    def external_load(self, q: np.ndarray, F: np.ndarray, factor: float = 1.0):
+        """Applied generalized force on q (gravity, tip force and moment) scaled by ``factor``,
+        and the tip-moment load Jacobian (8 x 8 on the tip node coordinates)."""
+        Q = factor * self._gravity_load.copy()
+        tip = self.beam.node_slice(-1)
+        Q[tip][0:3] += factor * self.tip_force
+        J = np.zeros((8, 8))
+        if np.any(self.tip_moment):
+            Qm, Jm = tip_moment_load(q[tip][3:6], self.tip_moment, F)
+            Q[tip][3:7] += factor * Qm
+            J[3:7, 3:6] = factor * Jm
+        return Q, J
+
+    # ------------------------------------------------------------ constraints
+    def constraints(self, x: np.ndarray, F: np.ndarray, theta_p: float | None):
+        """Phi, its Jacobian on the clamp coordinates c = [theta, q_root[0:7]], and the
+        multiplier-weighted Hessian function (see :mod:`hubbeam.system.clamp`)."""
+        c = x[0:8]
+        return clamp_constraints(c, self.radius, self.twist, F, theta_p)
+
+    # ------------------------------------------------------------ statics
+    def static_equations(self, x, mu, F, factor, theta_p=0.0):
+        """Residual and band-stored Newton matrix of the static problem with the hub held at theta_p.
+
+        Unknown order z = [theta, mu, q]; lambda = s mu. Returns (residual, ab, kl, ku, U).
+        """
+        beam = self.beam
+        s = self.constraint_scale
+        q = x[1:]
+        m = mu.shape[0]
+        lam = s * mu
+        U, f_int, blocks = beam.elastic(q, F, tangent=True)
+        Q, Jload = self.external_load(q, F, factor)
+        phi, jac, hess = self.constraints(x, F, theta_p)
+        n = 1 + m + beam.ndof
+        kq = 1 + m  # offset of q in z
+        res = np.empty(n)
+        res[0] = s * jac[:, 0] @ mu - factor * self.hub_torque
+        res[1 : 1 + m] = s * phi
+        res[kq:] = f_int - Q
+        res[kq : kq + 7] += s * jac[:, 1:8].T @ mu
+        bw = self.bandwidth(m)
+        ab = np.zeros((2 * bw + 1, n))
+        add_element_blocks_banded(ab, blocks, kq, bw, 1.0)
+        tip = beam.node_slice(-1)
+        tip_idx = np.arange(kq + tip.start, kq + tip.stop)
+        add_block_banded(ab, tip_idx, tip_idx, -Jload, bw)
+        cidx = np.concatenate([[0], np.arange(kq, kq + 7)])
+        midx = np.arange(1, 1 + m)
+        add_block_banded(ab, midx, cidx, s * jac, bw)
+        add_block_banded(ab, cidx, midx, s * jac.T, bw)
+        add_block_banded(ab, cidx, cidx, hess(lam), bw)
+        return res, ab, bw, bw, U
+
+    # ------------------------------------------------------------ linearisation
+    def linearised(self, x, lam, F, factor=1.0, held=False, theta_p=0.0):
+        """Dense stiffness and mass of x about an equilibrium, and the constraint Jacobian.
+
+        Returns (K, M, A): K = d2(U - W)/dx2 + lambda . d2 Phi/dx2 (the load stiffness of
+        the tip moment included), M = diag(J, M_beam(q)), A = dPhi/dx (m x nx).
+        ``held`` keeps the driving constraint theta = theta_p (fixed hub).
+        """
+        beam = self.beam
+        q = x[1:]
+        nx = self.nx
+        _, _, blocks = beam.elastic(q, F, tangent=True)
+        K = np.zeros((nx, nx))
+        add_element_blocks_dense(K, blocks, 1, 1.0)
+        _, Jload = self.external_load(q, F, factor)
+        tip = beam.node_slice(-1)
+        K[1 + tip.start : 1 + tip.stop, 1 + tip.start : 1 + tip.stop] -= Jload
+        phi, jac, hess = self.constraints(x, F, theta_p if held else None)
+        lam = lam[: jac.shape[0]]
+        K[0:8, 0:8] += hess(lam)
+        M = np.zeros((nx, nx))
+        M[0, 0] = self.hub_inertia
+        add_element_blocks_dense(M, beam.mass_blocks(q, F), 1, 1.0)
+        A = np.zeros((jac.shape[0], nx))
+        A[:, 0:8] = jac
+        return K, M, A
