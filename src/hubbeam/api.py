@@ -1,0 +1,111 @@
+"""Plain-Python entry points: scenario in, data out (nothing is printed here)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from hubbeam.elements.section import Section, saint_venant_torsion_constant
+from hubbeam.io.scenario import Scenario, ScenarioError
+from hubbeam.solvers.modal import Modes, modal_analysis
+from hubbeam.solvers.static import StaticSolution, solve_static
+from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
+from hubbeam.system.hub import DriveProfile, hub_frame
+from hubbeam.system.model import HubBeamSystem
+
+
+def section_of(scenario: Scenario) -> Section:
+    b = scenario.beam
+    jt = b.torsion_constant if b.torsion_constant is not None else saint_venant_torsion_constant(b.width, b.thickness)
+    return Section(b.width, b.thickness, b.density, b.youngs_modulus, scenario.shear_modulus, jt)
+
+
+def build_system(scenario: Scenario) -> HubBeamSystem:
+    """The hub-beam system a scenario describes."""
+    b = scenario.beam
+    if b.formulation != "ancf":
+        raise ScenarioError(f"beam.formulation: {b.formulation!r} is not available in this version (only 'ancf')")
+    beam = AncfBeam(b.length, b.elements, section_of(scenario), b.gauss_points or DEFAULT_GAUSS_POINTS)
+    hub = scenario.hub
+    drive = DriveProfile("rest")
+    if hub.drive is not None:
+        drive = DriveProfile(hub.drive.profile, hub.drive.omega_s, hub.drive.T, hub.drive.t1)
+    return HubBeamSystem(
+        beam,
+        radius=hub.radius,
+        twist=scenario.twist_rad,
+        motion=hub.motion,
+        hub_inertia=hub.inertia,
+        hub_torque=hub.torque,
+        drive=drive,
+        gravity=np.array(scenario.environment.gravity),
+        tip_force=np.array(scenario.loads.tip_force),
+        tip_moment=np.array(scenario.loads.tip_moment),
+        damping=(scenario.damping.linear, scenario.damping.quadratic),
+    )
+
+
+def tip_displacement(system: HubBeamSystem, x: np.ndarray) -> dict[str, float]:
+    """Tip centroid displacement from its undeformed place, in the hub frame (m)."""
+    theta = x[0]
+    A = hub_frame(theta)
+    tip = x[1:][system.beam.node_slice(-1)][0:3]
+    disp = tip - (system.radius + system.beam.length) * A[:, 0]
+    return {"radial": float(disp @ A[:, 0]), "vertical": float(disp @ A[:, 1]), "tangential": float(disp @ A[:, 2])}
+
+
+@dataclass
+class StaticResult:
+    """Static equilibrium of a scenario and its summary."""
+
+    system: HubBeamSystem
+    solution: StaticSolution
+
+    def to_dict(self) -> dict:
+        sol = self.solution
+        q = sol.q
+        lam = sol.multipliers
+        return {
+            "tip_displacement": tip_displacement(self.system, sol.x),
+            "tip_position": [float(v) for v in q[self.system.beam.node_slice(-1)][0:3]],
+            "root_reaction_force": [float(v) for v in -lam[0:3]],
+            "hub_holding_torque": float(-lam[6]) if lam.shape[0] > 6 else 0.0,
+            "newton_iterations": sol.newton_iterations,
+            "load_steps": sol.load_steps,
+            "chart_switches": sol.chart_switches,
+        }
+
+
+@dataclass
+class ModalResult:
+    """Natural frequencies about the static equilibrium of a scenario."""
+
+    static: StaticResult
+    modes: Modes
+
+    def to_dict(self) -> dict:
+        return {
+            "frequencies_hz": [float(f) for f in self.modes.frequencies_hz],
+            "rigid_modes": self.modes.rigid_modes,
+            "rigid_frequencies_hz": [float(f) for f in self.modes.rigid_frequencies_hz],
+            "about": "static equilibrium under the scenario's gravity and loads",
+            "equilibrium_tip_displacement": tip_displacement(self.static.system, self.static.solution.x),
+        }
+
+
+def static(scenario: Scenario) -> StaticResult:
+    """Static equilibrium under gravity and loads, hub held at theta = 0 (load stepping)."""
+    system = build_system(scenario)
+    return StaticResult(system, solve_static(system, load_steps=scenario.analysis.load_steps))
+
+
+def modes(scenario: Scenario) -> ModalResult:
+    """Natural frequencies (Hz) linearised about the static equilibrium (fixed or free hub)."""
+    st = static(scenario)
+    if scenario.hub.motion == "prescribed":
+        raise ScenarioError(
+            "hub.motion: modes about a rotating state ('prescribed') are not available in this version; "
+            "use 'fixed' or 'free'"
+        )
+    return ModalResult(st, modal_analysis(st.system, st.solution, count=scenario.analysis.count))

@@ -1,0 +1,138 @@
+"""The ``hubbeam`` command line (see ../shared/interface.md).
+
+Exit status: 0 success, 2 bad input (one line naming the key), 1 failed computation
+(a message saying where and what to try). No traceback reaches the user unless the
+environment variable HUBBEAM_DEBUG is set.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from importlib import resources
+from pathlib import Path
+
+from hubbeam.io.scenario import ScenarioError, load_scenario
+from hubbeam.solvers.errors import ComputationError
+
+EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2")
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # argparse prints usage and exits 2: keep it to two lines
+        self.print_usage(sys.stderr)
+        print(f"hubbeam: error: {message}", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="hubbeam", description="Rotating hub with a 3D flexible beam (ANCF with torsion).")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    def scenario_cmd(name, help_):
+        sp = sub.add_parser(name, help=help_)
+        sp.add_argument("scenario", help="scenario file (TOML)")
+        sp.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                        help="override one key, dotted path and TOML value (e.g. beam.elements=8)")
+        sp.add_argument("--json", action="store_true", help="print one JSON object on stdout")
+        return sp
+
+    run = scenario_cmd("run", "run the scenario's analysis")
+    run.add_argument("-o", "--output", help="NetCDF result file")
+    run.add_argument("--csv", help="CSV result file")
+    run.add_argument("--plot", help="PNG figure")
+    st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
+    st.add_argument("--plot", help="PNG figure of the deformed beam")
+    scenario_cmd("modes", "natural frequencies about the static equilibrium")
+    ex = sub.add_parser("example", help="print a bundled scenario")
+    ex.add_argument("name", help=f"one of: {', '.join(EXAMPLES)}")
+    return p
+
+
+def example_text(name: str) -> str:
+    if name not in EXAMPLES:
+        raise ScenarioError(f"example: unknown example {name!r} (available: {', '.join(EXAMPLES)})")
+    return resources.files("hubbeam").joinpath("examples", f"{name}.toml").read_text(encoding="utf-8")
+
+
+def _print_static(d: dict) -> None:
+    t = d["tip_displacement"]
+    print(f"tip displacement (hub frame): radial {t['radial']:+.6g} m, vertical {t['vertical']:+.6g} m, "
+          f"tangential {t['tangential']:+.6g} m")
+    print(f"tip position: [{', '.join(f'{v:.6g}' for v in d['tip_position'])}] m")
+    print(f"Newton iterations {d['newton_iterations']} over {d['load_steps']} load steps, "
+          f"{d['chart_switches']} chart replacements")
+
+
+def _cmd_static(args, scenario) -> dict:
+    from hubbeam import api
+
+    result = api.static(scenario)
+    d = result.to_dict()
+    if getattr(args, "plot", None):
+        from hubbeam import plots
+
+        x0, F0 = result.system.initial_state(0.0)
+        sol = result.solution
+        plots.plot_deformed(result.system, x0, F0, sol.x, sol.chart, args.plot, title=f"{scenario.name}: static equilibrium")
+    if not args.json:
+        _print_static(d)
+    return d
+
+
+def _cmd_modes(args, scenario) -> dict:
+    from hubbeam import api
+
+    d = api.modes(scenario).to_dict()
+    if not args.json:
+        print(f"natural frequencies (Hz) about the static equilibrium, {d['rigid_modes']} rigid mode(s) left out:")
+        for i, f in enumerate(d["frequencies_hz"], 1):
+            print(f"  {i:3d}  {f:12.6f}")
+    return d
+
+
+def _cmd_run(args, scenario) -> dict:
+    kind = scenario.analysis.kind
+    if kind == "static":
+        return _cmd_static(args, scenario)
+    if kind == "modes":
+        return _cmd_modes(args, scenario)
+    raise ComputationError(
+        "analysis.kind = 'dynamic': time integration is not available in this version yet; "
+        "run 'hubbeam static' or 'hubbeam modes', or set analysis.kind"
+    )
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        if args.command == "example":
+            sys.stdout.write(example_text(args.name))
+            return 0
+        scenario = load_scenario(args.scenario, args.overrides)
+        handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run}[args.command]
+        result = handler(args, scenario)
+        if args.json:
+            print(json.dumps(result))
+        return 0
+    except ScenarioError as exc:
+        print(f"hubbeam: error: {exc}", file=sys.stderr)
+        return 2
+    except ComputationError as exc:
+        print(f"hubbeam: computation failed: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("hubbeam: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # the last line of defence: never a traceback for users
+        if os.environ.get("HUBBEAM_DEBUG"):
+            raise
+        print(f"hubbeam: internal error: {exc.__class__.__name__}: {exc} (set HUBBEAM_DEBUG=1 for a traceback)",
+              file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,37 @@
+"""Figures (matplotlib, Agg backend). Numerics never import this module."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def beam_polyline(system, x, F, points_per_element: int = 12) -> np.ndarray:
+    """Centre-line points (n, 3) of the beam state x."""
+    beam = system.beam
+    xs = np.linspace(0.0, beam.length, beam.elements * points_per_element + 1)
+    return np.array([beam.interpolate(x[1:], s)[0] for s in xs])
+
+
+def plot_deformed(system, x_ref, F_ref, x, F, path, title: str = "") -> None:
+    """Three views of the undeformed and deformed centre line, with the section's n at the tip."""
+    ref = beam_polyline(system, x_ref, F_ref)
+    cur = beam_polyline(system, x, F)
+    fig, axes = plt.subplots(1, 3, figsize=(12, 4))
+    views = [(0, 1, "x (m)", "y (m), vertical"), (0, 2, "x (m)", "z (m)"), (2, 1, "z (m)", "y (m), vertical")]
+    for ax, (i, j, xl, yl) in zip(axes, views):
+        ax.plot(ref[:, i], ref[:, j], "k--", lw=1, label="undeformed")
+        ax.plot(cur[:, i], cur[:, j], "C0-", lw=2, label="deformed")
+        ax.plot(cur[-1, i], cur[-1, j], "C3o", ms=4)
+        ax.set_xlabel(xl)
+        ax.set_ylabel(yl)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.grid(alpha=0.3)
+    axes[0].legend(loc="best", fontsize=8)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
