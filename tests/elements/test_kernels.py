@@ -1,0 +1,115 @@
+"""Element kernels: internal force and tangent from the energy, mass from the kinetic energy."""
+
+import numpy as np
+import pytest
+
+from hubbeam.elements.ancf.frame import frame_global
+from hubbeam.system.beam import AncfBeam
+from hubbeam.system.hub import clamp_frame
+from tests.conftest import central_difference, plate, rotation
+
+
+def bent_state(beam, seed=0, amplitude=0.05):
+    q, F = beam.straight_state(np.zeros(3), clamp_frame(0.0, 0.3))
+    rng = np.random.default_rng(seed)
+    return q + amplitude * rng.normal(size=q.size), F
+
+
+@pytest.fixture
+def beam():
+    return AncfBeam(1.45, 3, plate())
+
+
+def test_internal_force_is_gradient_of_strain_energy(beam):
+    q, F = bent_state(beam)
+    U, f, _ = beam.elastic(q, F)
+    f_fd = central_difference(lambda q: [beam.elastic(q, F, tangent=False)[0]], q, 1e-7)[0]
+    assert np.max(np.abs(f - f_fd)) < 1e-6 * np.max(np.abs(f))
+
+
+def test_tangent_is_derivative_of_internal_force_and_symmetric(beam):
+    from hubbeam.system.assembly import add_element_blocks_dense
+
+    q, F = bent_state(beam, seed=1)
+    _, _, blocks = beam.elastic(q, F)
+    K = np.zeros((beam.ndof, beam.ndof))
+    add_element_blocks_dense(K, blocks, 0, 1.0)
+    K_fd = central_difference(lambda q: beam.elastic(q, F, tangent=False)[1], q, 1e-7)
+    assert np.max(np.abs(K - K_fd)) < 2e-6 * np.max(np.abs(K))
+    assert np.allclose(K, K.T, rtol=0, atol=1e-9 * np.max(np.abs(K)))
+
+
+@pytest.mark.parametrize(
+    "axis,angle",
+    [([0, 1, 0], 90), ([0, 1, 0], 180), ([0, 1, 0], 270), ([0, 0, 1], 90), ([0, 0, 1], 180), ([0, 0, 1], 270),
+     ([1, 2, 3], 137)],
+)
+def test_rigid_motion_has_no_strain_energy_and_no_force(axis, angle):
+    beam = AncfBeam(1.45, 4, plate())
+    Q = rotation(axis, np.radians(angle))
+    frame = Q @ clamp_frame(0.0, np.radians(45))
+    q, F = beam.straight_state(np.array([0.3, -2.0, 5.0]), frame)
+    U, f, _ = beam.elastic(q, F)
+    assert abs(U) < 1e-18
+    assert np.max(np.abs(f)) < 1e-6  # N; EA = 8.75e6 N, so this is round-off
+    # the section frame along the beam is the rotated clamp frame
+    for x in (0.0, 0.5, 1.45):
+        assert np.allclose(beam.frame_at(q, F, x), frame, atol=1e-12)
+
+
+def _kinetic_energy_by_sampling(beam, q, qdot, F, n_x=40, n_yz=4):
+    """T = 1/2 int rho |dr/dt|^2 dV with r = r0 + y m + z n, sampled over the volume and
+    differentiated in time by finite differences: shares nothing with Eq. 35."""
+    sec = beam.section
+    xs, wx = np.polynomial.legendre.leggauss(n_x)
+    ys, wy = np.polynomial.legendre.leggauss(n_yz)
+    T = 0.0
+    h = 1e-6
+    for e in range(beam.elements):
+        for xi, w in zip(xs, wx):
+            x = (e + 0.5 * (xi + 1)) * beam.element_length
+            x = min(x, beam.length)
+
+            def point(qq, y, z):
+                r0, u, _, phi, _ = beam.interpolate(qq, x)
+                R = frame_global(F, u, phi)
+                return r0 + y * R[:, 1] + z * R[:, 2]
+
+            for yy, wyy in zip(ys, wy):
+                for zz, wzz in zip(ys, wy):
+                    y, z = yy * sec.width / 2, zz * sec.thickness / 2
+                    v = (point(q + h * qdot, y, z) - point(q - h * qdot, y, z)) / (2 * h)
+                    dV = w * beam.element_length / 2 * wyy * sec.width / 2 * wzz * sec.thickness / 2
+                    T += 0.5 * sec.density * (v @ v) * dV
+    return T
+
+
+def test_mass_matrix_gives_the_kinetic_energy_of_the_section(beam):
+    from hubbeam.system.assembly import add_element_blocks_dense
+
+    # rotary inertia large enough to matter; 8 points integrate its rational terms to 1e-7
+    fat = AncfBeam(1.45, 3, plate(width=0.3, thickness=0.2), gauss_points=8)
+    q, F = bent_state(fat, seed=2, amplitude=0.1)
+    M = np.zeros((fat.ndof, fat.ndof))
+    add_element_blocks_dense(M, fat.mass_blocks(q, F), 0, 1.0)
+    rng = np.random.default_rng(5)
+    for _ in range(3):
+        qdot = rng.normal(size=q.size)
+        T_ref = _kinetic_energy_by_sampling(fat, q, qdot, F)
+        assert np.isclose(0.5 * qdot @ M @ qdot, T_ref, rtol=2e-6)
+    assert np.all(np.linalg.eigvalsh(M) > 0)
+
+
+def test_gravity_load_is_gradient_of_potential(beam):
+    g = np.array([0.0, -9.81, 0.0])
+    Q = beam.distributed_load(beam.section.mass_per_length * g)
+    q, F = bent_state(beam)
+
+    def potential(qq):
+        xs = np.linspace(0, beam.length, 2001)
+        r = np.array([beam.interpolate(qq, s)[0] for s in xs])
+        return -beam.section.mass_per_length * np.trapezoid(r @ g, xs)
+
+    Q_fd = -central_difference(lambda qq: [potential(qq)], q, 1e-4)[0]
+    assert np.allclose(Q, Q_fd, atol=1e-5 * np.max(np.abs(Q)))
+    assert np.isclose(Q[1::8].sum(), beam.section.mass_per_length * beam.length * g[1])
