@@ -1,0 +1,82 @@
+"""Natural frequencies against Euler-Bernoulli and St-Venant closed forms, and their convergence."""
+
+import numpy as np
+import pytest
+
+from hubbeam.solvers.modal import modal_analysis
+from hubbeam.solvers.static import solve_static
+from hubbeam.system.beam import AncfBeam
+from hubbeam.system.model import HubBeamSystem
+from tests.conftest import L, RHO, plate
+
+BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382])  # clamped-free roots of cos cosh = -1
+
+
+def clamped(elements, count=40, **kw):
+    sec = plate()
+    system = HubBeamSystem(AncfBeam(L, elements, sec), radius=0.35, motion="fixed", **kw)
+    return sec, system, modal_analysis(system, solve_static(system, load_steps=1), count=count)
+
+
+def dominant_component(system, shape):
+    """Which motion dominates a mode shape at the tip: 'x', 'y', 'z' translation or 'twist'."""
+    tip = shape[1:][system.beam.node_slice(-1)]
+    amps = {"x": abs(tip[0]), "y": abs(tip[1]), "z": abs(tip[2]), "twist": abs(tip[6]) * system.beam.section.width}
+    return max(amps, key=amps.get)
+
+
+def test_clamped_frequencies_match_closed_forms():
+    sec, system, modes = clamped(8)
+    EA, GJ, EIy, EIz = sec.stiffness
+    rhoA = sec.mass_per_length
+    f = modes.frequencies_hz
+    kinds = [dominant_component(system, modes.shapes[:, i]) for i in range(f.size)]
+    # beta = 0: the width is vertical, so weak-axis bending (EI_y) moves along z, strong along y
+    weak = f[[k == "z" for k in kinds]][:3]
+    strong = f[[k == "y" for k in kinds]][:2]
+    twist = f[[k == "twist" for k in kinds]][:1]
+    axial = f[[k == "x" for k in kinds]][:1]
+    weak_ref = BETA_L**2 / (2 * np.pi) * np.sqrt(EIy / (rhoA * L**4))
+    strong_ref = BETA_L[:2] ** 2 / (2 * np.pi) * np.sqrt(EIz / (rhoA * L**4))
+    torsion_ref = 1 / (4 * L) * np.sqrt(GJ / (RHO * (sec.i_y + sec.i_z)))
+    axial_ref = 1 / (4 * L) * np.sqrt(sec.youngs_modulus / RHO)
+    assert np.allclose(weak, weak_ref, rtol=2e-3)
+    assert np.allclose(strong, strong_ref, rtol=2e-3)  # rotary inertia lowers mode 2 by 0.15 %
+    assert np.isclose(twist[0], torsion_ref, rtol=2e-3)
+    assert np.isclose(axial[0], axial_ref, rtol=2e-3)
+    assert abs(weak[0] / weak_ref[0] - 1) < 1e-4
+    # the reference plate's first frequency (conventions.md: 0.978 Hz)
+    assert abs(weak[0] - 0.978) < 5e-4
+
+
+def test_frequency_error_converges_at_high_order():
+    sec = plate()
+    EIy = sec.stiffness[2]
+    ref = BETA_L[1] ** 2 / (2 * np.pi) * np.sqrt(EIy / (sec.mass_per_length * L**4))
+    errors = []
+    for n in (4, 8, 16):
+        _, system, modes = clamped(n, count=3)
+        errors.append(abs(modes.frequencies_hz[1] - ref) / ref)
+    rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(rates > 3.5), (errors, rates)  # cubic Hermite: O(h^4) for bending frequencies
+
+
+def test_free_hub_leaves_out_one_rigid_mode():
+    sec = plate()
+    system = HubBeamSystem(AncfBeam(L, 6, sec), radius=0.35, motion="free", hub_inertia=9.557)
+    modes = modal_analysis(system, solve_static(system, load_steps=1), count=4)
+    assert modes.rigid_modes == 1
+    assert abs(modes.rigid_frequencies_hz[0]) < 1e-3
+    # a hub of finite inertia raises the in-plane (strong-axis, y... here z-tangential) frequencies above clamped
+    _, _, fixed = clamped(6, count=4)
+    assert modes.frequencies_hz[0] >= fixed.frequencies_hz[0] * (1 - 1e-9)
+
+
+def test_rigid_mode_frequency_about_a_bent_state_vanishes_with_refinement():
+    sec = plate()
+    out = []
+    for n in (4, 8):
+        system = HubBeamSystem(AncfBeam(L, n, sec), radius=0.35, twist=np.pi / 2, motion="free", hub_inertia=9.557,
+                               gravity=np.array([0, -9.81, 0]))
+        out.append(abs(modal_analysis(system, solve_static(system, load_steps=5), count=1).rigid_frequencies_hz[0]))
+    assert out[1] < out[0] / 2 and out[0] < 5e-3
