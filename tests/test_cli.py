@@ -1,0 +1,64 @@
+"""The command line: exit codes, JSON on stdout, one-line errors, never a traceback."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+
+def hubbeam(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "hubbeam.cli", *args], capture_output=True, text=True, cwd=cwd,
+                          timeout=600)
+
+
+@pytest.fixture(scope="module")
+def cantilever(tmp_path_factory):
+    path = tmp_path_factory.mktemp("cli") / "cantilever.toml"
+    out = hubbeam("example", "cantilever")
+    assert out.returncode == 0
+    path.write_text(out.stdout)
+    return path
+
+
+def test_static_json(cantilever, tmp_path):
+    out = hubbeam("static", str(cantilever), "--json", "--plot", str(tmp_path / "c.png"))
+    assert out.returncode == 0, out.stderr
+    d = json.loads(out.stdout)
+    assert set(d["tip_displacement"]) == {"radial", "vertical", "tangential"}
+    assert d["tip_displacement"]["vertical"] < -0.3  # gravity on the weak axis: a large droop
+    assert len(d["tip_position"]) == 3
+    assert (tmp_path / "c.png").stat().st_size > 10000
+
+
+def test_modes_json_and_set(cantilever):
+    out = hubbeam("modes", str(cantilever), "--json", "--set", "environment.gravity=[0.0, 0.0, 0.0]")
+    assert out.returncode == 0, out.stderr
+    f = json.loads(out.stdout)["frequencies_hz"]
+    assert f == sorted(f) and abs(f[0] - 0.978) < 1e-3
+
+
+def test_run_dispatches_on_analysis_kind(cantilever):
+    out = hubbeam("run", str(cantilever), "--json")
+    assert out.returncode == 0 and "frequencies_hz" in json.loads(out.stdout)
+
+
+@pytest.mark.parametrize(
+    "args,code,text",
+    [
+        (("static", "missing.toml"), 2, "no such file"),
+        (("static", "{c}", "--set", "beam.thickness=-1"), 2, "beam.thickness"),
+        (("static", "{c}", "--set", "beam.nonsense=1"), 2, "beam.nonsense: unknown key"),
+        (("static", "{c}", "--set", "nonsense"), 2, "KEY=VALUE"),
+        (("example", "nope"), 2, "unknown example"),
+        (("frobnicate",), 2, "invalid choice"),
+        (("static", "{c}", "--set", "loads.tip_moment=[0.0, 0.0, 2000.0]", "--set", "analysis.load_steps=1"), 1,
+         "load step"),
+    ],
+)
+def test_errors_are_one_clear_line(cantilever, args, code, text):
+    out = hubbeam(*[a.format(c=cantilever) for a in args])
+    assert out.returncode == code, (out.stdout, out.stderr)
+    assert text in out.stderr
+    assert "Traceback" not in out.stderr
+    assert out.stdout == ""
