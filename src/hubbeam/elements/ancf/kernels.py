@@ -155,3 +155,108 @@ def distributed_load(n_el, length, S, w, load, out):
                 o = _VEC_OFFSETS[a]
                 for i in range(3):
                     out[NODE_DOFS * el + o + i] += jw * S[g, a] * load[i]
+
+
+@njit(cache=True)
+def rotary_inertia_kernel(q, qdot, F, length, S, dS, w, inertia, force):
+    """Quadratic-velocity force Q_v of the section's rotary inertia and its kinetic energy.
+
+    The angular velocity of the section in its own frame, omega = (omega.tau, omega.m,
+    omega.n), is the same function of (r0', d r0'/dt, theta_1, d theta_1/dt) as the
+    curvature (kappa1, kappa2, kappa3) is of (r0', r0'', theta_1, theta_1') (compare
+    Eqs. 8 and 25), so :func:`strain_jet` gives omega with its exact derivatives, and
+    T_rot = 1/2 int (rho (I_y + I_z) omega1^2 + rho I_y omega2^2 + rho I_z omega3^2) dx.
+    Lagrange's equations then give M_rot (as :func:`mass_kernel`) and
+
+        Q_v = -sum_i c_i [ (d omega_i / d Xdot)(d omega_i / dX . Xdot)
+                           + omega_i (d2 omega_i / dXdot dX) Xdot - omega_i d omega_i / dX ],
+
+    X = (r0', theta_1) (the paper's Q_ve, Eq. 36). inertia = (rho (I_y + I_z), rho I_y,
+    rho I_z) in kg m. ``force`` (n_dof) is overwritten with Q_v. Returns T_rot (J).
+    """
+    n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
+    force[:] = 0.0
+    Z = np.empty(8)
+    e = np.empty(4)
+    G = np.empty((4, 8))
+    H = np.empty((4, 8, 8))
+    xi = (0, 1, 2, 6)  # X = (U, phi) inside Z = (U, Udot, phi, phidot)
+    vi = (3, 4, 5, 7)  # Xdot
+    energy = 0.0
+    for el in range(n_el):
+        qe = q[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
+        ve = qdot[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
+        for g in range(w.shape[0]):
+            Z[:] = 0.0
+            for a in range(4):
+                o = _VEC_OFFSETS[a]
+                for i in range(3):
+                    for k in range(3):
+                        Z[i] += F[k, i] * dS[g, a] * qe[o + k]
+                        Z[3 + i] += F[k, i] * dS[g, a] * ve[o + k]
+                Z[6] += S[g, a] * qe[_ANG_OFFSETS[a]]
+                Z[7] += S[g, a] * ve[_ANG_OFFSETS[a]]
+            strain_jet(Z, e, G, H)
+            QX = np.zeros(4)
+            for i in range(3):
+                c = inertia[i]
+                om = e[i + 1]
+                energy += 0.5 * w[g] * length * c * om * om
+                rate = 0.0  # d omega / dX . Xdot
+                for k in range(4):
+                    rate += G[i + 1, xi[k]] * Z[vi[k]]
+                for r in range(4):
+                    mixed = 0.0
+                    for k in range(4):
+                        mixed += H[i + 1, vi[r], xi[k]] * Z[vi[k]]
+                    QX[r] -= c * (G[i + 1, vi[r]] * rate + om * mixed - om * G[i + 1, xi[r]])
+            jw = w[g] * length
+            for a in range(4):
+                o = _VEC_OFFSETS[a]
+                for k in range(3):
+                    acc = 0.0
+                    for i in range(3):
+                        acc += F[k, i] * QX[i]
+                    force[NODE_DOFS * el + o + k] += jw * dS[g, a] * acc
+                force[NODE_DOFS * el + _ANG_OFFSETS[a]] += jw * S[g, a] * QX[3]
+    return energy
+
+
+@njit(cache=True)
+def drag_kernel(qdot, length, S, w, frontal_width, c1, c2, force, blocks):
+    """Damping of Eq. 37-39: f_d = -(c1 + c2 |v|) v per unit frontal area on the centre-line
+    velocity v, times the frontal width b per unit length.
+
+    ``force`` (n_dof) is overwritten with Q_d, ``blocks`` (n_el, 16, 16) with -dQ_d/dqdot
+    (the damping matrix). Returns the dissipated power -Q_d . qdot (W).
+    """
+    n_el = (qdot.shape[0] - NODE_DOFS) // NODE_DOFS
+    force[:] = 0.0
+    blocks[:, :, :] = 0.0
+    power = 0.0
+    v = np.empty(3)
+    for el in range(n_el):
+        ve = qdot[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
+        for g in range(w.shape[0]):
+            v[:] = 0.0
+            for a in range(4):
+                o = _VEC_OFFSETS[a]
+                for k in range(3):
+                    v[k] += S[g, a] * ve[o + k]
+            speed = np.sqrt(v[0] ** 2 + v[1] ** 2 + v[2] ** 2)
+            jw = w[g] * length * frontal_width
+            coef = c1 + c2 * speed
+            power += jw * coef * speed * speed
+            for a in range(4):
+                oa = _VEC_OFFSETS[a]
+                for k in range(3):
+                    force[NODE_DOFS * el + oa + k] -= jw * S[g, a] * coef * v[k]
+                for b in range(4):
+                    ob = _VEC_OFFSETS[b]
+                    for k in range(3):
+                        for m in range(3):
+                            Ckm = coef if k == m else 0.0
+                            if speed > 0.0:
+                                Ckm += c2 * v[k] * v[m] / speed
+                            blocks[el, oa + k, ob + m] += jw * S[g, a] * S[g, b] * Ckm
+    return power
