@@ -62,3 +62,21 @@ def test_errors_are_one_clear_line(cantilever, args, code, text):
     assert text in out.stderr
     assert "Traceback" not in out.stderr
     assert out.stdout == ""
+
+
+def test_run_writes_netcdf_csv_and_plot(tmp_path):
+    import xarray as xr
+
+    scen = tmp_path / "exp1.toml"
+    scen.write_text(hubbeam("example", "exp1").stdout)
+    out = hubbeam("run", str(scen), "--set", "analysis.t_end=0.1", "--set", "beam.elements=3", "--json",
+                  "-o", str(tmp_path / "r.nc"), "--csv", str(tmp_path / "r.csv"), "--plot", str(tmp_path / "r.png"))
+    assert out.returncode == 0, out.stderr
+    d = json.loads(out.stdout)
+    assert d["steps"] == 100 and d["wall_time_s"] > 0
+    assert set(d["final"]["tip"]) == {"radial", "vertical", "tangential"}
+    ds = xr.open_dataset(tmp_path / "r.nc")
+    assert {"strain_P1", "hub_omega", "tip_tangential", "energy_total"} <= set(ds.data_vars)
+    assert ds["time"].attrs["units"] == "s" and "beam" in ds.attrs["scenario"]
+    assert (tmp_path / "r.csv").read_text().startswith("time,")
+    assert (tmp_path / "r.png").stat().st_size > 10000

@@ -99,10 +99,59 @@ def _cmd_run(args, scenario) -> dict:
         return _cmd_static(args, scenario)
     if kind == "modes":
         return _cmd_modes(args, scenario)
-    raise ComputationError(
-        "analysis.kind = 'dynamic': time integration is not available in this version yet; "
-        "run 'hubbeam static' or 'hubbeam modes', or set analysis.kind"
-    )
+    from hubbeam import api
+    from hubbeam.io import results
+    from hubbeam.simulation import simulate
+
+    system = api.build_system(scenario)
+    a = scenario.analysis
+    progress, finish = _progress_bar(a.t_end)
+    failure = None
+    try:
+        traj = simulate(system, scenario.sensors, a.t_end, a.dt, a.spectral_radius, scenario.output_dt, progress)
+    except ComputationError as exc:
+        failure, traj = exc, exc.partial
+    finally:
+        finish()
+    if traj is not None and traj.times:
+        ds = results.to_dataset(traj, scenario)
+        if args.output:
+            results.write_netcdf(ds, args.output)
+        if args.csv:
+            results.write_csv(ds, args.csv)
+        if args.plot:
+            from hubbeam import plots
+
+            plots.plot_timeseries(ds, args.plot, title=scenario.name)
+    if failure is not None:
+        raise failure
+    final = {name: values[-1] for name, values in traj.records.items()}
+    summary = {"steps": traj.steps, "newton_iterations": traj.newton_iterations,
+               "newton_iterations_per_step": traj.newton_iterations / max(traj.steps, 1),
+               "wall_time_s": traj.wall_time_s, "final": final}
+    if not args.json:
+        print(f"{traj.steps} steps, {summary['newton_iterations_per_step']:.2f} Newton iterations per step, "
+              f"{traj.wall_time_s:.2f} s of integration")
+        for name, value in final.items():
+            if isinstance(value, dict):
+                value = ", ".join(f"{k} {v:+.6g}" for k, v in value.items())
+            else:
+                value = f"{value:+.6g}"
+            print(f"  {name} at t = {traj.times[-1]:g} s: {value}")
+    return summary
+
+
+def _progress_bar(t_end: float):
+    """A rich progress bar on a terminal, nothing otherwise: (update(t), finish())."""
+    if not sys.stderr.isatty():
+        return None, lambda: None
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+    bar = Progress(TextColumn("simulating"), BarColumn(), TextColumn("t = {task.completed:.2f} s"),
+                   TimeRemainingColumn(), transient=True)
+    task = bar.add_task("run", total=t_end)
+    bar.start()
+    return (lambda t: bar.update(task, completed=t)), bar.stop
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -35,3 +35,18 @@ def plot_deformed(system, x_ref, F_ref, x, F, path, title: str = "") -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def plot_timeseries(ds, path, title: str = "") -> None:
+    """Every variable of a result dataset over time, one panel each."""
+    names = list(ds.data_vars)
+    fig, axes = plt.subplots(len(names), 1, figsize=(9, 1.9 * len(names) + 0.6), sharex=True, squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        ax.plot(ds["time"].values, ds[name].values, lw=1)
+        ax.set_ylabel(f"{name}\n({ds[name].attrs.get('units', '')})", fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("time (s)")
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -119,6 +119,29 @@ class AncfBeam:
         )
         return out
 
+    def rotary_inertia(self, q: np.ndarray, qdot: np.ndarray, F: np.ndarray) -> tuple[float, np.ndarray]:
+        """Rotational kinetic energy of the sections (J) and their quadratic-velocity force Q_v."""
+        S, dS, _, w = self._tables
+        sec = self.section
+        out = np.empty(self.ndof)
+        inertia = np.array([sec.density * (sec.i_y + sec.i_z), sec.density * sec.i_y, sec.density * sec.i_z])
+        T = kernels.rotary_inertia_kernel(
+            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(qdot, dtype=float), np.ascontiguousarray(F),
+            self.element_length, S, dS, w, inertia, out,
+        )
+        return T, out
+
+    def drag(self, qdot: np.ndarray, linear: float, quadratic: float):
+        """Damping of Eq. 37 on the centre line: (dissipated power W, Q_d, element damping matrices)."""
+        S, _, _, w = self._tables
+        force = np.empty(self.ndof)
+        blocks = np.empty((self.elements, 16, 16))
+        power = kernels.drag_kernel(
+            np.ascontiguousarray(qdot, dtype=float), self.element_length, S, w, self.section.width,
+            float(linear), float(quadratic), force, blocks,
+        )
+        return power, force, blocks
+
     def distributed_load(self, per_length: np.ndarray) -> np.ndarray:
         """Generalized force of a constant load per unit length (N/m, global), e.g. rho A g (Eq. 32)."""
         S, _, _, w = self._tables

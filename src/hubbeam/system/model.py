@@ -40,7 +40,7 @@ class HubBeamSystem:
         self.gravity = np.asarray(self.gravity, dtype=float)
         self.tip_force = np.asarray(self.tip_force, dtype=float)
         self.tip_moment = np.asarray(self.tip_moment, dtype=float)
-        self._gravity_load = self.beam.distributed_load(self.beam.section.mass_per_length * self.gravity)
+        self.gravity_load = self.beam.distributed_load(self.beam.section.mass_per_length * self.gravity)
         self.constraint_scale = self.beam.section.stiffness[0] / self.beam.element_length
 
     # ------------------------------------------------------------ layout
@@ -74,7 +74,7 @@ class HubBeamSystem:
     def external_load(self, q: np.ndarray, F: np.ndarray, factor: float = 1.0):
         """Applied generalized force on q (gravity, tip force and moment) scaled by ``factor``,
         and the tip-moment load Jacobian (8 x 8 on the tip node coordinates)."""
-        Q = factor * self._gravity_load.copy()
+        Q = factor * self.gravity_load.copy()
         tip = self.beam.node_slice(-1)
         Q[tip][0:3] += factor * self.tip_force
         J = np.zeros((8, 8))
@@ -95,7 +95,8 @@ class HubBeamSystem:
     def static_equations(self, x, mu, F, factor, theta_p=0.0):
         """Residual and band-stored Newton matrix of the static problem with the hub held at theta_p.
 
-        Unknown order z = [theta, mu, q]; lambda = s mu. Returns (residual, ab, kl, ku, U).
+        Unknown order z = [theta, mu, q]; lambda = s mu. Returns (residual, ab, kl, ku, U) with
+        ab in scipy.linalg.solve_banded layout.
         """
         beam = self.beam
         s = self.constraint_scale
@@ -112,18 +113,69 @@ class HubBeamSystem:
         res[1 : 1 + m] = s * phi
         res[kq:] = f_int - Q
         res[kq : kq + 7] += s * jac[:, 1:8].T @ mu
+        ab, bw = self.newton_matrix(blocks, Jload, jac, hess(lam), 0.0)
+        ab = ab[bw:]
+        return res, ab, bw, bw, U
+
+    def newton_matrix(self, blocks, tip_jacobian, jac, hess_lam, theta_diag, scale=None):
+        """Band-stored Newton matrix on z = [theta, mu, q] (LAPACK gbtrf layout: kl extra rows on top).
+
+        ``blocks``: element blocks of the q-q part; ``tip_jacobian``: applied-load Jacobian on
+        the tip node (subtracted); ``jac``: constraint Jacobian on [theta, q_root[0:7]];
+        ``hess_lam``: lambda . d2 Phi on the same; ``theta_diag``: extra theta-theta entry;
+        ``scale``: the constraint row scale (default: EA / l, for statics).
+        Returns (ab, bandwidth); the band matrix itself starts at row ``bandwidth``.
+        """
+        beam = self.beam
+        s = self.constraint_scale if scale is None else scale
+        m = jac.shape[0]
+        n = 1 + m + beam.ndof
+        kq = 1 + m
         bw = self.bandwidth(m)
-        ab = np.zeros((2 * bw + 1, n))
-        add_element_blocks_banded(ab, blocks, kq, bw, 1.0)
+        ab = np.zeros((3 * bw + 1, n))
+        add_element_blocks_banded(ab, blocks, kq, 2 * bw, 1.0)
         tip = beam.node_slice(-1)
         tip_idx = np.arange(kq + tip.start, kq + tip.stop)
-        add_block_banded(ab, tip_idx, tip_idx, -Jload, bw)
+        add_block_banded(ab, tip_idx, tip_idx, -tip_jacobian, 2 * bw)
         cidx = np.concatenate([[0], np.arange(kq, kq + 7)])
         midx = np.arange(1, 1 + m)
-        add_block_banded(ab, midx, cidx, s * jac, bw)
-        add_block_banded(ab, cidx, midx, s * jac.T, bw)
-        add_block_banded(ab, cidx, cidx, hess(lam), bw)
-        return res, ab, bw, bw, U
+        add_block_banded(ab, midx, cidx, s * jac, 2 * bw)
+        add_block_banded(ab, cidx, midx, s * jac.T, 2 * bw)
+        add_block_banded(ab, cidx, cidx, hess_lam, 2 * bw)
+        ab[2 * bw, 0] += theta_diag
+        return ab, bw
+
+    # ------------------------------------------------------------ dynamics
+    def dynamic_equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale):
+        """Scaled residual and Newton matrix of the equations of motion (Eq. 77).
+
+        r = M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda (hub row: J theta'' - T + ...),
+        multiplied by ``coef_k``; constraint rows ``scale`` Phi. The matrix is
+        coef_m M + coef_c C + coef_k (K - dQ/dq + lambda.d2Phi) on the unknowns z = [theta, mu, q],
+        lambda = scale mu / coef_k. Returns (residual, ab (gbtrf layout), bandwidth).
+        """
+        beam = self.beam
+        q, qd = x[1:], v[1:]
+        _, f_int, Kb = beam.elastic(q, F, tangent=True)
+        Mb = beam.mass_blocks(q, F)
+        _, Qv = beam.rotary_inertia(q, qd, F)
+        _, Qd, Cb = beam.drag(qd, *self.damping)
+        Q, Jload = self.external_load(q, F, 1.0)
+        phi, jac, hess = self.constraints(x, F, self.drive_angle(t))
+        m = jac.shape[0]
+        kq = 1 + m
+        res = np.empty(1 + m + beam.ndof)
+        fq = f_int - Q - Qv - Qd
+        qdd = acc[1:]
+        for e in range(beam.elements):
+            fq[8 * e : 8 * e + 16] += Mb[e] @ qdd[8 * e : 8 * e + 16]
+        fq[0:7] += jac[:, 1:8].T @ lam
+        res[0] = coef_k * (self.hub_inertia * acc[0] - self.hub_torque + jac[:, 0] @ lam)
+        res[1:kq] = scale * phi
+        res[kq:] = coef_k * fq
+        blocks = coef_k * Kb + coef_m * Mb + coef_c * Cb
+        ab, bw = self.newton_matrix(blocks, coef_k * Jload, jac, coef_k * hess(lam), coef_m * self.hub_inertia, scale)
+        return res, ab, bw
 
     # ------------------------------------------------------------ linearisation
     def linearised(self, x, lam, F, factor=1.0, held=False, theta_p=0.0):
