@@ -56,6 +56,12 @@ def simulate(system: HubBeamSystem, sensors, t_end: float, dt: float, spectral_r
     ``progress(t)`` is called after every step when given. On failure a ComputationError
     names the time and step and carries the trajectory so far in ``partial``.
     """
+    if system.motion == "prescribed" and system.drive(0.0)[1] != 0.0:
+        raise ComputationError(
+            f"hub.drive.profile = {system.drive.kind!r} starts at omega = {system.drive(0.0)[1]:g} rad/s at t = 0, "
+            "but runs start from rest and a start in steady rotation is not supported yet; use 'exponential' "
+            "or 'spin_up', which start from rest"
+        )
     params = ga.AlphaParameters.from_spectral_radius(spectral_radius)
     x0, F0 = system.initial_state(0.0)
     x0, F0 = dynamic_chart(system, x0, F0)
