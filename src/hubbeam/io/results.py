@@ -34,18 +34,5 @@ def write_netcdf(ds: xr.Dataset, path) -> None:
 
 
 def write_csv(ds: xr.Dataset, path) -> None:
-    ds.to_dataframe().to_csv(path) if _has_pandas() else _write_csv_plain(ds, path)
-
-
-def _has_pandas() -> bool:
-    try:
-        import pandas  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
-def _write_csv_plain(ds: xr.Dataset, path) -> None:
-    names = list(ds.data_vars)
-    cols = [ds["time"].values] + [ds[n].values for n in names]
-    np.savetxt(path, np.column_stack(cols), delimiter=",", header=",".join(["time"] + names), comments="")
+    """CSV with a header row: time, then one column per variable."""
+    ds.to_dataframe().to_csv(path)

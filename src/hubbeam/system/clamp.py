@@ -29,8 +29,6 @@ import numpy as np
 from hubbeam.elements.ancf.frame import section_frame
 from hubbeam.system.hub import clamp_frame, hub_frame
 
-#: size of the clamp coordinates c = [theta, r0, r0', theta_1] at the root
-CLAMP_COORDS = 8
 
 
 def clamp_twist_angle(theta: float, twist: float, F: np.ndarray, near: float | None = None) -> float:
