@@ -102,13 +102,16 @@ def _cmd_run(args, scenario) -> dict:
     from hubbeam import api
     from hubbeam.io import results
     from hubbeam.simulation import simulate
+    from hubbeam.solvers.generalized_alpha import NewtonOptions
 
     system = api.build_system(scenario)
     a = scenario.analysis
+    newton = NewtonOptions(tolerance=a.tolerance, modified=a.newton == "modified")
     progress, finish = _progress_bar(a.t_end)
     failure = None
     try:
-        traj = simulate(system, scenario.sensors, a.t_end, a.dt, a.spectral_radius, scenario.output_dt, progress)
+        traj = simulate(system, scenario.sensors, a.t_end, a.dt, a.spectral_radius, scenario.output_dt, progress,
+                        newton)
     except ComputationError as exc:
         failure, traj = exc, exc.partial
     finally:
@@ -128,7 +131,7 @@ def _cmd_run(args, scenario) -> dict:
     final = {name: values[-1] for name, values in traj.records.items()}
     summary = {"steps": traj.steps, "newton_iterations": traj.newton_iterations,
                "newton_iterations_per_step": traj.newton_iterations / max(traj.steps, 1),
-               "wall_time_s": traj.wall_time_s, "final": final}
+               "wall_time_s": traj.wall_time_s, "chart_switches": traj.chart_switches, "final": final}
     if not args.json:
         print(f"{traj.steps} steps, {summary['newton_iterations_per_step']:.2f} Newton iterations per step, "
               f"{traj.wall_time_s:.2f} s of integration")

@@ -3,18 +3,18 @@
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
 from hubbeam.sensors import measure
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers.errors import ComputationError, ConvergenceError
-from hubbeam.system.beam import NODE_DOFS, ChartSingularityError
+from hubbeam.solvers.static import solve_static
+from hubbeam.system.beam import ChartSingularityError
 from hubbeam.system.model import HubBeamSystem
 
-#: below this chart margin (1 + d.tau) the run stops: a tangent within 60 deg of the chart's singular direction
+#: below this chart margin (1 + d.tau) the chart is replaced: a tangent within 60 deg of its singular direction
 CHART_LIMIT = 0.5
 
 
@@ -26,6 +26,7 @@ class Trajectory:
     records: dict = field(default_factory=dict)
     steps: int = 0
     newton_iterations: int = 0
+    chart_switches: int = 0
     wall_time_s: float = 0.0
 
     def append(self, t, values):
@@ -34,39 +35,66 @@ class Trajectory:
             self.records.setdefault(name, []).append(val)
 
 
-def dynamic_chart(system: HubBeamSystem, x: np.ndarray, F: np.ndarray):
-    """Re-express the initial state in the chart d = -j0 for a turning hub.
+def change_chart(system: HubBeamSystem, state: ga.AlphaState, F_new: np.ndarray, eps: float = 1e-4) -> ga.AlphaState:
+    """The integrator state re-expressed in chart F_new.
 
-    The beam stays near the horizontal plane while the hub sweeps it through every
-    horizontal direction; with d = -j0 every horizontal tangent is 90 deg from the
-    singular direction (straight up), so no chart replacement is needed in such runs."""
-    if system.motion == "fixed":
-        return x, F
-    beam = system.beam
-    F_new = frame_from_director(np.array([0.0, -1.0, 0.0]), hint=np.array([1.0, 0.0, 0.0]))
-    q = x[1:]
-    nodes = remap_chart(q.reshape(beam.nodes, NODE_DOFS), beam.node_tangent_rates(q), F, F_new)
-    return np.concatenate([[x[0]], nodes.ravel()]), F_new
+    The remap x -> g(x) changes only theta_1 and theta_1' (by functions of the tangent),
+    so velocities map by the Jacobian of g and accelerations pick up its second
+    derivative along v: v' = g_x v, xdd' = g_x xdd + v^T g_xx v (both by central
+    differences of g along v and xdd; g is smooth away from the chart singularities).
+    The algorithmic acceleration a transforms like xdd."""
+    F = state.chart
+
+    def g(x):
+        return system.remap(x, F, F_new)
+
+    x, v = state.x, state.v
+    g0, gp, gm = g(x), g(x + eps * v), g(x - eps * v)
+    v_new = (gp - gm) / (2.0 * eps)
+    curvature = (gp - 2.0 * g0 + gm) / eps**2
+
+    def along(u):
+        if not np.any(u):
+            return np.zeros_like(u)
+        scale = eps / max(np.max(np.abs(u)), 1e-300)
+        return (g(x + scale * u) - g(x - scale * u)) / (2.0 * scale)
+
+    return replace(state, x=g0, v=v_new, xdd=along(state.xdd) + curvature, a=along(state.a) + curvature, chart=F_new)
+
+
+def initial_state(system: HubBeamSystem, load_steps: int = 20) -> ga.AlphaState:
+    """Where a run starts: at rest in the straight clamped state at theta = 0, or, for a
+    drive that already turns at t = 0 (profile 'constant'), in the steadily rotating
+    equilibrium (static analysis with the centrifugal load) with its rigid-rotation
+    velocities. A turning hub gets the axis chart (see HubBeamSystem.axis_chart)."""
+    omega0 = system.drive(0.0)[1] if system.motion == "prescribed" else 0.0
+    if omega0:
+        try:
+            sol = solve_static(system, load_steps=load_steps, spin=omega0)
+        except ConvergenceError as exc:
+            raise ComputationError(f"the steadily rotating start state (omega = {omega0:g} rad/s) was not found: {exc}") from exc
+        v0, _ = system.steady_rotation_rates(sol.x, sol.chart, omega0)
+        return ga.init(system, sol.x, sol.chart, v0=v0)
+    x0, F0 = system.initial_state(0.0)
+    if system.motion != "fixed":
+        x0, F0 = system.axis_chart(x0, F0)
+    return ga.init(system, x0, F0)
 
 
 def simulate(system: HubBeamSystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
-             output_dt: float | None = None, progress=None) -> Trajectory:
-    """Integrate from rest (the straight clamped beam at theta = 0) to t_end.
+             output_dt: float | None = None, progress=None, newton: ga.NewtonOptions = ga.NewtonOptions(),
+             state: ga.AlphaState | None = None) -> Trajectory:
+    """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
 
     ``progress(t)`` is called after every step when given. On failure a ComputationError
-    names the time and step and carries the trajectory so far in ``partial``.
+    names the time and step and carries the trajectory so far in ``partial``. When a beam
+    tangent comes within 60 deg of the chart's singular direction the state is moved to a
+    better chart (counted in ``Trajectory.chart_switches``).
     """
-    if system.motion == "prescribed" and system.drive(0.0)[1] != 0.0:
-        raise ComputationError(
-            f"hub.drive.profile = {system.drive.kind!r} starts at omega = {system.drive(0.0)[1]:g} rad/s at t = 0, "
-            "but runs start from rest and a start in steady rotation is not supported yet; use 'exponential' "
-            "or 'spin_up', which start from rest"
-        )
     params = ga.AlphaParameters.from_spectral_radius(spectral_radius)
-    x0, F0 = system.initial_state(0.0)
-    x0, F0 = dynamic_chart(system, x0, F0)
-    state = ga.init(system, x0, F0)
-    n_steps = int(round(t_end / dt))
+    if state is None:
+        state = initial_state(system)
+    n_steps = int(round((t_end - state.t) / dt))
     every = max(1, int(round((output_dt or dt) / dt)))
     traj = Trajectory()
     work = {"dissipated": 0.0, "drive": 0.0}
@@ -81,10 +109,11 @@ def simulate(system: HubBeamSystem, sensors, t_end: float, dt: float, spectral_r
 
     record(state)
     p_prev = power(state)
+    matrix = None
     start = time.perf_counter()
     for k in range(1, n_steps + 1):
         try:
-            state_new, its = ga.step(system, state, dt, params)
+            state_new, its, matrix = ga.step(system, state, dt, params, newton, matrix)
         except (ConvergenceError, ChartSingularityError) as exc:
             traj.wall_time_s = time.perf_counter() - start
             raise ComputationError(
@@ -102,11 +131,8 @@ def simulate(system: HubBeamSystem, sensors, t_end: float, dt: float, spectral_r
         if k % every == 0 or k == n_steps:
             record(state)
         if system.beam.chart_margin(state.x[1:], state.chart) < CHART_LIMIT:
-            traj.wall_time_s = time.perf_counter() - start
-            raise ComputationError(
-                f"at t = {state.t:.6g} s (step {k}) a beam tangent came within 60 deg of straight up, the "
-                "singular direction of the rotation chart; replacing the chart during time integration is "
-                "not supported yet", partial=traj)
+            state = change_chart(system, state, system.beam.better_chart(state.x[1:]))
+            traj.chart_switches += 1
         if progress is not None:
             progress(state.t)
     traj.wall_time_s = time.perf_counter() - start

@@ -81,11 +81,13 @@ class Analysis(_Strict):
     output_dt: Positive | None = None
     load_steps: Annotated[int, Field(gt=0, le=100000)] = 20
     count: Annotated[int, Field(gt=0, le=500)] = 6
+    newton: Literal["full", "modified"] = "full"
+    tolerance: Annotated[float, Field(gt=0.0, lt=1e-3)] = 1e-9
 
 
 SensorKind = Literal[
     "surface_strain", "hub_angle", "hub_angular_velocity", "hub_torque", "tip_deflection", "energy",
-    "constraint_violation",
+    "angular_momentum", "constraint_violation",
 ]
 
 

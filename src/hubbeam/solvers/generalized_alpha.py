@@ -19,13 +19,12 @@ Integrators are plain ``init``/``step`` pairs on an explicit :class:`AlphaState`
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg.lapack import dgbtrf, dgbtrs
 
 from hubbeam.solvers.errors import ConvergenceError
-from hubbeam.system.beam import ChartSingularityError
 from hubbeam.system.model import HubBeamSystem
 
 
@@ -59,49 +58,104 @@ class AlphaState:
     chart: np.ndarray
 
 
-def _solve(ab, bw, rhs):
+@dataclass(frozen=True)
+class NewtonOptions:
+    """Newton settings of a step.
+
+    ``tolerance``: on the increment of the coordinates, relative to the beam length (an
+    increment-based test: the force residual of a stiff axial beam is floored by round-off
+    at EA * 1e-16 * |r'|, far above any fixed force tolerance). For modified Newton the
+    increment is multiplied by rate / (1 - rate), the estimate of the remaining error
+    from the observed contraction rate (Hairer and Wanner, IV.8).
+    ``modified``: reuse the factorised iteration matrix across iterations and steps and
+    refresh it when the contraction rate exceeds ``refresh_rate`` (or on the next step
+    after a step that needed more than ``refresh_iterations``); full Newton otherwise.
+    """
+
+    tolerance: float = 1e-9
+    max_iterations: int = 25
+    modified: bool = False
+    refresh_rate: float = 0.25
+    refresh_iterations: int = 6
+
+
+@dataclass(frozen=True)
+class IterationMatrix:
+    """An LU-factorised iteration matrix and what it was built for (step size, chart)."""
+
+    lu: np.ndarray
+    piv: np.ndarray
+    bandwidth: int
+    h: float
+    chart: np.ndarray
+
+    def valid_for(self, h: float, chart: np.ndarray) -> bool:
+        return self.h == h and self.chart is chart
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        sol, info = dgbtrs(self.lu, self.bandwidth, self.bandwidth, rhs, self.piv)
+        return sol
+
+
+def factorise(ab: np.ndarray, bw: int, h: float, chart: np.ndarray) -> IterationMatrix:
     lu, piv, info = dgbtrf(ab, bw, bw)
     if info != 0:
-        raise ConvergenceError("singular iteration matrix")
-    sol, info = dgbtrs(lu, bw, bw, rhs, piv)
-    return sol
+        raise ConvergenceError("singular iteration matrix (a constraint lost rank or a mass vanished)")
+    return IterationMatrix(lu, piv, bw, h, chart)
 
 
 def mass_scale(system: HubBeamSystem) -> float:
     return system.beam.section.mass_per_length * system.beam.element_length
 
 
-def init(system: HubBeamSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0) -> AlphaState:
-    """Consistent accelerations and multipliers at a state of rest: M xdd + Phi_x^T lam = Q - f,
-    Phi_x xdd = -Phi_tt (the drive's prescribed angular acceleration)."""
-    v0 = np.zeros_like(x0)
+def init(system: HubBeamSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
+         v0: np.ndarray | None = None) -> AlphaState:
+    """Consistent accelerations and multipliers at (x0, v0): M xdd + Phi_x^T lam = Q - f,
+    Phi_x xdd = -Phi_tt - (d/dt Phi_x) v (the drive's prescribed angular acceleration and the
+    velocity terms of the clamp, which are linear in the beam coordinates and so contribute
+    only through theta). ``v0`` defaults to rest and must satisfy Phi_x v0 + Phi_t = 0."""
+    v0 = np.zeros_like(x0) if v0 is None else np.asarray(v0, dtype=float)
     s = mass_scale(system)
     zero = np.zeros_like(x0)
     m = system.n_constraints(system.motion != "free")
-    res, ab, bw = system.dynamic_equations(x0, v0, zero, np.zeros(m), F, t0, 1.0, 0.0, 0.0, s)
-    # the linear problem: rows of res are (-Q + f) and s Phi; replace the latter by -s Phi_tt
-    rhs = -res
-    rhs[1 : 1 + m] = 0.0
-    if system.motion == "prescribed":
-        rhs[1 + 6] = s * system.drive(t0)[2]
-    # dynamic_equations with coef_k = 0 scales the force rows by 0: redo them unscaled
-    res_f, _, _ = system.dynamic_equations(x0, v0, zero, np.zeros(m), F, t0, 1.0, 0.0, 1.0, s)
-    rhs[0] = -res_f[0]
-    rhs[1 + m :] = -res_f[1 + m :]
-    z = _solve(ab, bw, rhs)
+    # force rows (unscaled) at xdd = 0, lambda = 0
+    rhs = -system.dynamic_residual(x0, v0, zero, np.zeros(m), F, t0, 1.0, s)
+    rhs[1 : 1 + m] = -s * _constraint_acceleration_terms(system, x0, v0, F, t0)
+    # the matrix [[M, s Phi_x^T], [s Phi_x, 0]] (coef_k = 0 drops stiffness and the Hessian)
+    _, ab, bw = system.dynamic_equations(x0, v0, zero, np.zeros(m), F, t0, 1.0, 0.0, 0.0, s)
+    z = factorise(ab, bw, 0.0, F).solve(rhs)
     xdd = np.concatenate([[z[0]], z[1 + m :]])
     lam = s * z[1 : 1 + m]
-    return AlphaState(t0, x0.copy(), v0, xdd, xdd.copy(), lam, F)
+    return AlphaState(t0, x0.copy(), v0.copy(), xdd, xdd.copy(), lam, F)
 
 
-def step(system: HubBeamSystem, state: AlphaState, h: float, p: AlphaParameters, tol: float = 1e-9,
-         max_iterations: int = 25) -> tuple[AlphaState, int]:
-    """One step of length h; returns the new state and the Newton iterations it took."""
+def _constraint_acceleration_terms(system: HubBeamSystem, x, v, F, t):
+    """v^T Phi_xx v + Phi_tt: what the constraint acceleration Phi_x xdd must cancel.
+
+    The clamp has no explicit time dependence and the drive equation theta - theta_p(t)
+    has Phi_tt = -theta_p''(t) and no mixed term, so this is exact."""
+    held = system.motion != "free"
+    _, jac, hess = system.constraints(x, F, system.drive_angle(t, held))
+    c = v[0:8]
+    terms = np.array([c @ hess(e) @ c for e in np.eye(jac.shape[0])])
+    if system.motion == "prescribed":
+        terms[6] -= system.drive(t)[2]
+    return terms
+
+
+def step(system: HubBeamSystem, state: AlphaState, h: float, p: AlphaParameters,
+         options: NewtonOptions = NewtonOptions(), matrix: IterationMatrix | None = None
+         ) -> tuple[AlphaState, int, IterationMatrix | None]:
+    """One step of length h.
+
+    Returns the new state, the Newton iterations it took and the iteration matrix to
+    reuse on the next step (modified Newton; None for full Newton).
+    """
     am, af, beta, gamma = p.alpha_m, p.alpha_f, p.beta, p.gamma
     t1 = state.t + h
-    # predictor: xdd_{n+1} = 0, and a, x, v consistent with it (Arnold and Bruels)
-    xdd = np.zeros_like(state.xdd)
-    a = (af * state.xdd - am * state.a) / (1.0 - am)
+    # predictor: xdd_{n+1} = xdd_n, and a, x, v consistent with it
+    xdd = state.xdd.copy()
+    a = ((1.0 - af) * xdd + af * state.xdd - am * state.a) / (1.0 - am)
     v = state.v + h * (1.0 - gamma) * state.a + h * gamma * a
     x = state.x + h * state.v + h * h * (0.5 - beta) * state.a + h * h * beta * a
     lam = state.lam.copy()
@@ -111,9 +165,20 @@ def step(system: HubBeamSystem, state: AlphaState, h: float, p: AlphaParameters,
     s = mass_scale(system)
     m = lam.shape[0]
     xscale = max(system.beam.length, 1.0)
-    for it in range(1, max_iterations + 1):
-        res, ab, bw = system.dynamic_equations(x, v, xdd, lam, state.chart, t1, ck * bprime, ck * gprime, ck, s)
-        dz = _solve(ab, bw, -res)
+    tol = options.tolerance * xscale
+    coefs = (ck * bprime, ck * gprime, ck, s)
+
+    def fresh_matrix():
+        res, ab, bw = system.dynamic_equations(x, v, xdd, lam, state.chart, t1, *coefs)
+        return res, factorise(ab, bw, h, state.chart)
+
+    if not options.modified or matrix is None or not matrix.valid_for(h, state.chart):
+        res, matrix = fresh_matrix()
+    else:
+        res = system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s)
+    previous = np.inf
+    for it in range(1, options.max_iterations + 1):
+        dz = matrix.solve(-res)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("non-finite Newton increment")
         dx = np.concatenate([[dz[0]], dz[1 + m :]])
@@ -121,7 +186,20 @@ def step(system: HubBeamSystem, state: AlphaState, h: float, p: AlphaParameters,
         v += gprime * dx
         xdd += bprime * dx
         lam += s * dz[1 : 1 + m] / ck
-        if np.max(np.abs(dx)) <= tol * xscale:
+        size = np.max(np.abs(dx))
+        rate = size / previous  # 0 on the first iteration with a fresh matrix
+        if options.modified and np.isfinite(previous):
+            error = size * rate / (1.0 - rate) if rate < 1.0 else np.inf
+        else:
+            error = size
+        if error <= tol:
             a_new = ((1.0 - af) * xdd + af * state.xdd - am * state.a) / (1.0 - am)
-            return AlphaState(t1, x, v, xdd, a_new, lam, state.chart), it
-    raise ConvergenceError(f"Newton did not converge in {max_iterations} iterations (last |dx| = {np.max(np.abs(dx)):.2e})")
+            keep = matrix if options.modified and it <= options.refresh_iterations else None
+            return AlphaState(t1, x, v, xdd, a_new, lam, state.chart), it, keep
+        if not options.modified or rate > options.refresh_rate:
+            res, matrix = fresh_matrix()
+            previous = np.inf
+        else:
+            res = system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s)
+            previous = size
+    raise ConvergenceError(f"Newton did not converge in {options.max_iterations} iterations (last |dx| = {size:.2e})")

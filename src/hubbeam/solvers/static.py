@@ -54,13 +54,13 @@ def replace_chart_if_needed(system: HubBeamSystem, x: np.ndarray, F: np.ndarray,
     return x_new, F_new, True
 
 
-def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter):
+def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
     """Newton iterations at one load factor; returns (x, mu, iterations) or raises."""
     m = mu.shape[0]
     scale_x = max(system.beam.length, 1e-12)
     norm = np.inf
     for it in range(1, max_iter + 1):
-        res, ab, kl, ku, _ = system.static_equations(x, mu, F, factor)
+        res, ab, kl, ku, _ = system.static_equations(x, mu, F, factor, spin=spin)
         norm = np.max(np.abs(res))
         try:
             dz = solve_banded((kl, ku), ab, -res, check_finite=False)
@@ -85,8 +85,13 @@ def solve_static(
     max_cuts: int = 8,
     x0: np.ndarray | None = None,
     chart: np.ndarray | None = None,
+    spin: float = 0.0,
 ) -> StaticSolution:
     """Equilibrium under the system's loads with the hub held at theta = 0.
+
+    ``spin`` (rad/s): solve instead for the state that turns steadily with the hub at
+    theta' = spin, in the hub frame (centrifugal load, see
+    :meth:`HubBeamSystem.centrifugal_load`); the solution is expressed in the axis chart.
 
     Raises :class:`ConvergenceError` (with the last equilibrium in ``partial``) when a
     load step cannot be completed even after ``max_cuts`` halvings.
@@ -95,11 +100,15 @@ def solve_static(
         x, F = system.initial_state(0.0)
     else:
         x, F = np.array(x0, dtype=float), np.array(chart, dtype=float)
+    if spin:
+        x, F = system.axis_chart(x, F)
     m = system.n_constraints(held=True)
     mu = np.zeros(m)
     beam = system.beam
     # force and step tolerances: relative to the loads, above the round-off floor of EA
     Qfull, _ = system.external_load(x[1:], F, 1.0)
+    if spin:
+        Qfull = Qfull + system.centrifugal_load(x[1:], F, spin)[0]
     f_ref = max(np.max(np.abs(Qfull)), np.linalg.norm(system.tip_moment) / beam.length, 1e-9)
     tol_force = 1e-9 * f_ref + 1e-13 * beam.section.stiffness[0]
     tol_step = 1e-12
@@ -112,7 +121,7 @@ def solve_static(
     while factor < 1.0 - 1e-14:
         target = min(1.0, factor + dfac)
         try:
-            x_new, mu_new, it, _ = _newton(system, x, mu, F, target, tol_force, tol_step, max_iterations)
+            x_new, mu_new, it, _ = _newton(system, x, mu, F, target, tol_force, tol_step, max_iterations, spin)
         except (ConvergenceError, ChartSingularityError) as exc:
             if cuts >= max_cuts:
                 partial = StaticSolution(x, system.constraint_scale * mu, F, factor, iterations, steps, switches)
@@ -129,9 +138,14 @@ def solve_static(
         steps += 1
         x, mu, factor = x_new, mu_new, target
         x, F, switched = replace_chart_if_needed(system, x, F)
+        if switched and spin:
+            raise ConvergenceError(
+                f"the steadily rotating beam bent to within 60 deg of the hub axis at load factor {factor:.4g}; "
+                "a steady state that far from the plane of rotation is not supported",
+                partial=StaticSolution(x, system.constraint_scale * mu, F, factor, iterations, steps, switches))
         if switched:
             switches += 1
-            x, mu, it, _ = _newton(system, x, mu, F, factor, tol_force, tol_step, max_iterations)
+            x, mu, it, _ = _newton(system, x, mu, F, factor, tol_force, tol_step, max_iterations, spin)
             iterations += it
         if it <= 4 and cuts:
             dfac = min(2.0 * dfac, 1.0 / load_steps)

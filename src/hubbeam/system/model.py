@@ -13,11 +13,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
 from hubbeam.system.assembly import add_block_banded, add_element_blocks_banded, add_element_blocks_dense
-from hubbeam.system.beam import AncfBeam
+from hubbeam.system.beam import NODE_DOFS, AncfBeam
 from hubbeam.system.clamp import clamp_constraints
 from hubbeam.system.hub import DriveProfile, clamp_frame, hub_frame
 from hubbeam.system.loads import tip_moment_load
+
+
+#: the hub's axis j0 (global); the hub turns about -j0 for increasing theta (Eq. 74)
+AXIS = np.array([0.0, 1.0, 0.0])
 
 
 @dataclass
@@ -70,6 +75,66 @@ class HubBeamSystem:
             return self.drive(t)[0]
         return 0.0
 
+    def remap(self, x: np.ndarray, F: np.ndarray, F_new: np.ndarray) -> np.ndarray:
+        """x re-expressed in the chart F_new (same configuration; only theta_1, theta_1' change)."""
+        beam = self.beam
+        q = x[1:]
+        nodes = remap_chart(q.reshape(beam.nodes, NODE_DOFS), beam.node_tangent_rates(q), F, F_new)
+        return np.concatenate([[x[0]], nodes.ravel()])
+
+    def axis_chart(self, x: np.ndarray, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """x re-expressed in the chart whose director is the hub's rotation vector, d = -j0.
+
+        The beam stays near the plane normal to the hub axis while the hub sweeps it
+        through every direction of that plane; with d = -j0 each of those tangents is 90
+        deg from the singular direction (+j0), and a rigid rotation of the whole system
+        about the axis advances theta_1 by exactly the hub angle (see
+        :meth:`steady_rotation_rates`)."""
+        F_new = frame_from_director(-AXIS, hint=np.array([1.0, 0.0, 0.0]))
+        return self.remap(x, F, F_new), F_new
+
+    def steady_rotation_rates(self, x: np.ndarray, F: np.ndarray, omega: float) -> tuple[np.ndarray, np.ndarray]:
+        """Velocity and acceleration of x when the whole system turns rigidly with the hub at
+        theta' = omega (rad/s) (angular velocity w = -omega j0, Eq. 74).
+
+        r and r' move with w x (.), accelerate with w x (w x .). theta_1 is measured from the
+        chart's untwisted frame; in general theta_1' = w.tau + d.(tau x (w x tau))/(1 + d.tau)
+        (the section turns with w; the untwisted frame turns about tau by the parallel-transport
+        rate). In the axis chart (d = w/|w|) that is exactly omega at every point, so
+        d(theta_1')/dt = 0. Other charts are refused."""
+        if not np.allclose(F[:, 0], -AXIS, atol=1e-12):
+            raise ValueError("steady rotation rates need the axis chart (director -j0); see axis_chart")
+        w = -omega * AXIS
+        nodes = x[1:].reshape(self.beam.nodes, NODE_DOFS)
+        vel = np.zeros_like(nodes)
+        acc = np.zeros_like(nodes)
+        for k in (0, 3):
+            vel[:, k : k + 3] = np.cross(w, nodes[:, k : k + 3])
+            acc[:, k : k + 3] = np.cross(w, vel[:, k : k + 3])
+        vel[:, 6] = omega
+        return np.concatenate([[omega], vel.ravel()]), np.concatenate([[0.0], acc.ravel()])
+
+    def centrifugal_load(self, q: np.ndarray, F: np.ndarray, omega: float):
+        """Inertia load of steady rotation at theta' = omega: Q_c = Q_v(q, q_r') - M(q) q_r'',
+        with the rigid-rotation rates of :meth:`steady_rotation_rates`; in the hub frame the
+        steady beam is in static equilibrium under Q_c, gravity (parallel to the axis, so
+        steady in that frame) and the elastic forces. Also returns element blocks of an
+        approximate tangent -dQ_c/dq = M D (D applies (w x)^2 to r and r'), which leaves out
+        the small dependence of the rotary-inertia terms on q."""
+        x = np.concatenate([[0.0], q])
+        vel, acc = self.steady_rotation_rates(x, F, omega)
+        Mb = self.beam.mass_blocks(q, F)
+        _, Qv = self.beam.rotary_inertia(q, vel[1:], F)
+        Q = Qv.copy()
+        a = acc[1:]
+        for e in range(self.beam.elements):
+            Q[8 * e : 8 * e + 16] -= Mb[e] @ a[8 * e : 8 * e + 16]
+        W = omega**2 * (np.outer(AXIS, AXIS) - np.eye(3))  # (w x)^2
+        D = np.zeros((16, 16))
+        for k in (0, 3, 8, 11):
+            D[k : k + 3, k : k + 3] = W
+        return Q, Mb @ D
+
     # ------------------------------------------------------------ loads
     def external_load(self, q: np.ndarray, F: np.ndarray, factor: float = 1.0):
         """Applied generalized force on q (gravity, tip force and moment) scaled by ``factor``,
@@ -92,8 +157,12 @@ class HubBeamSystem:
         return clamp_constraints(c, self.radius, self.twist, F, theta_p)
 
     # ------------------------------------------------------------ statics
-    def static_equations(self, x, mu, F, factor, theta_p=0.0):
+    def static_equations(self, x, mu, F, factor, theta_p=0.0, spin=0.0):
         """Residual and band-stored Newton matrix of the static problem with the hub held at theta_p.
+
+        ``spin`` (rad/s): the hub's steady rate; its centrifugal load (:meth:`centrifugal_load`)
+        is applied, scaled by ``factor`` like the other loads, which gives the steadily rotating
+        state in the hub frame.
 
         Unknown order z = [theta, mu, q]; lambda = s mu. Returns (residual, ab, kl, ku, U) with
         ab in scipy.linalg.solve_banded layout.
@@ -113,6 +182,10 @@ class HubBeamSystem:
         res[1 : 1 + m] = s * phi
         res[kq:] = f_int - Q
         res[kq : kq + 7] += s * jac[:, 1:8].T @ mu
+        if spin:
+            Qc, Kc = self.centrifugal_load(q, F, spin)
+            res[kq:] -= factor * Qc
+            blocks = blocks + factor * Kc
         ab, bw = self.newton_matrix(blocks, Jload, jac, hess(lam), 0.0)
         ab = ab[bw:]
         return res, ab, bw, bw, U
@@ -146,13 +219,29 @@ class HubBeamSystem:
         return ab, bw
 
     # ------------------------------------------------------------ dynamics
-    def dynamic_equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale):
-        """Scaled residual and Newton matrix of the equations of motion (Eq. 77).
+    def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
+        """Scaled residual of the equations of motion (Eq. 77) on z = [theta, mu, q].
 
-        r = M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda (hub row: J theta'' - T + ...),
-        multiplied by ``coef_k``; constraint rows ``scale`` Phi. The matrix is
-        coef_m M + coef_c C + coef_k (K - dQ/dq + lambda.d2Phi) on the unknowns z = [theta, mu, q],
-        lambda = scale mu / coef_k. Returns (residual, ab (gbtrf layout), bandwidth).
+        Force rows: coef_k (M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda), the hub row
+        coef_k (J theta'' - T + Phi_theta^T lambda); constraint rows: scale Phi(x, t).
+        """
+        beam = self.beam
+        q, qd = x[1:], v[1:]
+        _, f_int, _ = beam.elastic(q, F, tangent=False)
+        Mb = beam.mass_blocks(q, F)
+        _, Qv = beam.rotary_inertia(q, qd, F)
+        _, Qd, _ = beam.drag(qd, *self.damping)
+        Q, _ = self.external_load(q, F, 1.0)
+        phi, jac, _ = self.constraints(x, F, self.drive_angle(t))
+        return self._assemble_residual(x, acc, lam, f_int - Q - Qv - Qd, Mb, phi, jac, coef_k, scale)
+
+    def dynamic_equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale):
+        """Scaled residual (see :meth:`dynamic_residual`) and Newton matrix of the equations of motion.
+
+        The matrix is coef_m M + coef_c C + coef_k (K - dQ/dq + lambda.d2Phi) on the unknowns
+        z = [theta, mu, q], lambda = scale mu / coef_k; the small velocity derivative of the
+        rotary-inertia force Q_v is left out (it only slows Newton, never changes the answer).
+        Returns (residual, ab (gbtrf layout), bandwidth).
         """
         beam = self.beam
         q, qd = x[1:], v[1:]
@@ -162,10 +251,16 @@ class HubBeamSystem:
         _, Qd, Cb = beam.drag(qd, *self.damping)
         Q, Jload = self.external_load(q, F, 1.0)
         phi, jac, hess = self.constraints(x, F, self.drive_angle(t))
+        res = self._assemble_residual(x, acc, lam, f_int - Q - Qv - Qd, Mb, phi, jac, coef_k, scale)
+        blocks = coef_k * Kb + coef_m * Mb + coef_c * Cb
+        ab, bw = self.newton_matrix(blocks, coef_k * Jload, jac, coef_k * hess(lam), coef_m * self.hub_inertia, scale)
+        return res, ab, bw
+
+    def _assemble_residual(self, x, acc, lam, fq, Mb, phi, jac, coef_k, scale):
+        beam = self.beam
         m = jac.shape[0]
         kq = 1 + m
         res = np.empty(1 + m + beam.ndof)
-        fq = f_int - Q - Qv - Qd
         qdd = acc[1:]
         for e in range(beam.elements):
             fq[8 * e : 8 * e + 16] += Mb[e] @ qdd[8 * e : 8 * e + 16]
@@ -173,9 +268,7 @@ class HubBeamSystem:
         res[0] = coef_k * (self.hub_inertia * acc[0] - self.hub_torque + jac[:, 0] @ lam)
         res[1:kq] = scale * phi
         res[kq:] = coef_k * fq
-        blocks = coef_k * Kb + coef_m * Mb + coef_c * Cb
-        ab, bw = self.newton_matrix(blocks, coef_k * Jload, jac, coef_k * hess(lam), coef_m * self.hub_inertia, scale)
-        return res, ab, bw
+        return res
 
     # ------------------------------------------------------------ linearisation
     def linearised(self, x, lam, F, factor=1.0, held=False, theta_p=0.0):
