@@ -37,9 +37,9 @@ def plot_deformed(system, x_ref, F_ref, x, F, path, title: str = "") -> None:
     plt.close(fig)
 
 
-def plot_timeseries(ds, path, title: str = "") -> None:
-    """Every variable of a result dataset over time, one panel each."""
-    names = list(ds.data_vars)
+def plot_timeseries(ds, path, title: str = "", variables: list[str] | None = None) -> None:
+    """Variables of a result dataset over time (default: every one), one panel each."""
+    names = list(ds.data_vars) if variables is None else list(variables)
     fig, axes = plt.subplots(len(names), 1, figsize=(9, 1.9 * len(names) + 0.6), sharex=True, squeeze=False)
     for ax, name in zip(axes[:, 0], names):
         ax.plot(ds["time"].values, ds[name].values, lw=1)

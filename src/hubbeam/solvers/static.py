@@ -91,7 +91,7 @@ def solve_static(
 
     ``spin`` (rad/s): solve instead for the state that turns steadily with the hub at
     theta' = spin, in the hub frame (centrifugal load, see
-    :meth:`HubBeamSystem.centrifugal_load`); the solution is expressed in the axis chart.
+    :meth:`HubBeamSystem.steady_rotation_load`); the solution is expressed in the axis chart.
 
     Raises :class:`ConvergenceError` (with the last equilibrium in ``partial``) when a
     load step cannot be completed even after ``max_cuts`` halvings.
@@ -108,7 +108,7 @@ def solve_static(
     # force and step tolerances: relative to the loads, above the round-off floor of EA
     Qfull, _ = system.external_load(x[1:], F, 1.0)
     if spin:
-        Qfull = Qfull + system.centrifugal_load(x[1:], F, spin)[0]
+        Qfull = Qfull + system.steady_rotation_load(x[1:], F, spin)[0]
     f_ref = max(np.max(np.abs(Qfull)), np.linalg.norm(system.tip_moment) / beam.length, 1e-9)
     tol_force = 1e-9 * f_ref + 1e-13 * beam.section.stiffness[0]
     tol_step = 1e-12

@@ -114,18 +114,20 @@ class HubBeamSystem:
         vel[:, 6] = omega
         return np.concatenate([[omega], vel.ravel()]), np.concatenate([[0.0], acc.ravel()])
 
-    def centrifugal_load(self, q: np.ndarray, F: np.ndarray, omega: float):
-        """Inertia load of steady rotation at theta' = omega: Q_c = Q_v(q, q_r') - M(q) q_r'',
-        with the rigid-rotation rates of :meth:`steady_rotation_rates`; in the hub frame the
-        steady beam is in static equilibrium under Q_c, gravity (parallel to the axis, so
-        steady in that frame) and the elastic forces. Also returns element blocks of an
-        approximate tangent -dQ_c/dq = M D (D applies (w x)^2 to r and r'), which leaves out
-        the small dependence of the rotary-inertia terms on q."""
+    def steady_rotation_load(self, q: np.ndarray, F: np.ndarray, omega: float):
+        """Load of steady rotation at theta' = omega: Q_c = Q_v(q, q_r') - M(q) q_r'' + Q_d(q_r'),
+        the inertia (centrifugal) load and the drag of Eq. 37 at the rigid-rotation rates of
+        :meth:`steady_rotation_rates`. In the hub frame the steady beam is in static
+        equilibrium under Q_c, gravity (parallel to the axis, so steady in that frame) and the
+        elastic forces; the drive then supplies the drag torque. Also returns element blocks
+        of an approximate tangent -dQ_c/dq = M D (D applies (w x)^2 to r and r'), which
+        leaves out the small dependence of the rotary-inertia and drag terms on q."""
         x = np.concatenate([[0.0], q])
         vel, acc = self.steady_rotation_rates(x, F, omega)
         Mb = self.beam.mass_blocks(q, F)
         _, Qv = self.beam.rotary_inertia(q, vel[1:], F)
-        Q = Qv.copy()
+        _, Qd, _ = self.beam.drag(vel[1:], *self.damping)
+        Q = Qv + Qd
         a = acc[1:]
         for e in range(self.beam.elements):
             Q[8 * e : 8 * e + 16] -= Mb[e] @ a[8 * e : 8 * e + 16]
@@ -160,7 +162,7 @@ class HubBeamSystem:
     def static_equations(self, x, mu, F, factor, theta_p=0.0, spin=0.0):
         """Residual and band-stored Newton matrix of the static problem with the hub held at theta_p.
 
-        ``spin`` (rad/s): the hub's steady rate; its centrifugal load (:meth:`centrifugal_load`)
+        ``spin`` (rad/s): the hub's steady rate; its steady-rotation load (:meth:`steady_rotation_load`: centrifugal and drag)
         is applied, scaled by ``factor`` like the other loads, which gives the steadily rotating
         state in the hub frame.
 
@@ -183,7 +185,7 @@ class HubBeamSystem:
         res[kq:] = f_int - Q
         res[kq : kq + 7] += s * jac[:, 1:8].T @ mu
         if spin:
-            Qc, Kc = self.centrifugal_load(q, F, spin)
+            Qc, Kc = self.steady_rotation_load(q, F, spin)
             res[kq:] -= factor * Qc
             blocks = blocks + factor * Kc
         ab, bw = self.newton_matrix(blocks, Jload, jac, hess(lam), 0.0)
