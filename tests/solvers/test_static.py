@@ -6,7 +6,6 @@ from scipy.integrate import solve_bvp
 
 from hubbeam.solvers.errors import ConvergenceError
 from hubbeam.solvers.static import solve_static
-from hubbeam.system.assembly import banded_to_dense
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.model import HubBeamSystem
 from tests.conftest import L, central_difference, plate
@@ -102,8 +101,8 @@ def test_newton_matrix_is_the_derivative_of_the_residual_and_symmetric_at_equili
                            gravity=np.array([0, -9.81, 0]), tip_force=np.array([0.3, -1.0, 0.5]))
     sol = solve_static(system, load_steps=4)
     mu = sol.multipliers / system.constraint_scale
-    res, ab, kl, ku, _ = system.static_equations(sol.x, mu, sol.chart, 1.0)
-    A = banded_to_dense(ab, kl, ku)
+    res, matrix = system.static_equations(sol.x, mu, sol.chart, 1.0)
+    A = matrix.to_dense()
     m = mu.size
 
     def residual(z):

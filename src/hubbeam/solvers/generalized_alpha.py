@@ -22,9 +22,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg.lapack import dgbtrf, dgbtrs
 
 from hubbeam.solvers.errors import ConvergenceError
+from hubbeam.system.assembly import Factorisation
 from hubbeam.system.model import HubBeamSystem
 
 
@@ -81,11 +81,9 @@ class NewtonOptions:
 
 @dataclass(frozen=True)
 class IterationMatrix:
-    """An LU-factorised iteration matrix and what it was built for (step size, chart)."""
+    """A factorised iteration matrix and what it was built for (step size, chart)."""
 
-    lu: np.ndarray
-    piv: np.ndarray
-    bandwidth: int
+    lu: Factorisation
     h: float
     chart: np.ndarray
 
@@ -93,15 +91,15 @@ class IterationMatrix:
         return self.h == h and self.chart is chart
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        sol, info = dgbtrs(self.lu, self.bandwidth, self.bandwidth, rhs, self.piv)
-        return sol
+        return self.lu.solve(rhs)
 
 
-def factorise(ab: np.ndarray, bw: int, h: float, chart: np.ndarray) -> IterationMatrix:
-    lu, piv, info = dgbtrf(ab, bw, bw)
-    if info != 0:
-        raise ConvergenceError("singular iteration matrix (a constraint lost rank or a mass vanished)")
-    return IterationMatrix(lu, piv, bw, h, chart)
+def factorise(matrix, h: float, chart: np.ndarray) -> IterationMatrix:
+    """LU of a system matrix (BandMatrix or DenseMatrix) for step size h in ``chart``."""
+    try:
+        return IterationMatrix(matrix.factorise(), h, chart)
+    except np.linalg.LinAlgError as exc:
+        raise ConvergenceError(f"singular iteration matrix (a constraint lost rank or a mass vanished): {exc}") from exc
 
 
 def mass_scale(system: HubBeamSystem) -> float:
@@ -122,8 +120,8 @@ def init(system: HubBeamSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
     rhs = -system.dynamic_residual(x0, v0, zero, np.zeros(m), F, t0, 1.0, s)
     rhs[1 : 1 + m] = -s * _constraint_acceleration_terms(system, x0, v0, F, t0)
     # the matrix [[M, s Phi_x^T], [s Phi_x, 0]] (coef_k = 0 drops stiffness and the Hessian)
-    _, ab, bw = system.dynamic_equations(x0, v0, zero, np.zeros(m), F, t0, 1.0, 0.0, 0.0, s)
-    z = factorise(ab, bw, 0.0, F).solve(rhs)
+    _, matrix = system.dynamic_equations(x0, v0, zero, np.zeros(m), F, t0, 1.0, 0.0, 0.0, s)
+    z = factorise(matrix, 0.0, F).solve(rhs)
     xdd = np.concatenate([[z[0]], z[1 + m :]])
     lam = s * z[1 : 1 + m]
     return AlphaState(t0, x0.copy(), v0.copy(), xdd, xdd.copy(), lam, F)
@@ -169,8 +167,8 @@ def step(system: HubBeamSystem, state: AlphaState, h: float, p: AlphaParameters,
     coefs = (ck * bprime, ck * gprime, ck, s)
 
     def fresh_matrix():
-        res, ab, bw = system.dynamic_equations(x, v, xdd, lam, state.chart, t1, *coefs)
-        return res, factorise(ab, bw, h, state.chart)
+        res, matrix = system.dynamic_equations(x, v, xdd, lam, state.chart, t1, *coefs)
+        return res, factorise(matrix, h, state.chart)
 
     if not options.modified or matrix is None or not matrix.valid_for(h, state.chart):
         res, matrix = fresh_matrix()

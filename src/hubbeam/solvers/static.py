@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import LinAlgError, solve_banded
+from numpy.linalg import LinAlgError
 
 from hubbeam.elements.ancf.chart import remap_chart
 from hubbeam.solvers.errors import ConvergenceError
@@ -60,10 +60,10 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
     scale_x = max(system.beam.length, 1e-12)
     norm = np.inf
     for it in range(1, max_iter + 1):
-        res, ab, kl, ku, _ = system.static_equations(x, mu, F, factor, spin=spin)
+        res, matrix = system.static_equations(x, mu, F, factor, spin=spin)
         norm = np.max(np.abs(res))
         try:
-            dz = solve_banded((kl, ku), ab, -res, check_finite=False)
+            dz = matrix.factorise().solve(-res)
         except (LinAlgError, ValueError) as exc:
             raise ConvergenceError(f"singular Newton matrix ({exc})") from exc
         if not np.all(np.isfinite(dz)):

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
+from scipy.linalg.lapack import dgbtrf, dgbtrs, dgetrf, dgetrs
 
 
 @njit(cache=True)
@@ -46,3 +47,44 @@ def banded_to_dense(ab: np.ndarray, kl: int, ku: int) -> np.ndarray:
         for i in range(max(0, j - ku), min(n, j + kl + 1)):
             A[i, j] = ab[ku + i - j, j]
     return A
+
+
+class BandMatrix:
+    """A square matrix in LAPACK general-band storage with kl = ku = ``bandwidth`` (the
+    gbtrf layout: ``bandwidth`` spare rows on top, A[i, j] at ab[2 bw + i - j, j])."""
+
+    def __init__(self, ab: np.ndarray, bandwidth: int) -> None:
+        self.ab, self.bandwidth = ab, bandwidth
+
+    def factorise(self) -> "Factorisation":
+        lu, piv, info = dgbtrf(self.ab, self.bandwidth, self.bandwidth)
+        if info != 0:
+            raise np.linalg.LinAlgError(f"singular matrix (zero pivot in column {info})")
+        bw = self.bandwidth
+        return Factorisation(lambda rhs: dgbtrs(lu, bw, bw, rhs, piv)[0])
+
+    def to_dense(self) -> np.ndarray:
+        return banded_to_dense(self.ab[self.bandwidth :], self.bandwidth, self.bandwidth)
+
+
+class DenseMatrix:
+    """A small dense square matrix (LAPACK getrf/getrs)."""
+
+    def __init__(self, a: np.ndarray) -> None:
+        self.a = a
+
+    def factorise(self) -> "Factorisation":
+        lu, piv, info = dgetrf(self.a)
+        if info != 0:
+            raise np.linalg.LinAlgError(f"singular matrix (zero pivot in column {info})")
+        return Factorisation(lambda rhs: dgetrs(lu, piv, rhs)[0])
+
+    def to_dense(self) -> np.ndarray:
+        return self.a
+
+
+class Factorisation:
+    """An LU factorisation: ``solve(rhs)``."""
+
+    def __init__(self, solve) -> None:
+        self.solve = solve

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
-from hubbeam.system.assembly import add_block_banded, add_element_blocks_banded, add_element_blocks_dense
+from hubbeam.system.assembly import BandMatrix, add_block_banded, add_element_blocks_banded, add_element_blocks_dense
 from hubbeam.system.beam import NODE_DOFS, AncfBeam
 from hubbeam.system.clamp import clamp_constraints
 from hubbeam.system.hub import DriveProfile, clamp_frame, hub_frame
@@ -166,8 +166,7 @@ class HubBeamSystem:
         is applied, scaled by ``factor`` like the other loads, which gives the steadily rotating
         state in the hub frame.
 
-        Unknown order z = [theta, mu, q]; lambda = s mu. Returns (residual, ab, kl, ku, U) with
-        ab in scipy.linalg.solve_banded layout.
+        Unknown order z = [theta, mu, q]; lambda = s mu. Returns (residual, BandMatrix).
         """
         beam = self.beam
         s = self.constraint_scale
@@ -189,8 +188,7 @@ class HubBeamSystem:
             res[kq:] -= factor * Qc
             blocks = blocks + factor * Kc
         ab, bw = self.newton_matrix(blocks, Jload, jac, hess(lam), 0.0)
-        ab = ab[bw:]
-        return res, ab, bw, bw, U
+        return res, BandMatrix(ab, bw)
 
     def newton_matrix(self, blocks, tip_jacobian, jac, hess_lam, theta_diag, scale=None):
         """Band-stored Newton matrix on z = [theta, mu, q] (LAPACK gbtrf layout: kl extra rows on top).
@@ -243,7 +241,7 @@ class HubBeamSystem:
         The matrix is coef_m M + coef_c C + coef_k (K - dQ/dq + lambda.d2Phi) on the unknowns
         z = [theta, mu, q], lambda = scale mu / coef_k; the small velocity derivative of the
         rotary-inertia force Q_v is left out (it only slows Newton, never changes the answer).
-        Returns (residual, ab (gbtrf layout), bandwidth).
+        Returns (residual, BandMatrix).
         """
         beam = self.beam
         q, qd = x[1:], v[1:]
@@ -256,7 +254,7 @@ class HubBeamSystem:
         res = self._assemble_residual(x, acc, lam, f_int - Q - Qv - Qd, Mb, phi, jac, coef_k, scale)
         blocks = coef_k * Kb + coef_m * Mb + coef_c * Cb
         ab, bw = self.newton_matrix(blocks, coef_k * Jload, jac, coef_k * hess(lam), coef_m * self.hub_inertia, scale)
-        return res, ab, bw
+        return res, BandMatrix(ab, bw)
 
     def _assemble_residual(self, x, acc, lam, fq, Mb, phi, jac, coef_k, scale):
         beam = self.beam

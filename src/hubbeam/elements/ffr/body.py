@@ -1,0 +1,194 @@
+"""The FFR beam as one flexible body: inertia invariants, stiffness, inertia forces (Eqs. 42-67).
+
+The body frame O_b-i_b j_b k_b sits at the root A with i_b along the undeformed axis; the
+root node is clamped to it, so the deformation coordinates p are those of nodes 1..n
+(6 n values, node-major, :data:`~hubbeam.elements.ffr.shape.DOF_NAMES`).
+
+A point of the beam is r = r_C + A0 (rho0 + N p) (Eq. 42), with rho0 = (x, y, z). Every
+volume integral the equations need is a contraction of p (or dp/dt) with five *inertia
+invariants*, computed once here by exact quadrature (Gauss in x, 2 x 2 Gauss over the
+rectangle: the integrands are polynomials of degree <= 6 in x and <= 2 in y, z):
+
+    m = int rho dV,          c0 = int rho rho0 dV,          Sbar = int rho N dV,
+    I0 = int rho rho0 rho0^T dV,   J[k, l] = int rho rho0_k N_l dV,   II[k, l] = int rho N_k^T N_l dV.
+
+With the generalized velocity v = [r_C', omega^b, p'] (Eq. 58), M_v (Eq. 66), Q_v (Eq. 67)
+and Q_g follow in closed form (see the methods). Units: SI.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hubbeam.elements.ffr.shape import NODE_DOFS, displacement_matrix, line_shapes
+from hubbeam.elements.hermite import gauss_legendre
+from hubbeam.elements.section import Section
+
+
+def skew(a: np.ndarray) -> np.ndarray:
+    """The matrix of a x (.)."""
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+@dataclass
+class FfrBeam:
+    """n equal FFR elements over a beam of ``length`` (m) with one ``section``."""
+
+    length: float
+    elements: int
+    section: Section
+    gauss_points: int = 4
+    invariants: dict = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        self.invariants = self._inertia_invariants()
+        self.stiffness_matrix = self._stiffness()
+
+    # ---------------------------------------------------------------- layout
+    @property
+    def element_length(self) -> float:
+        return self.length / self.elements
+
+    @property
+    def ndof(self) -> int:
+        """Deformation coordinates (the root node is clamped to the body frame)."""
+        return NODE_DOFS * self.elements
+
+    def element_dofs(self, e: int) -> np.ndarray:
+        """Indices into p of element e's 12 coordinates; -1 for the clamped root node's."""
+        idx = np.arange(NODE_DOFS * (e - 1), NODE_DOFS * (e + 1))
+        return np.where(idx >= 0, idx, -1)
+
+    def locate(self, x: float) -> tuple[int, float]:
+        e = min(int(x / self.element_length), self.elements - 1)
+        return e, x / self.element_length - e
+
+    def _scatter(self, e: int, row: np.ndarray) -> np.ndarray:
+        """An element row (..., 12) as a row over p (..., ndof)."""
+        out = np.zeros(row.shape[:-1] + (self.ndof,))
+        dofs = self.element_dofs(e)
+        keep = dofs >= 0
+        out[..., dofs[keep]] = row[..., keep]
+        return out
+
+    # ---------------------------------------------------------------- invariants
+    def _inertia_invariants(self) -> dict:
+        sec = self.section
+        xg, wx = gauss_legendre(self.gauss_points)
+        sg, ws = gauss_legendre(2)
+        ys, zs = (sg - 0.5) * sec.width, (sg - 0.5) * sec.thickness
+        l = self.element_length
+        shapes = line_shapes(xg, l)
+        N_list, r0_list, w_list = [], [], []
+        for e in range(self.elements):
+            for k, (xi, wk) in enumerate(zip(xg, wx)):
+                for y, wy in zip(ys, ws):
+                    for z, wz in zip(zs, ws):
+                        N_list.append(self._scatter(e, displacement_matrix(shapes, k, y, z)))
+                        r0_list.append([(e + xi) * l, y, z])
+                        w_list.append(sec.density * wk * l * wy * sec.width * wz * sec.thickness)
+        N, r0, w = np.array(N_list), np.array(r0_list), np.array(w_list)
+        return {
+            "m": w.sum(),
+            "c0": w @ r0,
+            "Sbar": np.einsum("q,qkf->kf", w, N),
+            "I0": np.einsum("q,qk,ql->kl", w, r0, r0),
+            "J": np.einsum("q,qk,qlf->klf", w, r0, N),
+            "II": np.einsum("q,qkf,qlg->klfg", w, N, N),
+        }
+
+    # ---------------------------------------------------------------- stiffness
+    def _stiffness(self) -> np.ndarray:
+        """K of Eq. 61: EA u0'^2 + EI_z v0''^2 + EI_y w0''^2 + GJ theta'^2, exact with 4 Gauss points."""
+        EA, GJ, EIy, EIz = self.section.stiffness
+        xg, wx = gauss_legendre(4)
+        l = self.element_length
+        sh = line_shapes(xg, l)
+        Ke = l * (EA * np.einsum("q,qi,qj->ij", wx, sh["N1x"], sh["N1x"])
+                  + EIz * np.einsum("q,qi,qj->ij", wx, sh["N2xx"], sh["N2xx"])
+                  + EIy * np.einsum("q,qi,qj->ij", wx, sh["N3xx"], sh["N3xx"])
+                  + GJ * np.einsum("q,qi,qj->ij", wx, sh["N4x"], sh["N4x"]))
+        K = np.zeros((self.ndof, self.ndof))
+        for e in range(self.elements):
+            dofs = self.element_dofs(e)
+            keep = dofs >= 0
+            K[np.ix_(dofs[keep], dofs[keep])] += Ke[np.ix_(keep, keep)]
+        return K
+
+    # ---------------------------------------------------------------- inertia
+    def first_moment(self, p: np.ndarray) -> np.ndarray:
+        """S_t = int rho (rho0 + u) dV (kg m), body frame."""
+        inv = self.invariants
+        return inv["c0"] + inv["Sbar"] @ p
+
+    def _moments(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """G[j, k] = int rho (rho0 + N a)_j (N b)_k dV."""
+        inv = self.invariants
+        return inv["J"] @ b + np.einsum("f,jkfg,g->jk", a, inv["II"], b)
+
+    def second_moment(self, p: np.ndarray) -> np.ndarray:
+        """R2 = int rho r r^T dV with r = rho0 + N p (kg m^2), body frame."""
+        inv = self.invariants
+        Jp = inv["J"] @ p
+        return inv["I0"] + Jp + Jp.T + np.einsum("f,klfg,g->kl", p, inv["II"], p)
+
+    def mass_matrix(self, p: np.ndarray, A0: np.ndarray) -> np.ndarray:
+        """M_v of Eq. 66 on v = [r_C', omega^b, p'], a (6 + ndof) square matrix."""
+        inv = self.invariants
+        nf = self.ndof
+        M = np.zeros((6 + nf, 6 + nf))
+        St = self.first_moment(p)
+        R2 = self.second_moment(p)
+        M[0:3, 0:3] = inv["m"] * np.eye(3)
+        M[0:3, 3:6] = -A0 @ skew(St)
+        M[0:3, 6:] = A0 @ inv["Sbar"]
+        M[3:6, 3:6] = np.trace(R2) * np.eye(3) - R2
+        # int rho (-A0 r~)^T A0 N dV = int rho r~ N dV: row i = eps_ijk int rho r_j N_k
+        P = inv["J"] + np.einsum("f,jkfg->jkg", p, inv["II"])
+        M[3:6, 6:] = np.array([P[1, 2] - P[2, 1], P[2, 0] - P[0, 2], P[0, 1] - P[1, 0]])
+        M[6:, 6:] = np.einsum("kkfg->fg", inv["II"])
+        M[3:6, 0:3] = M[0:3, 3:6].T
+        M[6:, 0:3] = M[0:3, 6:].T
+        M[6:, 3:6] = M[3:6, 6:].T
+        return M
+
+    def quadratic_velocity(self, p: np.ndarray, pdot: np.ndarray, omega: np.ndarray, A0: np.ndarray) -> np.ndarray:
+        """Q_v = -int rho S^T s dV (Eq. 67), s = A0 (w~ w~ r + 2 w~ N p') (Eq. 56)."""
+        inv = self.invariants
+        W = skew(omega)
+        St = self.first_moment(p)
+        R2 = self.second_moment(p)
+        udot_mean = inv["Sbar"] @ pdot
+        Q = np.empty(6 + self.ndof)
+        Q[0:3] = -A0 @ (W @ W @ St + 2.0 * W @ udot_mean)
+        inertia = np.trace(R2) * np.eye(3) - R2
+        G = self._moments(p, pdot)  # int rho r_j udot_k
+        Q[3:6] = -np.cross(omega, inertia @ omega) - 2.0 * (omega * np.trace(G) - G.T @ omega)
+        # -int rho N^T (W W r + 2 W N p'): sum_kl A_kl int rho N_k^T r_l
+        WW = W @ W
+        Nr = np.einsum("kl,lkf->f", WW, inv["J"]) + np.einsum("kl,klfg,g->f", WW, inv["II"], p)
+        Q[6:] = -Nr - 2.0 * np.einsum("kl,klfg,g->f", W, inv["II"], pdot)
+        return Q
+
+    def gravity(self, p: np.ndarray, A0: np.ndarray, g: np.ndarray) -> np.ndarray:
+        """Q_g = int rho S^T g dV (Eq. 67)."""
+        gb = A0.T @ g
+        Q = np.empty(6 + self.ndof)
+        Q[0:3] = self.invariants["m"] * g
+        Q[3:6] = np.cross(self.first_moment(p), gb)
+        Q[6:] = self.invariants["Sbar"].T @ gb
+        return Q
+
+    # ---------------------------------------------------------------- stations
+    def displacement_row(self, x: float, y: float = 0.0, z: float = 0.0) -> np.ndarray:
+        """N(x, y, z) over p (3 x ndof): u^b = N p at the point (Eq. 43)."""
+        e, xi = self.locate(x)
+        return self._scatter(e, displacement_matrix(line_shapes(np.array([xi]), self.element_length), 0, y, z))
+
+    def strain_row(self, x: float, y: float, z: float) -> np.ndarray:
+        """The row of eps = u0' - y v0'' - z w0'' (the FFR fibre strain) over p."""
+        e, xi = self.locate(x)
+        sh = line_shapes(np.array([xi]), self.element_length)
+        return self._scatter(e, sh["N1x"][0] - y * sh["N2xx"][0] - z * sh["N3xx"][0])
