@@ -11,8 +11,9 @@ from hubbeam.io.scenario import Scenario, ScenarioError
 from hubbeam.solvers.modal import Modes, modal_analysis
 from hubbeam.solvers.static import StaticSolution, solve_static
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
-from hubbeam.system.hub import DriveProfile, hub_frame
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.ancf_system import AncfHubSystem
+from hubbeam.system.hub import DriveProfile
+from hubbeam.system.model import HubSystem
 
 
 def section_of(scenario: Scenario) -> Section:
@@ -21,7 +22,7 @@ def section_of(scenario: Scenario) -> Section:
     return Section(b.width, b.thickness, b.density, b.youngs_modulus, scenario.shear_modulus, jt)
 
 
-def build_system(scenario: Scenario) -> HubBeamSystem:
+def build_system(scenario: Scenario) -> HubSystem:
     """The hub-beam system a scenario describes."""
     b = scenario.beam
     if b.formulation != "ancf":
@@ -31,7 +32,7 @@ def build_system(scenario: Scenario) -> HubBeamSystem:
     drive = DriveProfile("rest")
     if hub.drive is not None:
         drive = DriveProfile(hub.drive.profile, hub.drive.omega_s, hub.drive.T, hub.drive.t1)
-    return HubBeamSystem(
+    return AncfHubSystem(
         beam,
         radius=hub.radius,
         twist=scenario.twist_rad,
@@ -46,29 +47,24 @@ def build_system(scenario: Scenario) -> HubBeamSystem:
     )
 
 
-def tip_displacement(system: HubBeamSystem, x: np.ndarray) -> dict[str, float]:
+def tip_displacement(system: HubSystem, x: np.ndarray) -> dict[str, float]:
     """Tip centroid displacement from its undeformed place, in the hub frame (m)."""
-    theta = x[0]
-    A = hub_frame(theta)
-    tip = x[1:][system.beam.node_slice(-1)][0:3]
-    disp = tip - (system.radius + system.beam.length) * A[:, 0]
-    return {"radial": float(disp @ A[:, 0]), "vertical": float(disp @ A[:, 1]), "tangential": float(disp @ A[:, 2])}
+    return system.tip_displacement(x)
 
 
 @dataclass
 class StaticResult:
     """Static equilibrium of a scenario and its summary."""
 
-    system: HubBeamSystem
+    system: HubSystem
     solution: StaticSolution
 
     def to_dict(self) -> dict:
         sol = self.solution
-        q = sol.q
         lam = sol.multipliers
         return {
             "tip_displacement": tip_displacement(self.system, sol.x),
-            "tip_position": [float(v) for v in q[self.system.beam.node_slice(-1)][0:3]],
+            "tip_position": [float(v) for v in self.system.tip_position(sol.x)],
             "root_reaction_force": [float(v) for v in -lam[0:3]],
             "hub_holding_torque": float(-lam[6]) if lam.shape[0] > 6 else 0.0,
             "newton_iterations": sol.newton_iterations,

@@ -9,17 +9,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
-def beam_polyline(system, x, F, points_per_element: int = 12) -> np.ndarray:
-    """Centre-line points (n, 3) of the beam state x."""
-    beam = system.beam
-    xs = np.linspace(0.0, beam.length, beam.elements * points_per_element + 1)
-    return np.array([beam.interpolate(x[1:], s)[0] for s in xs])
-
-
 def plot_deformed(system, x_ref, F_ref, x, F, path, title: str = "") -> None:
     """Three views of the undeformed and deformed centre line, with the section's n at the tip."""
-    ref = beam_polyline(system, x_ref, F_ref)
-    cur = beam_polyline(system, x, F)
+    ref = system.centre_line(x_ref, F_ref, 12)
+    cur = system.centre_line(x, F, 12)
     fig, axes = plt.subplots(1, 3, figsize=(12, 4))
     views = [(0, 1, "x (m)", "y (m), vertical"), (0, 2, "x (m)", "z (m)"), (2, 1, "z (m)", "y (m), vertical")]
     for ax, (i, j, xl, yl) in zip(axes, views):

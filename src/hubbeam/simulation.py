@@ -12,7 +12,7 @@ from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers.errors import ComputationError, ConvergenceError
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import ChartSingularityError
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.model import HubSystem
 
 #: below this chart margin (1 + d.tau) the chart is replaced: a tangent within 60 deg of its singular direction
 CHART_LIMIT = 0.5
@@ -35,7 +35,7 @@ class Trajectory:
             self.records.setdefault(name, []).append(val)
 
 
-def change_chart(system: HubBeamSystem, state: ga.AlphaState, F_new: np.ndarray, eps: float = 1e-4) -> ga.AlphaState:
+def change_chart(system: HubSystem, state: ga.AlphaState, F_new: np.ndarray, eps: float = 1e-4) -> ga.AlphaState:
     """The integrator state re-expressed in chart F_new.
 
     The remap x -> g(x) changes only theta_1 and theta_1' (by functions of the tangent),
@@ -62,11 +62,11 @@ def change_chart(system: HubBeamSystem, state: ga.AlphaState, F_new: np.ndarray,
     return replace(state, x=g0, v=v_new, xdd=along(state.xdd) + curvature, a=along(state.a) + curvature, chart=F_new)
 
 
-def initial_state(system: HubBeamSystem, load_steps: int = 20) -> ga.AlphaState:
+def initial_state(system: HubSystem, load_steps: int = 20) -> ga.AlphaState:
     """Where a run starts: at rest in the straight clamped state at theta = 0, or, for a
     drive that already turns at t = 0 (profile 'constant'), in the steadily rotating
     equilibrium (static analysis with the centrifugal load) with its rigid-rotation
-    velocities. A turning hub gets the axis chart (see HubBeamSystem.axis_chart)."""
+    velocities. A turning hub gets the axis chart (see HubSystem.axis_chart)."""
     omega0 = system.drive(0.0)[1] if system.motion == "prescribed" else 0.0
     if omega0:
         try:
@@ -81,7 +81,7 @@ def initial_state(system: HubBeamSystem, load_steps: int = 20) -> ga.AlphaState:
     return ga.init(system, x0, F0)
 
 
-def simulate(system: HubBeamSystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
+def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
              output_dt: float | None = None, progress=None, newton: ga.NewtonOptions = ga.NewtonOptions(),
              state: ga.AlphaState | None = None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
@@ -100,7 +100,7 @@ def simulate(system: HubBeamSystem, sensors, t_end: float, dt: float, spectral_r
     work = {"dissipated": 0.0, "drive": 0.0}
 
     def power(st):
-        p_d = system.beam.drag(st.v[1:], *system.damping)[0]
+        p_d = system.dissipated_power(st.x, st.v, st.chart)
         torque = (-st.lam[6] if st.lam.shape[0] > 6 else 0.0) + system.hub_torque
         return p_d, torque * st.v[0]
 
@@ -130,8 +130,8 @@ def simulate(system: HubBeamSystem, sensors, t_end: float, dt: float, spectral_r
         p_prev = p_new
         if k % every == 0 or k == n_steps:
             record(state)
-        if system.beam.chart_margin(state.x[1:], state.chart) < CHART_LIMIT:
-            state = change_chart(system, state, system.beam.better_chart(state.x[1:]))
+        if system.chart_margin(state.x, state.chart) < CHART_LIMIT:
+            state = change_chart(system, state, system.better_chart(state.x))
             traj.chart_switches += 1
         if progress is not None:
             progress(state.t)

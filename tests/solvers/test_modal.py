@@ -6,7 +6,7 @@ import pytest
 from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.ancf_system import AncfHubSystem
 from tests.conftest import L, RHO, plate
 
 BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382])  # clamped-free roots of cos cosh = -1
@@ -14,7 +14,7 @@ BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382])  # clamped-free ro
 
 def clamped(elements, count=40, **kw):
     sec = plate()
-    system = HubBeamSystem(AncfBeam(L, elements, sec), radius=0.35, motion="fixed", **kw)
+    system = AncfHubSystem(AncfBeam(L, elements, sec), radius=0.35, motion="fixed", **kw)
     return sec, system, modal_analysis(system, solve_static(system, load_steps=1), count=count)
 
 
@@ -63,7 +63,7 @@ def test_frequency_error_converges_at_high_order():
 
 def test_free_hub_leaves_out_one_rigid_mode():
     sec = plate()
-    system = HubBeamSystem(AncfBeam(L, 6, sec), radius=0.35, motion="free", hub_inertia=9.557)
+    system = AncfHubSystem(AncfBeam(L, 6, sec), radius=0.35, motion="free", hub_inertia=9.557)
     modes = modal_analysis(system, solve_static(system, load_steps=1), count=4)
     assert modes.rigid_modes == 1
     assert abs(modes.rigid_frequencies_hz[0]) < 1e-3
@@ -76,7 +76,7 @@ def test_rigid_mode_frequency_about_a_bent_state_vanishes_with_refinement():
     sec = plate()
     out = []
     for n in (4, 8):
-        system = HubBeamSystem(AncfBeam(L, n, sec), radius=0.35, twist=np.pi / 2, motion="free", hub_inertia=9.557,
+        system = AncfHubSystem(AncfBeam(L, n, sec), radius=0.35, twist=np.pi / 2, motion="free", hub_inertia=9.557,
                                gravity=np.array([0, -9.81, 0]))
         out.append(abs(modal_analysis(system, solve_static(system, load_steps=5), count=1).rigid_frequencies_hz[0]))
     assert out[1] < out[0] / 2 and out[0] < 5e-3

@@ -7,7 +7,7 @@ from scipy.integrate import solve_bvp
 from hubbeam.solvers.errors import ConvergenceError
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.ancf_system import AncfHubSystem
 from tests.conftest import L, central_difference, plate
 
 
@@ -39,7 +39,7 @@ def test_tip_force_follows_the_elastica(k):
     x_ref, y_ref = elastica_tip(k)
     errors = []
     for n in (12, 24):
-        system = HubBeamSystem(AncfBeam(L, n, sec), radius=0.0, twist=np.pi / 2, motion="fixed",
+        system = AncfHubSystem(AncfBeam(L, n, sec), radius=0.0, twist=np.pi / 2, motion="fixed",
                                tip_force=np.array([0.0, -k * EIy / L**2, 0.0]))
         tip = solve_static(system, load_steps=10).q[system.beam.node_slice(-1)][0:3] / L
         errors.append(np.hypot(tip[0] - x_ref, tip[1] - y_ref))
@@ -63,7 +63,7 @@ def circle_case(fraction, case, elements=16):
         EI = sec.stiffness[2]
         twist, axis = (0.0, np.array([0, 1.0, 0])) if case == "plate-j" else (np.pi / 2, np.array([0, 0, 1.0]))
     M = 2 * np.pi * fraction * EI / L
-    system = HubBeamSystem(AncfBeam(L, elements, sec), radius=0.0, twist=twist, motion="fixed", tip_moment=M * axis)
+    system = AncfHubSystem(AncfBeam(L, elements, sec), radius=0.0, twist=twist, motion="fixed", tip_moment=M * axis)
     return system, axis, solve_static(system, load_steps=int(40 * fraction))
 
 
@@ -97,7 +97,7 @@ def test_full_circle_tip_error_converges():
 
 def test_newton_matrix_is_the_derivative_of_the_residual_and_symmetric_at_equilibrium():
     sec = plate()
-    system = HubBeamSystem(AncfBeam(L, 3, sec), radius=0.35, twist=0.7, motion="fixed",
+    system = AncfHubSystem(AncfBeam(L, 3, sec), radius=0.35, twist=0.7, motion="fixed",
                            gravity=np.array([0, -9.81, 0]), tip_force=np.array([0.3, -1.0, 0.5]))
     sol = solve_static(system, load_steps=4)
     mu = sol.multipliers / system.constraint_scale
@@ -119,7 +119,7 @@ def test_newton_matrix_is_the_derivative_of_the_residual_and_symmetric_at_equili
 def test_failure_names_the_load_step_and_keeps_the_last_equilibrium():
     sec = plate()
     EIy = sec.stiffness[2]
-    system = HubBeamSystem(AncfBeam(L, 4, sec), twist=np.pi / 2, motion="fixed",
+    system = AncfHubSystem(AncfBeam(L, 4, sec), twist=np.pi / 2, motion="fixed",
                            tip_moment=np.array([0, 0, 6 * np.pi * EIy / L]))
     with pytest.raises(ConvergenceError) as info:
         solve_static(system, load_steps=1, max_cuts=0, max_iterations=5)

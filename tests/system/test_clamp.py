@@ -7,7 +7,7 @@ from hubbeam.elements.ancf.chart import frame_from_director
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.clamp import clamp_constraints, clamp_twist_angle
 from hubbeam.system.hub import clamp_frame, hub_frame
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.ancf_system import AncfHubSystem
 from tests.conftest import central_difference, plate
 
 R, BETA = 0.35, np.radians(45)
@@ -41,7 +41,7 @@ def test_constraint_jacobian_and_hessian_match_finite_differences(drive):
 
 @pytest.mark.parametrize("theta", [0.0, 1.0, np.pi, 4.5])
 def test_straight_clamped_state_satisfies_the_clamp(theta):
-    system = HubBeamSystem(AncfBeam(1.45, 3, plate()), radius=R, twist=BETA, motion="free")
+    system = AncfHubSystem(AncfBeam(1.45, 3, plate()), radius=R, twist=BETA, motion="free")
     x, F = system.initial_state(theta)
     phi, _, _ = system.constraints(x, F, None)
     assert np.allclose(phi, 0, atol=1e-12)

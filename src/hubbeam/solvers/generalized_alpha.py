@@ -25,7 +25,7 @@ import numpy as np
 
 from hubbeam.solvers.errors import ConvergenceError
 from hubbeam.system.assembly import Factorisation
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.model import HubSystem
 
 
 @dataclass(frozen=True)
@@ -102,18 +102,14 @@ def factorise(matrix, h: float, chart: np.ndarray) -> IterationMatrix:
         raise ConvergenceError(f"singular iteration matrix (a constraint lost rank or a mass vanished): {exc}") from exc
 
 
-def mass_scale(system: HubBeamSystem) -> float:
-    return system.beam.section.mass_per_length * system.beam.element_length
-
-
-def init(system: HubBeamSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
+def init(system: HubSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
          v0: np.ndarray | None = None) -> AlphaState:
     """Consistent accelerations and multipliers at (x0, v0): M xdd + Phi_x^T lam = Q - f,
     Phi_x xdd = -Phi_tt - (d/dt Phi_x) v (the drive's prescribed angular acceleration and the
     velocity terms of the clamp, which are linear in the beam coordinates and so contribute
     only through theta). ``v0`` defaults to rest and must satisfy Phi_x v0 + Phi_t = 0."""
     v0 = np.zeros_like(x0) if v0 is None else np.asarray(v0, dtype=float)
-    s = mass_scale(system)
+    s = system.mass_scale
     zero = np.zeros_like(x0)
     m = system.n_constraints(system.motion != "free")
     # force rows (unscaled) at xdd = 0, lambda = 0
@@ -127,7 +123,7 @@ def init(system: HubBeamSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
     return AlphaState(t0, x0.copy(), v0.copy(), xdd, xdd.copy(), lam, F)
 
 
-def _constraint_acceleration_terms(system: HubBeamSystem, x, v, F, t):
+def _constraint_acceleration_terms(system: HubSystem, x, v, F, t):
     """v^T Phi_xx v + Phi_tt: what the constraint acceleration Phi_x xdd must cancel.
 
     The clamp has no explicit time dependence and the drive equation theta - theta_p(t)
@@ -141,7 +137,7 @@ def _constraint_acceleration_terms(system: HubBeamSystem, x, v, F, t):
     return terms
 
 
-def step(system: HubBeamSystem, state: AlphaState, h: float, p: AlphaParameters,
+def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
          options: NewtonOptions = NewtonOptions(), matrix: IterationMatrix | None = None
          ) -> tuple[AlphaState, int, IterationMatrix | None]:
     """One step of length h.
@@ -160,9 +156,9 @@ def step(system: HubBeamSystem, state: AlphaState, h: float, p: AlphaParameters,
     bprime = (1.0 - am) / (beta * h * h * (1.0 - af))
     gprime = gamma / (beta * h)
     ck = beta * h * h
-    s = mass_scale(system)
+    s = system.mass_scale
     m = lam.shape[0]
-    xscale = max(system.beam.length, 1.0)
+    xscale = max(system.length_scale, 1.0)
     tol = options.tolerance * xscale
     coefs = (ck * bprime, ck * gprime, ck, s)
 

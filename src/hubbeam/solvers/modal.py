@@ -21,7 +21,7 @@ import numpy as np
 from scipy.linalg import eig, eigh, null_space
 
 from hubbeam.solvers.static import StaticSolution
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.model import HubSystem
 
 
 @dataclass
@@ -38,7 +38,7 @@ class Modes:
 
 
 def modal_analysis(
-    system: HubBeamSystem, equilibrium: StaticSolution, count: int = 6, free_hub: bool | None = None,
+    system: HubSystem, equilibrium: StaticSolution, count: int = 6, free_hub: bool | None = None,
     rigid_tol_hz: float = 1e-3,
 ) -> Modes:
     """Lowest ``count`` elastic natural frequencies about ``equilibrium``.

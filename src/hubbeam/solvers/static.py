@@ -15,10 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.linalg import LinAlgError
 
-from hubbeam.elements.ancf.chart import remap_chart
 from hubbeam.solvers.errors import ConvergenceError
-from hubbeam.system.beam import ChartSingularityError, NODE_DOFS
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.beam import ChartSingularityError
+from hubbeam.system.model import HubSystem
 
 #: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
 CHART_SWITCH_MARGIN = 0.5
@@ -41,23 +40,18 @@ class StaticSolution:
         return self.x[1:]
 
 
-def replace_chart_if_needed(system: HubBeamSystem, x: np.ndarray, F: np.ndarray, force: bool = False):
+def replace_chart_if_needed(system: HubSystem, x: np.ndarray, F: np.ndarray, force: bool = False):
     """(x, F, switched): x re-expressed in a better chart when the current one is near singular."""
-    beam = system.beam
-    q = x[1:]
-    if not force and beam.chart_margin(q, F) >= CHART_SWITCH_MARGIN:
+    if not force and system.chart_margin(x, F) >= CHART_SWITCH_MARGIN:
         return x, F, False
-    F_new = beam.better_chart(q)
-    nodes = remap_chart(q.reshape(beam.nodes, NODE_DOFS), beam.node_tangent_rates(q), F, F_new)
-    x_new = x.copy()
-    x_new[1:] = nodes.ravel()
-    return x_new, F_new, True
+    F_new = system.better_chart(x)
+    return system.remap(x, F, F_new), F_new, True
 
 
 def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
     """Newton iterations at one load factor; returns (x, mu, iterations) or raises."""
     m = mu.shape[0]
-    scale_x = max(system.beam.length, 1e-12)
+    scale_x = max(system.length_scale, 1e-12)
     norm = np.inf
     for it in range(1, max_iter + 1):
         res, matrix = system.static_equations(x, mu, F, factor, spin=spin)
@@ -79,7 +73,7 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
 
 
 def solve_static(
-    system: HubBeamSystem,
+    system: HubSystem,
     load_steps: int = 20,
     max_iterations: int = 30,
     max_cuts: int = 8,
@@ -91,7 +85,7 @@ def solve_static(
 
     ``spin`` (rad/s): solve instead for the state that turns steadily with the hub at
     theta' = spin, in the hub frame (centrifugal load, see
-    :meth:`HubBeamSystem.steady_rotation_load`); the solution is expressed in the axis chart.
+    :meth:`HubSystem.steady_rotation_load`); the solution is expressed in the axis chart.
 
     Raises :class:`ConvergenceError` (with the last equilibrium in ``partial``) when a
     load step cannot be completed even after ``max_cuts`` halvings.
@@ -106,10 +100,7 @@ def solve_static(
     mu = np.zeros(m)
     beam = system.beam
     # force and step tolerances: relative to the loads, above the round-off floor of EA
-    Qfull, _ = system.external_load(x[1:], F, 1.0)
-    if spin:
-        Qfull = Qfull + system.steady_rotation_load(x[1:], F, spin)[0]
-    f_ref = max(np.max(np.abs(Qfull)), np.linalg.norm(system.tip_moment) / beam.length, 1e-9)
+    f_ref = system.static_force_scale(x, F, spin)
     tol_force = 1e-9 * f_ref + 1e-13 * beam.section.stiffness[0]
     tol_step = 1e-12
     factor = 0.0

@@ -1,10 +1,12 @@
-"""The hub-beam system (paper Sec. 4): coordinates, constraints, loads and their tangents.
+"""What every hub-beam system shares (paper Sec. 4): the hub, its drive, the interface.
 
-Coordinates x = [theta, q] (hub angle, beam coordinates); the clamp (and a drive, for
-a prescribed or fixed hub) adds constraints Phi(x, t) = 0 with multipliers lambda
-(Eq. 77). The Newton systems order the unknowns z = [theta, mu, q], mu = lambda / s,
-where s = EA / l (the axial stiffness of one element) scales the constraint rows to the
-size of the stiffness entries; with this order the matrix is banded.
+A system has coordinates x = [theta, q] (hub angle, then the beam formulation's
+coordinates), constraints Phi(x, t) = 0 (the clamp, and a drive for a prescribed or
+fixed hub) with multipliers lambda (Eq. 77), and a *chart* F: extra state that fixes how
+rotations are parametrised (the ANCF reference director; unused by FFR). The solvers,
+sensors and the simulation use only the methods listed in :class:`HubSystem`; the two
+formulations (:mod:`hubbeam.system.ancf_system`, :mod:`hubbeam.system.ffr_system`)
+implement them.
 """
 
 from __future__ import annotations
@@ -13,23 +15,24 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
-from hubbeam.system.assembly import BandMatrix, add_block_banded, add_element_blocks_banded, add_element_blocks_dense
-from hubbeam.system.beam import NODE_DOFS, AncfBeam
-from hubbeam.system.clamp import clamp_constraints
-from hubbeam.system.hub import DriveProfile, clamp_frame, hub_frame
-from hubbeam.system.loads import tip_moment_load
-
+from hubbeam.system.hub import DriveProfile, hub_frame
 
 #: the hub's axis j0 (global); the hub turns about -j0 for increasing theta (Eq. 74)
 AXIS = np.array([0.0, 1.0, 0.0])
 
 
 @dataclass
-class HubBeamSystem:
-    """An ANCF beam clamped to a hub of radius R (m) with the section twisted by beta (rad)."""
+class HubSystem:
+    """A beam clamped to a hub of radius R (m) with the section twisted by beta (rad).
 
-    beam: AncfBeam
+    Formulation-specific methods (raise NotImplementedError here): initial_state,
+    constraints, static_equations, dynamic_residual, dynamic_equations, linearised,
+    axis_chart, remap, chart_margin, better_chart, steady_rotation_rates, energies,
+    angular_momentum, dissipated_power, tip_position, surface_strain, centre_line,
+    static_force_scale; properties nx, length_scale, mass_scale, constraint_scale.
+    """
+
+    beam: object
     radius: float = 0.0
     twist: float = 0.0
     motion: str = "fixed"  # "free" | "prescribed" | "fixed"
@@ -45,25 +48,10 @@ class HubBeamSystem:
         self.gravity = np.asarray(self.gravity, dtype=float)
         self.tip_force = np.asarray(self.tip_force, dtype=float)
         self.tip_moment = np.asarray(self.tip_moment, dtype=float)
-        self.gravity_load = self.beam.distributed_load(self.beam.section.mass_per_length * self.gravity)
-        self.constraint_scale = self.beam.section.stiffness[0] / self.beam.element_length
-
-    # ------------------------------------------------------------ layout
-    @property
-    def nx(self) -> int:
-        return 1 + self.beam.ndof
 
     def n_constraints(self, held: bool) -> int:
+        """Six clamp equations, and the drive theta = theta_p(t) when the hub is held."""
         return 7 if held else 6
-
-    def bandwidth(self, m: int) -> int:
-        return max(15, m + 8)
-
-    def initial_state(self, theta: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-        """Straight undeformed beam clamped to the hub at angle theta: (x, chart F)."""
-        frame = clamp_frame(theta, self.twist)
-        q, F = self.beam.straight_state(self.radius * hub_frame(theta)[:, 0], frame)
-        return np.concatenate([[theta], q]), F
 
     def drive_angle(self, t: float, held: bool | None = None) -> float | None:
         """theta_p(t) of the driving constraint, or None for a free hub."""
@@ -75,224 +63,28 @@ class HubBeamSystem:
             return self.drive(t)[0]
         return 0.0
 
-    def remap(self, x: np.ndarray, F: np.ndarray, F_new: np.ndarray) -> np.ndarray:
-        """x re-expressed in the chart F_new (same configuration; only theta_1, theta_1' change)."""
-        beam = self.beam
-        q = x[1:]
-        nodes = remap_chart(q.reshape(beam.nodes, NODE_DOFS), beam.node_tangent_rates(q), F, F_new)
-        return np.concatenate([[x[0]], nodes.ravel()])
+    @property
+    def length_scale(self) -> float:
+        """Length for relative tolerances on coordinates (m)."""
+        return float(self.beam.length)
 
-    def axis_chart(self, x: np.ndarray, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """x re-expressed in the chart whose director is the hub's rotation vector, d = -j0.
+    @property
+    def mass_scale(self) -> float:
+        """rho A l: the mass of one element, scales the constraint rows of the dynamics (kg)."""
+        return self.beam.section.mass_per_length * self.beam.element_length
 
-        The beam stays near the plane normal to the hub axis while the hub sweeps it
-        through every direction of that plane; with d = -j0 each of those tangents is 90
-        deg from the singular direction (+j0), and a rigid rotation of the whole system
-        about the axis advances theta_1 by exactly the hub angle (see
-        :meth:`steady_rotation_rates`)."""
-        F_new = frame_from_director(-AXIS, hint=np.array([1.0, 0.0, 0.0]))
-        return self.remap(x, F, F_new), F_new
+    @property
+    def constraint_scale(self) -> float:
+        """EA / l: scales the constraint rows of the statics to the stiffness entries (N/m)."""
+        return self.beam.section.stiffness[0] / self.beam.element_length
 
-    def steady_rotation_rates(self, x: np.ndarray, F: np.ndarray, omega: float) -> tuple[np.ndarray, np.ndarray]:
-        """Velocity and acceleration of x when the whole system turns rigidly with the hub at
-        theta' = omega (rad/s) (angular velocity w = -omega j0, Eq. 74).
+    def tip_displacement(self, x: np.ndarray) -> dict[str, float]:
+        """Tip centroid displacement from its undeformed place, in the hub frame (m)."""
+        A = hub_frame(x[0])
+        disp = self.tip_position(x) - (self.radius + self.beam.length) * A[:, 0]
+        return {"radial": float(disp @ A[:, 0]), "vertical": float(disp @ A[:, 1]), "tangential": float(disp @ A[:, 2])}
 
-        r and r' move with w x (.), accelerate with w x (w x .). theta_1 is measured from the
-        chart's untwisted frame; in general theta_1' = w.tau + d.(tau x (w x tau))/(1 + d.tau)
-        (the section turns with w; the untwisted frame turns about tau by the parallel-transport
-        rate). In the axis chart (d = w/|w|) that is exactly omega at every point, so
-        d(theta_1')/dt = 0. Other charts are refused."""
-        if not np.allclose(F[:, 0], -AXIS, atol=1e-12):
-            raise ValueError("steady rotation rates need the axis chart (director -j0); see axis_chart")
-        w = -omega * AXIS
-        nodes = x[1:].reshape(self.beam.nodes, NODE_DOFS)
-        vel = np.zeros_like(nodes)
-        acc = np.zeros_like(nodes)
-        for k in (0, 3):
-            vel[:, k : k + 3] = np.cross(w, nodes[:, k : k + 3])
-            acc[:, k : k + 3] = np.cross(w, vel[:, k : k + 3])
-        vel[:, 6] = omega
-        return np.concatenate([[omega], vel.ravel()]), np.concatenate([[0.0], acc.ravel()])
-
-    def steady_rotation_load(self, q: np.ndarray, F: np.ndarray, omega: float):
-        """Load of steady rotation at theta' = omega: Q_c = Q_v(q, q_r') - M(q) q_r'' + Q_d(q_r'),
-        the inertia (centrifugal) load and the drag of Eq. 37 at the rigid-rotation rates of
-        :meth:`steady_rotation_rates`. In the hub frame the steady beam is in static
-        equilibrium under Q_c, gravity (parallel to the axis, so steady in that frame) and the
-        elastic forces; the drive then supplies the drag torque. Also returns element blocks
-        of an approximate tangent -dQ_c/dq = M D (D applies (w x)^2 to r and r'), which
-        leaves out the small dependence of the rotary-inertia and drag terms on q."""
-        x = np.concatenate([[0.0], q])
-        vel, acc = self.steady_rotation_rates(x, F, omega)
-        Mb = self.beam.mass_blocks(q, F)
-        _, Qv = self.beam.rotary_inertia(q, vel[1:], F)
-        _, Qd, _ = self.beam.drag(vel[1:], *self.damping)
-        Q = Qv + Qd
-        a = acc[1:]
-        for e in range(self.beam.elements):
-            Q[8 * e : 8 * e + 16] -= Mb[e] @ a[8 * e : 8 * e + 16]
-        W = omega**2 * (np.outer(AXIS, AXIS) - np.eye(3))  # (w x)^2
-        D = np.zeros((16, 16))
-        for k in (0, 3, 8, 11):
-            D[k : k + 3, k : k + 3] = W
-        return Q, Mb @ D
-
-    # ------------------------------------------------------------ loads
-    def external_load(self, q: np.ndarray, F: np.ndarray, factor: float = 1.0):
-        """Applied generalized force on q (gravity, tip force and moment) scaled by ``factor``,
-        and the tip-moment load Jacobian (8 x 8 on the tip node coordinates)."""
-        Q = factor * self.gravity_load.copy()
-        tip = self.beam.node_slice(-1)
-        Q[tip][0:3] += factor * self.tip_force
-        J = np.zeros((8, 8))
-        if np.any(self.tip_moment):
-            Qm, Jm = tip_moment_load(q[tip][3:6], self.tip_moment, F)
-            Q[tip][3:7] += factor * Qm
-            J[3:7, 3:6] = factor * Jm
-        return Q, J
-
-    # ------------------------------------------------------------ constraints
-    def constraints(self, x: np.ndarray, F: np.ndarray, theta_p: float | None):
-        """Phi, its Jacobian on the clamp coordinates c = [theta, q_root[0:7]], and the
-        multiplier-weighted Hessian function (see :mod:`hubbeam.system.clamp`)."""
-        c = x[0:8]
-        return clamp_constraints(c, self.radius, self.twist, F, theta_p)
-
-    # ------------------------------------------------------------ statics
-    def static_equations(self, x, mu, F, factor, theta_p=0.0, spin=0.0):
-        """Residual and band-stored Newton matrix of the static problem with the hub held at theta_p.
-
-        ``spin`` (rad/s): the hub's steady rate; its steady-rotation load (:meth:`steady_rotation_load`: centrifugal and drag)
-        is applied, scaled by ``factor`` like the other loads, which gives the steadily rotating
-        state in the hub frame.
-
-        Unknown order z = [theta, mu, q]; lambda = s mu. Returns (residual, BandMatrix).
-        """
-        beam = self.beam
-        s = self.constraint_scale
-        q = x[1:]
-        m = mu.shape[0]
-        lam = s * mu
-        U, f_int, blocks = beam.elastic(q, F, tangent=True)
-        Q, Jload = self.external_load(q, F, factor)
-        phi, jac, hess = self.constraints(x, F, theta_p)
-        n = 1 + m + beam.ndof
-        kq = 1 + m  # offset of q in z
-        res = np.empty(n)
-        res[0] = s * jac[:, 0] @ mu - factor * self.hub_torque
-        res[1 : 1 + m] = s * phi
-        res[kq:] = f_int - Q
-        res[kq : kq + 7] += s * jac[:, 1:8].T @ mu
-        if spin:
-            Qc, Kc = self.steady_rotation_load(q, F, spin)
-            res[kq:] -= factor * Qc
-            blocks = blocks + factor * Kc
-        ab, bw = self.newton_matrix(blocks, Jload, jac, hess(lam), 0.0)
-        return res, BandMatrix(ab, bw)
-
-    def newton_matrix(self, blocks, tip_jacobian, jac, hess_lam, theta_diag, scale=None):
-        """Band-stored Newton matrix on z = [theta, mu, q] (LAPACK gbtrf layout: kl extra rows on top).
-
-        ``blocks``: element blocks of the q-q part; ``tip_jacobian``: applied-load Jacobian on
-        the tip node (subtracted); ``jac``: constraint Jacobian on [theta, q_root[0:7]];
-        ``hess_lam``: lambda . d2 Phi on the same; ``theta_diag``: extra theta-theta entry;
-        ``scale``: the constraint row scale (default: EA / l, for statics).
-        Returns (ab, bandwidth); the band matrix itself starts at row ``bandwidth``.
-        """
-        beam = self.beam
-        s = self.constraint_scale if scale is None else scale
-        m = jac.shape[0]
-        n = 1 + m + beam.ndof
-        kq = 1 + m
-        bw = self.bandwidth(m)
-        ab = np.zeros((3 * bw + 1, n))
-        add_element_blocks_banded(ab, blocks, kq, 2 * bw, 1.0)
-        tip = beam.node_slice(-1)
-        tip_idx = np.arange(kq + tip.start, kq + tip.stop)
-        add_block_banded(ab, tip_idx, tip_idx, -tip_jacobian, 2 * bw)
-        cidx = np.concatenate([[0], np.arange(kq, kq + 7)])
-        midx = np.arange(1, 1 + m)
-        add_block_banded(ab, midx, cidx, s * jac, 2 * bw)
-        add_block_banded(ab, cidx, midx, s * jac.T, 2 * bw)
-        add_block_banded(ab, cidx, cidx, hess_lam, 2 * bw)
-        ab[2 * bw, 0] += theta_diag
-        return ab, bw
-
-    # ------------------------------------------------------------ dynamics
-    def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
-        """Scaled residual of the equations of motion (Eq. 77) on z = [theta, mu, q].
-
-        Force rows: coef_k (M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda), the hub row
-        coef_k (J theta'' - T + Phi_theta^T lambda); constraint rows: scale Phi(x, t).
-        """
-        beam = self.beam
-        q, qd = x[1:], v[1:]
-        _, f_int, _ = beam.elastic(q, F, tangent=False)
-        Mb = beam.mass_blocks(q, F)
-        _, Qv = beam.rotary_inertia(q, qd, F)
-        _, Qd, _ = beam.drag(qd, *self.damping)
-        Q, _ = self.external_load(q, F, 1.0)
-        phi, jac, _ = self.constraints(x, F, self.drive_angle(t))
-        return self._assemble_residual(x, acc, lam, f_int - Q - Qv - Qd, Mb, phi, jac, coef_k, scale)
-
-    def dynamic_equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale):
-        """Scaled residual (see :meth:`dynamic_residual`) and Newton matrix of the equations of motion.
-
-        The matrix is coef_m M + coef_c C + coef_k (K - dQ/dq + lambda.d2Phi) on the unknowns
-        z = [theta, mu, q], lambda = scale mu / coef_k; the small velocity derivative of the
-        rotary-inertia force Q_v is left out (it only slows Newton, never changes the answer).
-        Returns (residual, BandMatrix).
-        """
-        beam = self.beam
-        q, qd = x[1:], v[1:]
-        _, f_int, Kb = beam.elastic(q, F, tangent=True)
-        Mb = beam.mass_blocks(q, F)
-        _, Qv = beam.rotary_inertia(q, qd, F)
-        _, Qd, Cb = beam.drag(qd, *self.damping)
-        Q, Jload = self.external_load(q, F, 1.0)
-        phi, jac, hess = self.constraints(x, F, self.drive_angle(t))
-        res = self._assemble_residual(x, acc, lam, f_int - Q - Qv - Qd, Mb, phi, jac, coef_k, scale)
-        blocks = coef_k * Kb + coef_m * Mb + coef_c * Cb
-        ab, bw = self.newton_matrix(blocks, coef_k * Jload, jac, coef_k * hess(lam), coef_m * self.hub_inertia, scale)
-        return res, BandMatrix(ab, bw)
-
-    def _assemble_residual(self, x, acc, lam, fq, Mb, phi, jac, coef_k, scale):
-        beam = self.beam
-        m = jac.shape[0]
-        kq = 1 + m
-        res = np.empty(1 + m + beam.ndof)
-        qdd = acc[1:]
-        for e in range(beam.elements):
-            fq[8 * e : 8 * e + 16] += Mb[e] @ qdd[8 * e : 8 * e + 16]
-        fq[0:7] += jac[:, 1:8].T @ lam
-        res[0] = coef_k * (self.hub_inertia * acc[0] - self.hub_torque + jac[:, 0] @ lam)
-        res[1:kq] = scale * phi
-        res[kq:] = coef_k * fq
-        return res
-
-    # ------------------------------------------------------------ linearisation
-    def linearised(self, x, lam, F, factor=1.0, held=False, theta_p=0.0):
-        """Dense stiffness and mass of x about an equilibrium, and the constraint Jacobian.
-
-        Returns (K, M, A): K = d2(U - W)/dx2 + lambda . d2 Phi/dx2 (the load stiffness of
-        the tip moment included), M = diag(J, M_beam(q)), A = dPhi/dx (m x nx).
-        ``held`` keeps the driving constraint theta = theta_p (fixed hub).
-        """
-        beam = self.beam
-        q = x[1:]
-        nx = self.nx
-        _, _, blocks = beam.elastic(q, F, tangent=True)
-        K = np.zeros((nx, nx))
-        add_element_blocks_dense(K, blocks, 1, 1.0)
-        _, Jload = self.external_load(q, F, factor)
-        tip = beam.node_slice(-1)
-        K[1 + tip.start : 1 + tip.stop, 1 + tip.start : 1 + tip.stop] -= Jload
-        phi, jac, hess = self.constraints(x, F, theta_p if held else None)
-        lam = lam[: jac.shape[0]]
-        K[0:8, 0:8] += hess(lam)
-        M = np.zeros((nx, nx))
-        M[0, 0] = self.hub_inertia
-        add_element_blocks_dense(M, beam.mass_blocks(q, F), 1, 1.0)
-        A = np.zeros((jac.shape[0], nx))
-        A[:, 0:8] = jac
-        return K, M, A
+    def constraint_violation(self, x: np.ndarray, F: np.ndarray, t: float) -> float:
+        """Largest violation of the clamp's position equations (m)."""
+        phi, _, _ = self.constraints(x, F, self.drive_angle(t))
+        return float(np.max(np.abs(phi[0:3])))

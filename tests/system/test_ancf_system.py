@@ -10,12 +10,12 @@ from hubbeam.solvers.generalized_alpha import init
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.hub import DriveProfile
-from hubbeam.system.model import HubBeamSystem
+from hubbeam.system.ancf_system import AncfHubSystem
 from tests.conftest import L, plate, rotation
 
 
 def spinning(section, omega, twist=np.pi / 4, radius=0.35, gravity=(0, -9.81, 0), elements=4):
-    return HubBeamSystem(AncfBeam(L, elements, section), radius=radius, twist=twist, motion="prescribed",
+    return AncfHubSystem(AncfBeam(L, elements, section), radius=radius, twist=twist, motion="prescribed",
                          drive=DriveProfile("constant", omega), gravity=np.array(gravity))
 
 
