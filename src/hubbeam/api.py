@@ -11,7 +11,9 @@ from hubbeam.io.scenario import Scenario, ScenarioError
 from hubbeam.solvers.modal import Modes, modal_analysis
 from hubbeam.solvers.static import StaticSolution, solve_static
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
+from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.system.ancf_system import AncfHubSystem
+from hubbeam.system.ffr_system import FfrHubSystem
 from hubbeam.system.hub import DriveProfile
 from hubbeam.system.model import HubSystem
 
@@ -25,14 +27,16 @@ def section_of(scenario: Scenario) -> Section:
 def build_system(scenario: Scenario) -> HubSystem:
     """The hub-beam system a scenario describes."""
     b = scenario.beam
-    if b.formulation != "ancf":
-        raise ScenarioError(f"beam.formulation: {b.formulation!r} is not available in this version (only 'ancf')")
-    beam = AncfBeam(b.length, b.elements, section_of(scenario), b.gauss_points or DEFAULT_GAUSS_POINTS)
+    if b.formulation == "ancf":
+        beam, system_class = AncfBeam(b.length, b.elements, section_of(scenario), b.gauss_points or DEFAULT_GAUSS_POINTS), AncfHubSystem
+    else:
+        beam = FfrBeam(b.length, b.elements, section_of(scenario), geometric_stiffening=bool(b.geometric_stiffening))
+        system_class = FfrHubSystem
     hub = scenario.hub
     drive = DriveProfile("rest")
     if hub.drive is not None:
         drive = DriveProfile(hub.drive.profile, hub.drive.omega_s, hub.drive.T, hub.drive.t1)
-    return AncfHubSystem(
+    return system_class(
         beam,
         radius=hub.radius,
         twist=scenario.twist_rad,

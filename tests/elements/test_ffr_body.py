@@ -132,3 +132,39 @@ def test_fibre_strain_of_a_bent_element():
     for x in (0.1, 0.77, L):
         assert beam.strain_row(x, 0.02, 0.0) @ p == pytest.approx(-k * 0.02, rel=1e-12)
         assert beam.displacement_row(x)[1] @ p == pytest.approx(k * x * x / 2, rel=1e-12)
+
+
+def test_cardan_angular_velocity_and_its_rate_by_differences():
+    """omega^b~ = A0^T dA0/dt by central differences along Theta(t); D' Theta' likewise."""
+    from hubbeam.elements.ffr.cardan import angular_velocity_matrix, angular_velocity_matrix_rate, rotation_matrix
+
+    th0, th1 = np.array([0.4, -0.7, 1.1]), np.array([0.3, 0.5, -0.8])
+
+    def omega(t):
+        h = 1e-6
+        A = rotation_matrix(th0 + t * th1)
+        W = A.T @ (rotation_matrix(th0 + (t + h) * th1) - rotation_matrix(th0 + (t - h) * th1)) / (2 * h)
+        return np.array([W[2, 1], W[0, 2], W[1, 0]])
+
+    assert np.allclose(angular_velocity_matrix(th0) @ th1, omega(0.0), atol=1e-9)
+    h = 1e-5
+    rate = (angular_velocity_matrix(th0 + h * th1) - angular_velocity_matrix(th0 - h * th1)) @ th1 / (2 * h)
+    assert np.allclose(angular_velocity_matrix_rate(th0, th1), rate, atol=1e-9)
+
+
+def test_stiffened_elastic_force_and_tangent_are_derivatives_of_the_energy():
+    from tests.conftest import central_difference
+
+    beam = FfrBeam(L, 3, plate(), geometric_stiffening=True)
+    p = 0.05 * np.random.default_rng(3).standard_normal(beam.ndof)
+    U, f, K = beam.elastic(p)
+    f_fd = central_difference(lambda q: np.array([beam.elastic(q)[0]]), p, 1e-6)[0]
+    K_fd = central_difference(lambda q: beam.elastic(q)[1], p, 1e-7)
+    assert np.max(np.abs(f - f_fd)) < 1e-6 * np.max(np.abs(f))
+    assert np.max(np.abs(K - K_fd)) < 1e-6 * np.max(np.abs(K))
+    linear = FfrBeam(L, 3, plate())
+    assert linear.elastic(p)[0] == pytest.approx(0.5 * p @ linear.stiffness_matrix @ p)
+    # for a pure stretch the two agree
+    stretch = np.zeros(beam.ndof)
+    stretch[0::6] = 1e-4 * np.arange(1, 4)
+    assert beam.elastic(stretch)[0] == pytest.approx(linear.elastic(stretch)[0], rel=1e-12)

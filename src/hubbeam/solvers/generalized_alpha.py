@@ -130,7 +130,7 @@ def _constraint_acceleration_terms(system: HubSystem, x, v, F, t):
     has Phi_tt = -theta_p''(t) and no mixed term, so this is exact."""
     held = system.motion != "free"
     _, jac, hess = system.constraints(x, F, system.drive_angle(t, held))
-    c = v[0:8]
+    c = v[0 : jac.shape[1]]  # the constraints involve a leading block of x (the clamp coordinates)
     terms = np.array([c @ hess(e) @ c for e in np.eye(jac.shape[0])])
     if system.motion == "prescribed":
         terms[6] -= system.drive(t)[2]

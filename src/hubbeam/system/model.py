@@ -25,8 +25,8 @@ AXIS = np.array([0.0, 1.0, 0.0])
 class HubSystem:
     """A beam clamped to a hub of radius R (m) with the section twisted by beta (rad).
 
-    Formulation-specific methods (raise NotImplementedError here): initial_state,
-    constraints, static_equations, dynamic_residual, dynamic_equations, linearised,
+    Formulation-specific methods: initial_state, constraints (Phi, its Jacobian on the
+    leading block of x that the clamp involves, and lambda -> lambda . d2 Phi on that block), static_equations, dynamic_residual, dynamic_equations, linearised,
     axis_chart, remap, chart_margin, better_chart, steady_rotation_rates, energies,
     angular_momentum, dissipated_power, tip_position, surface_strain, centre_line,
     static_force_scale; properties nx, length_scale, mass_scale, constraint_scale.

@@ -40,11 +40,13 @@ class FfrBeam:
     elements: int
     section: Section
     gauss_points: int = 4
+    geometric_stiffening: bool = False
     invariants: dict = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         self.invariants = self._inertia_invariants()
         self.stiffness_matrix = self._stiffness()
+        self.centre_line_table = self._centre_line_table()
 
     # ---------------------------------------------------------------- layout
     @property
@@ -97,6 +99,7 @@ class FfrBeam:
             "I0": np.einsum("q,qk,ql->kl", w, r0, r0),
             "J": np.einsum("q,qk,qlf->klf", w, r0, N),
             "II": np.einsum("q,qkf,qlg->klfg", w, N, N),
+            "Mff": np.einsum("q,qkf,qkg->fg", w, N, N),
         }
 
     # ---------------------------------------------------------------- stiffness
@@ -106,16 +109,75 @@ class FfrBeam:
         xg, wx = gauss_legendre(4)
         l = self.element_length
         sh = line_shapes(xg, l)
-        Ke = l * (EA * np.einsum("q,qi,qj->ij", wx, sh["N1x"], sh["N1x"])
-                  + EIz * np.einsum("q,qi,qj->ij", wx, sh["N2xx"], sh["N2xx"])
-                  + EIy * np.einsum("q,qi,qj->ij", wx, sh["N3xx"], sh["N3xx"])
-                  + GJ * np.einsum("q,qi,qj->ij", wx, sh["N4x"], sh["N4x"]))
+        Ka = l * EA * np.einsum("q,qi,qj->ij", wx, sh["N1x"], sh["N1x"])
+        Ke = Ka + l * (EIz * np.einsum("q,qi,qj->ij", wx, sh["N2xx"], sh["N2xx"])
+                       + EIy * np.einsum("q,qi,qj->ij", wx, sh["N3xx"], sh["N3xx"])
+                       + GJ * np.einsum("q,qi,qj->ij", wx, sh["N4x"], sh["N4x"]))
         K = np.zeros((self.ndof, self.ndof))
+        self._axial_stiffness = np.zeros((self.ndof, self.ndof))
         for e in range(self.elements):
             dofs = self.element_dofs(e)
             keep = dofs >= 0
             K[np.ix_(dofs[keep], dofs[keep])] += Ke[np.ix_(keep, keep)]
+            self._axial_stiffness[np.ix_(dofs[keep], dofs[keep])] += Ka[np.ix_(keep, keep)]
         return K
+
+    def _centre_line_table(self) -> dict:
+        """Gauss points along the centre line (5 per element, exact for the stiffened axial
+        energy, a polynomial of degree 8): weights (m), x, and the rows of u0, v0, w0, their
+        slopes and N(x, 0, 0) over p."""
+        xg, wx = gauss_legendre(5)
+        l = self.element_length
+        sh = line_shapes(xg, l)
+        rows = {k: [] for k in ("N", "N1x", "N2x", "N3x")}
+        xs, ws = [], []
+        for e in range(self.elements):
+            for k in range(xg.shape[0]):
+                rows["N"].append(self._scatter(e, displacement_matrix(sh, k, 0.0, 0.0)))
+                for key in ("N1x", "N2x", "N3x"):
+                    rows[key].append(self._scatter(e, sh[key][k]))
+                xs.append((e + xg[k]) * l)
+                ws.append(wx[k] * l)
+        table = {k: np.array(v) for k, v in rows.items()}
+        table["x"], table["w"] = np.array(xs), np.array(ws)
+        return table
+
+    def elastic(self, p: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
+        """Strain energy (J), internal force (N) and tangent stiffness over p.
+
+        The paper's FFR (Eq. 46 with Eq. 48, eps0 = u0'): U = p^T K p / 2 with K of Eq. 61.
+        With ``geometric_stiffening`` the axial strain keeps its second-order part,
+        eps0 = u0' + (v0'^2 + w0'^2) / 2 (the Green strain of the centre line to second
+        order in the slopes), so U_axial = int EA eps0^2 / 2 dx couples stretch and bending:
+        an axial force N = EA eps0 adds N (v0'^2 + w0'^2) / 2 to the energy of a
+        deflection, which is the centrifugal stiffening a rotating beam needs. Bending and
+        torsion keep Eq. 61.
+        """
+        K = self.stiffness_matrix
+        if not self.geometric_stiffening:
+            f = K @ p
+            return 0.5 * p @ f, f, K
+        EA = self.section.stiffness[0]
+        t = self.centre_line_table
+        K_rest = K - self._axial_stiffness
+        s2, s3 = t["N2x"] @ p, t["N3x"] @ p
+        eps = t["N1x"] @ p + 0.5 * (s2 * s2 + s3 * s3)
+        deps = t["N1x"] + s2[:, None] * t["N2x"] + s3[:, None] * t["N3x"]
+        weight = EA * t["w"]
+        f = K_rest @ p + deps.T @ (weight * eps)
+        Kt = K_rest + deps.T @ (weight[:, None] * deps) + np.einsum(
+            "q,qf,qg->fg", weight * eps, t["N2x"], t["N2x"]) + np.einsum("q,qf,qg->fg", weight * eps, t["N3x"], t["N3x"])
+        U = 0.5 * p @ (K_rest @ p) + 0.5 * np.sum(weight * eps * eps)
+        return U, f, Kt
+
+    def axial_strain(self, p: np.ndarray, x: float) -> float:
+        """eps0 at station x: u0', plus (v0'^2 + w0'^2) / 2 with geometric stiffening."""
+        e, xi = self.locate(x)
+        sh = line_shapes(np.array([xi]), self.element_length)
+        eps = self._scatter(e, sh["N1x"][0]) @ p
+        if self.geometric_stiffening:
+            eps += 0.5 * ((self._scatter(e, sh["N2x"][0]) @ p) ** 2 + (self._scatter(e, sh["N3x"][0]) @ p) ** 2)
+        return float(eps)
 
     # ---------------------------------------------------------------- inertia
     def first_moment(self, p: np.ndarray) -> np.ndarray:
@@ -148,7 +210,7 @@ class FfrBeam:
         # int rho (-A0 r~)^T A0 N dV = int rho r~ N dV: row i = eps_ijk int rho r_j N_k
         P = inv["J"] + np.einsum("f,jkfg->jkg", p, inv["II"])
         M[3:6, 6:] = np.array([P[1, 2] - P[2, 1], P[2, 0] - P[0, 2], P[0, 1] - P[1, 0]])
-        M[6:, 6:] = np.einsum("kkfg->fg", inv["II"])
+        M[6:, 6:] = inv["Mff"]
         M[3:6, 0:3] = M[0:3, 3:6].T
         M[6:, 0:3] = M[0:3, 6:].T
         M[6:, 3:6] = M[3:6, 6:].T
@@ -187,8 +249,21 @@ class FfrBeam:
         e, xi = self.locate(x)
         return self._scatter(e, displacement_matrix(line_shapes(np.array([xi]), self.element_length), 0, y, z))
 
+    def rotation_row(self, x: float) -> np.ndarray:
+        """Rows (3 x ndof) of the section's small rotation (theta_tau, -w0', v0') in the body
+        frame at x: the rotation phi with u = phi x (0, y, z) in Eq. 43."""
+        e, xi = self.locate(x)
+        sh = line_shapes(np.array([xi]), self.element_length)
+        return np.array([self._scatter(e, sh["N4"][0]), -self._scatter(e, sh["N3x"][0]), self._scatter(e, sh["N2x"][0])])
+
+    def surface_strain(self, p: np.ndarray, x: float, y: float, z: float) -> float:
+        """Fibre strain eps = eps0 - y v0'' - z w0'' at (x, y, z) (eps0 as in :meth:`axial_strain`)."""
+        e, xi = self.locate(x)
+        sh = line_shapes(np.array([xi]), self.element_length)
+        return self.axial_strain(p, x) + float(self._scatter(e, -y * sh["N2xx"][0] - z * sh["N3xx"][0]) @ p)
+
     def strain_row(self, x: float, y: float, z: float) -> np.ndarray:
-        """The row of eps = u0' - y v0'' - z w0'' (the FFR fibre strain) over p."""
+        """The row of eps = u0' - y v0'' - z w0'' (the linear FFR fibre strain) over p."""
         e, xi = self.locate(x)
         sh = line_shapes(np.array([xi]), self.element_length)
         return self._scatter(e, sh["N1x"][0] - y * sh["N2xx"][0] - z * sh["N3xx"][0])
