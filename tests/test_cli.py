@@ -64,12 +64,14 @@ def test_errors_are_one_clear_line(cantilever, args, code, text):
     assert out.stdout == ""
 
 
-def test_run_writes_netcdf_csv_and_plot(tmp_path):
+@pytest.mark.parametrize("formulation", ["ancf", "ffr"])
+def test_run_writes_netcdf_csv_and_plot(tmp_path, formulation):
     import xarray as xr
 
     scen = tmp_path / "exp1.toml"
     scen.write_text(hubbeam("example", "exp1").stdout)
     out = hubbeam("run", str(scen), "--set", "analysis.t_end=0.1", "--set", "beam.elements=3", "--json",
+                  "--set", f'beam.formulation="{formulation}"',
                   "-o", str(tmp_path / "r.nc"), "--csv", str(tmp_path / "r.csv"), "--plot", str(tmp_path / "r.png"))
     assert out.returncode == 0, out.stderr
     d = json.loads(out.stdout)

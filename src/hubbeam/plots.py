@@ -43,3 +43,20 @@ def plot_timeseries(ds, path, title: str = "", variables: list[str] | None = Non
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def plot_comparison(datasets: dict, path, variables: list[str], title: str = "") -> None:
+    """The same variables of several runs ({label: dataset}) over time, one panel each."""
+    fig, axes = plt.subplots(len(variables), 1, figsize=(9, 2.4 * len(variables) + 0.6), sharex=True, squeeze=False)
+    for ax, name in zip(axes[:, 0], variables):
+        for k, (label, ds) in enumerate(datasets.items()):
+            ax.plot(ds["time"].values, ds[name].values, lw=1, color=f"C{k}", label=label)
+        units = next(iter(datasets.values()))[name].attrs.get("units", "")
+        ax.set_ylabel(f"{name}\n({units})", fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(loc="best", fontsize=8)
+    axes[-1, 0].set_xlabel("time (s)")
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -94,7 +94,7 @@ def test_ffr_free_hub_keeps_energy_and_angular_momentum():
 
 def test_strain_histories_agree_with_ancf_at_small_deformation():
     """exp1's hub (free, beta = 45 deg, drag) with a 10 mm plate: the P1 strain over several
-    periods of the first mode (3.9 Hz) agrees with ANCF to a few percent of its range."""
+    periods of the first mode (3.9 Hz) agrees with ANCF to 1 % of its range."""
     strains = []
     for system in pair(radius=0.35, twist=np.pi / 4, motion="free", hub_inertia=9.557,
                        gravity=np.array([0, -9.81, 0]), damping=(1.73, 1.4)):
@@ -102,7 +102,7 @@ def test_strain_histories_agree_with_ancf_at_small_deformation():
         strains.append(np.array(traj.records["P1"]))
     span = np.ptp(strains[0])
     assert span > 1e-4
-    assert np.max(np.abs(strains[0] - strains[1])) < 0.03 * span
+    assert np.max(np.abs(strains[0] - strains[1])) < 0.01 * span  # measured: 0.22 %
 
 
 @pytest.mark.slow
