@@ -196,21 +196,28 @@ class AncfHubSystem(HubSystem):
         return ab, bw
 
     # ------------------------------------------------------------ dynamics
+    def _dynamic_terms(self, x, v, F, t, tangent: bool):
+        """Everything the equations of motion need at (x, v, t): the q-force f_int - Q_ext -
+        Q_v - Q_d, the element mass blocks, the constraints and (with ``tangent``) the
+        element stiffness and damping blocks and the tip-load Jacobian."""
+        beam = self.beam
+        q, qd = x[1:], v[1:]
+        _, f_int, Kb = beam.elastic(q, F, tangent=tangent)
+        Mb = beam.mass_blocks(q, F)
+        _, Qv = beam.rotary_inertia(q, qd, F)
+        _, Qd, Cb = beam.drag(qd, *self.damping)
+        Q, Jload = self.external_load(q, F, 1.0)
+        phi, jac, hess = self.constraints(x, F, self.drive_angle(t))
+        return f_int - Q - Qv - Qd, Mb, phi, jac, hess, (Kb, Cb, Jload)
+
     def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
         """Scaled residual of the equations of motion (Eq. 77) on z = [theta, mu, q].
 
         Force rows: coef_k (M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda), the hub row
         coef_k (J theta'' - T + Phi_theta^T lambda); constraint rows: scale Phi(x, t).
         """
-        beam = self.beam
-        q, qd = x[1:], v[1:]
-        _, f_int, _ = beam.elastic(q, F, tangent=False)
-        Mb = beam.mass_blocks(q, F)
-        _, Qv = beam.rotary_inertia(q, qd, F)
-        _, Qd, _ = beam.drag(qd, *self.damping)
-        Q, _ = self.external_load(q, F, 1.0)
-        phi, jac, _ = self.constraints(x, F, self.drive_angle(t))
-        return self._assemble_residual(x, acc, lam, f_int - Q - Qv - Qd, Mb, phi, jac, coef_k, scale)
+        fq, Mb, phi, jac, _, _ = self._dynamic_terms(x, v, F, t, tangent=False)
+        return self._assemble_residual(x, acc, lam, fq, Mb, phi, jac, coef_k, scale)
 
     def dynamic_equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale):
         """Scaled residual (see :meth:`dynamic_residual`) and Newton matrix of the equations of motion.
@@ -220,15 +227,8 @@ class AncfHubSystem(HubSystem):
         rotary-inertia force Q_v is left out (it only slows Newton, never changes the answer).
         Returns (residual, BandMatrix).
         """
-        beam = self.beam
-        q, qd = x[1:], v[1:]
-        _, f_int, Kb = beam.elastic(q, F, tangent=True)
-        Mb = beam.mass_blocks(q, F)
-        _, Qv = beam.rotary_inertia(q, qd, F)
-        _, Qd, Cb = beam.drag(qd, *self.damping)
-        Q, Jload = self.external_load(q, F, 1.0)
-        phi, jac, hess = self.constraints(x, F, self.drive_angle(t))
-        res = self._assemble_residual(x, acc, lam, f_int - Q - Qv - Qd, Mb, phi, jac, coef_k, scale)
+        fq, Mb, phi, jac, hess, (Kb, Cb, Jload) = self._dynamic_terms(x, v, F, t, tangent=True)
+        res = self._assemble_residual(x, acc, lam, fq, Mb, phi, jac, coef_k, scale)
         blocks = coef_k * Kb + coef_m * Mb + coef_c * Cb
         ab, bw = self.newton_matrix(blocks, coef_k * Jload, jac, coef_k * hess(lam), coef_m * self.hub_inertia, scale)
         return res, BandMatrix(ab, bw)
