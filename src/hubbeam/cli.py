@@ -11,14 +11,9 @@ import argparse
 import json
 import os
 import sys
-from importlib import resources
-from pathlib import Path
 
-from hubbeam.io.scenario import ScenarioError, load_scenario
+from hubbeam.io.scenario import EXAMPLES, ScenarioError, example_text, load_scenario
 from hubbeam.solvers.errors import ComputationError
-
-EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2")
-
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # argparse prints usage and exits 2: keep it to two lines
@@ -46,15 +41,13 @@ def _parser() -> argparse.ArgumentParser:
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
     st.add_argument("--plot", help="PNG figure of the deformed beam")
     scenario_cmd("modes", "natural frequencies about the static equilibrium")
+    rep = sub.add_parser("reproduce", help="rerun the paper's tables and figures (Secs. 5 and 6)")
+    rep.add_argument("-o", "--output", required=True, help="directory for report.md, tables.json and figures")
+    rep.add_argument("--quick", action="store_true", help="experiment 2 at dt = 5 ms (same physics; < 10 min on 2 cores)")
+    rep.add_argument("--jobs", type=int, default=None, help="parallel runs (default: all cores)")
     ex = sub.add_parser("example", help="print a bundled scenario")
     ex.add_argument("name", help=f"one of: {', '.join(EXAMPLES)}")
     return p
-
-
-def example_text(name: str) -> str:
-    if name not in EXAMPLES:
-        raise ScenarioError(f"example: unknown example {name!r} (available: {', '.join(EXAMPLES)})")
-    return resources.files("hubbeam").joinpath("examples", f"{name}.toml").read_text(encoding="utf-8")
 
 
 def _print_static(d: dict) -> None:
@@ -144,6 +137,21 @@ def _cmd_run(args, scenario) -> dict:
     return summary
 
 
+def _cmd_reproduce(args) -> int:
+    from hubbeam.reproduce.pipeline import reproduce
+
+    if args.jobs is not None and args.jobs < 1:
+        raise ScenarioError(f"--jobs: must be >= 1 (got {args.jobs})")
+
+    def progress(done, total, outcome):
+        state = "failed" if outcome.failure else "done"
+        print(f"[{done}/{total}] {outcome.case.key}: {state} in {outcome.wall_time_s:.0f} s", file=sys.stderr)
+
+    path, _ = reproduce(args.output, quick=args.quick, jobs=args.jobs, progress=progress)
+    print(f"report: {path}")
+    return 0
+
+
 def _progress_bar(t_end: float):
     """A rich progress bar on a terminal, nothing otherwise: (update(t), finish())."""
     if not sys.stderr.isatty():
@@ -163,6 +171,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "example":
             sys.stdout.write(example_text(args.name))
             return 0
+        if args.command == "reproduce":
+            return _cmd_reproduce(args)
         scenario = load_scenario(args.scenario, args.overrides)
         handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run}[args.command]
         result = handler(args, scenario)

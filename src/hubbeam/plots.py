@@ -60,3 +60,20 @@ def plot_comparison(datasets: dict, path, variables: list[str], title: str = "")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def plot_xy(series: dict, path, xlabel: str, ylabel: str, title: str = "", vline: float | None = None) -> None:
+    """Curves y(x) ({label: (x, y)}) with markers; an optional dashed vertical line."""
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for k, (label, (x, y)) in enumerate(series.items()):
+        ax.plot(x, y, "o-", color=f"C{k}", label=label, lw=1.2, ms=4)
+    if vline is not None:
+        ax.axvline(vline, color="k", ls="--", lw=0.8)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from importlib import resources
 from pathlib import Path
 from typing import Annotated, Literal
 
@@ -265,6 +266,22 @@ def apply_overrides(data: dict, overrides: list[str]) -> dict:
             node = nxt
         node[path[-1]] = value
     return data
+
+
+#: the bundled scenarios (package data in hubbeam/examples)
+EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2")
+
+
+def example_text(name: str) -> str:
+    """The TOML text of a bundled scenario."""
+    if name not in EXAMPLES:
+        raise ScenarioError(f"example: unknown example {name!r} (available: {', '.join(EXAMPLES)})")
+    return resources.files("hubbeam").joinpath("examples", f"{name}.toml").read_text(encoding="utf-8")
+
+
+def load_example(name: str, overrides: list[str] | None = None) -> Scenario:
+    """A bundled scenario, overridden and validated."""
+    return validate(apply_overrides(tomllib.loads(example_text(name)), overrides or []))
 
 
 def load_scenario(source: str | Path, overrides: list[str] | None = None) -> Scenario:

@@ -1,0 +1,1 @@
+"""Post-processing of results (signals), independent of how they were computed."""

@@ -1,0 +1,60 @@
+"""Run the cases of a plan, in parallel processes; every result is an xarray Dataset."""
+
+from __future__ import annotations
+
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+
+from hubbeam.reproduce.plan import Case
+
+
+@dataclass
+class Outcome:
+    """A run's dataset (None if it failed before its first output), the failure message if
+    any (the dataset then holds the results up to it) and its wall time (s)."""
+
+    case: Case
+    dataset: object
+    failure: str | None
+    wall_time_s: float
+
+
+def run_case(case: Case) -> Outcome:
+    """Simulate one case (in a worker process)."""
+    from hubbeam import api
+    from hubbeam.io.results import to_dataset
+    from hubbeam.io.scenario import load_example
+    from hubbeam.simulation import simulate
+    from hubbeam.solvers.errors import ComputationError
+
+    start = time.perf_counter()
+    scenario = load_example(case.example, case.overrides())
+    a = scenario.analysis
+    failure = None
+    try:
+        traj = simulate(api.build_system(scenario), scenario.sensors, a.t_end, a.dt, a.spectral_radius,
+                        scenario.output_dt)
+    except ComputationError as exc:
+        traj, failure = exc.partial, str(exc)
+    ds = to_dataset(traj, scenario) if traj is not None and traj.times else None
+    return Outcome(case, ds, failure, time.perf_counter() - start)
+
+
+def run_cases(cases: list[Case], jobs: int = 1, progress=None) -> dict[str, Outcome]:
+    """All cases, ``jobs`` at a time; ``progress(done, total, outcome)`` after each."""
+    results: dict[str, Outcome] = {}
+    if jobs <= 1:
+        for k, case in enumerate(cases, 1):
+            results[case.key] = outcome = run_case(case)
+            if progress:
+                progress(k, len(cases), outcome)
+        return results
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        futures = [pool.submit(run_case, case) for case in cases]
+        for k, fut in enumerate(as_completed(futures), 1):
+            outcome = fut.result()
+            results[outcome.case.key] = outcome
+            if progress:
+                progress(k, len(cases), outcome)
+    return results
