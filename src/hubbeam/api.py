@@ -7,8 +7,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.elements.section import Section, saint_venant_torsion_constant
-from hubbeam.io.scenario import Scenario, ScenarioError
-from hubbeam.solvers.modal import Modes, modal_analysis
+from hubbeam.io.scenario import Scenario
+from hubbeam.solvers.modal import Modes, modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import StaticSolution, solve_static
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
 from hubbeam.elements.ffr.body import FfrBeam
@@ -83,13 +83,14 @@ class ModalResult:
 
     static: StaticResult
     modes: Modes
+    about: str = "static equilibrium under the scenario's gravity and loads"
 
     def to_dict(self) -> dict:
         return {
             "frequencies_hz": [float(f) for f in self.modes.frequencies_hz],
             "rigid_modes": self.modes.rigid_modes,
             "rigid_frequencies_hz": [float(f) for f in self.modes.rigid_frequencies_hz],
-            "about": "static equilibrium under the scenario's gravity and loads",
+            "about": self.about,
             "equilibrium_tip_displacement": tip_displacement(self.static.system, self.static.solution.x),
         }
 
@@ -101,11 +102,22 @@ def static(scenario: Scenario) -> StaticResult:
 
 
 def modes(scenario: Scenario) -> ModalResult:
-    """Natural frequencies (Hz) linearised about the static equilibrium (fixed or free hub)."""
-    st = static(scenario)
+    """Natural frequencies (Hz) linearised about the static equilibrium (fixed or free hub),
+    or, for a hub driven at a constant omega_s, about the steadily rotating state
+    (centrifugal pre-stress and gyroscopic terms; drag left out). Other prescribed profiles
+    give the modes at rest with the hub held."""
+    system = build_system(scenario)
+    count = scenario.analysis.count
+    load_steps = scenario.analysis.load_steps
+    if scenario.hub.motion == "prescribed" and system.drive.kind == "constant":
+        omega = system.drive(0.0)[1]
+        steady = solve_static(system, load_steps=load_steps, spin=omega)
+        return ModalResult(StaticResult(system, steady), rotating_modal_analysis(system, steady, omega, count=count),
+                           about=f"steadily rotating state at omega = {omega:g} rad/s (centrifugal and gyroscopic "
+                                 "terms; drag left out)")
+    st = StaticResult(system, solve_static(system, load_steps=load_steps))
+    about = "static equilibrium under the scenario's gravity and loads"
     if scenario.hub.motion == "prescribed":
-        raise ScenarioError(
-            "hub.motion: modes about a rotating state ('prescribed') are not available in this version; "
-            "use 'fixed' or 'free'"
-        )
-    return ModalResult(st, modal_analysis(st.system, st.solution, count=scenario.analysis.count))
+        about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
+    return ModalResult(st, modal_analysis(st.system, st.solution, count=count, free_hub=scenario.hub.motion == "free"),
+                       about=about)

@@ -80,7 +80,7 @@ def _cmd_modes(args, scenario) -> dict:
 
     d = api.modes(scenario).to_dict()
     if not args.json:
-        print(f"natural frequencies (Hz) about the static equilibrium, {d['rigid_modes']} rigid mode(s) left out:")
+        print(f"natural frequencies (Hz) about the {d['about']}, {d['rigid_modes']} rigid mode(s) left out:")
         for i, f in enumerate(d["frequencies_hz"], 1):
             print(f"  {i:3d}  {f:12.6f}")
     return d

@@ -80,3 +80,47 @@ def test_rigid_mode_frequency_about_a_bent_state_vanishes_with_refinement():
                                gravity=np.array([0, -9.81, 0]))
         out.append(abs(modal_analysis(system, solve_static(system, load_steps=5), count=1).rigid_frequencies_hz[0]))
     assert out[1] < out[0] / 2 and out[0] < 5e-3
+
+
+def _rotating_frequencies(system_class, beam, speed):
+    from hubbeam.solvers.modal import rotating_modal_analysis
+    from hubbeam.system.hub import DriveProfile
+
+    system = system_class(beam, radius=0.0, twist=np.pi / 2, motion="prescribed",
+                          drive=DriveProfile("constant", max(speed, 1e-12)))
+    steady = solve_static(system, spin=speed, load_steps=2)
+    return rotating_modal_analysis(system, steady, speed, count=4).frequencies_hz
+
+
+@pytest.mark.parametrize("lam, first, second", [(1.0, 3.6816, 22.1810), (3.0, 4.7973, 23.3203)])
+def test_rotating_cantilever_flapwise_frequencies_match_the_classic_values(lam, first, second):
+    """Rotating cantilever, R = 0, flapwise (out of the plane of rotation): frequency parameter
+    w sqrt(rho A L^4 / EI) at lam = Omega sqrt(rho A L^4 / EI) (Wright et al. 1982; Hodges and
+    Rutkowski 1981): 3.6816 / 22.1810 at lam = 1, 4.7973 / 23.3203 at lam = 3; 3.5160 at rest."""
+    sec = plate()
+    unit = np.sqrt(sec.stiffness[2] / (sec.mass_per_length * L**4))
+    f = _rotating_frequencies(AncfHubSystem, AncfBeam(L, 8, sec), lam * unit) * 2 * np.pi / unit
+    assert f[0] == pytest.approx(first, rel=2e-4)
+    assert f[1] == pytest.approx(second, rel=1e-3)
+
+
+def test_rotating_ffr_plain_does_not_stiffen_stiffened_follows_ancf():
+    """Plain FFR: the flapwise frequency stays at its value at rest and the chordwise one
+    softens exactly as w^2 = w0^2 - Omega^2 (linear rotating-frame model); with geometric
+    stiffening FFR follows ANCF."""
+    from hubbeam.elements.ffr.body import FfrBeam
+    from hubbeam.system.ffr_system import FfrHubSystem
+
+    sec = plate()
+    unit = np.sqrt(sec.stiffness[2] / (sec.mass_per_length * L**4))
+    speed = 3.0 * unit
+    rest = _rotating_frequencies(FfrHubSystem, FfrBeam(L, 8, sec), 0.0)
+    plain = _rotating_frequencies(FfrHubSystem, FfrBeam(L, 8, sec), speed)
+    stiff = _rotating_frequencies(FfrHubSystem, FfrBeam(L, 8, sec, geometric_stiffening=True), speed)
+    ancf = _rotating_frequencies(AncfHubSystem, AncfBeam(L, 8, sec), speed)
+    assert plain[0] == pytest.approx(rest[0], rel=1e-6)  # flapwise: no centrifugal term in linear FFR
+    chord = np.argmin(np.abs(rest - 70.3 * unit / (2 * np.pi)))  # the first chordwise (strong-axis) mode
+    w0, w = 2 * np.pi * rest[chord], 2 * np.pi * plain[chord]
+    assert w**2 == pytest.approx(w0**2 - speed**2, rel=1e-5)
+    assert np.max(np.abs(stiff / ancf - 1)) < 2e-3
+    assert ancf[0] > 1.3 * rest[0]

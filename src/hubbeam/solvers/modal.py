@@ -68,3 +68,73 @@ def modal_analysis(
         rigid[np.argmin(np.abs(f))] = True
     elastic = np.flatnonzero(~rigid)[:count]
     return Modes(f[elastic], N @ V[:, elastic], f[rigid])
+
+
+def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: float, count: int = 6,
+                            include_damping: bool = False) -> Modes:
+    """Lowest ``count`` natural frequencies (Hz) about the state that turns steadily with the
+    hub at theta' = omega (rad/s), ``steady`` from ``solve_static(system, spin=omega)``.
+
+    Co-rotating description: x(t) = G(omega t) y(t), G the rigid rotation of the whole system
+    about the axis (a symmetry of the equations), so y obeys the time-invariant
+    r(y, omega Xi(y) + y', omega^2 a_r(y) + 2 omega (dXi/dy) y' + y'') = 0 with Xi the
+    rotation's generator (``steady_rotation_rates``). Linearised at y = y_s:
+    M dy'' + G dy' + K dy = 0 with A dy = 0 (hub held; the drive is theta_y = 0), where K
+    holds the elastic, centrifugal (softening and pre-stress) and constraint terms, G the
+    gyroscopic (Coriolis) terms. Each is a central difference of the system's own residual
+    (independent of how the residual was derived). The quadratic eigenproblem is solved in
+    state space on the null space of A; the frequencies are |Im s| / (2 pi).
+    ``include_damping``: keep the drag's velocity terms (then the modes are damped).
+    """
+    x_s, F, lam = steady.x, steady.chart, steady.multipliers
+    m = lam.shape[0]
+    nx = x_s.shape[0]
+    saved = system.damping
+    if not include_damping:
+        system.damping = (0.0, 0.0)
+    try:
+        def forces(x, v, a):
+            res = system.dynamic_residual(x, v, a, lam, F, 0.0, 1.0, 1.0)
+            return np.concatenate([res[0:1], res[1 + m :]])
+
+        def generator(y):
+            return system.steady_rotation_rates(y, F, 1.0)[0]
+
+        def steady_rates(y):
+            return omega * generator(y), system.steady_rotation_rates(y, F, omega)[1]
+
+        def column(fun, i, scale):
+            e = np.zeros(nx)
+            e[i] = 1e-7 * scale
+            return (fun(e) - fun(-e)) / (2e-7 * scale)
+
+        K = np.empty((nx, nx))
+        G = np.empty((nx, nx))
+        M = np.empty((nx, nx))
+        v_s, a_s = steady_rates(x_s)
+        for i in range(nx):
+            K[:, i] = column(lambda e: forces(x_s + e, *steady_rates(x_s + e)), i, max(1.0, abs(x_s[i])))
+            G[:, i] = column(lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), i, 1.0)
+            M[:, i] = column(lambda e: forces(x_s, v_s, a_s + e), i, 1.0)
+    finally:
+        system.damping = saved
+    _, jac, _ = system.constraints(x_s, F, system.drive_angle(0.0, held=True))
+    A = np.zeros((jac.shape[0], nx))
+    A[:, 0 : jac.shape[1]] = jac
+    N = null_space(A)
+    Mr, Gr, Kr = (N.T @ X @ N for X in (M, G, K))
+    n = Mr.shape[0]
+    Minv = np.linalg.inv(0.5 * (Mr + Mr.T))
+    state = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ Kr, -Minv @ Gr]])
+    s, V = eig(state)
+    keep = np.flatnonzero(s.imag > 1e-9)
+    order = keep[np.argsort(np.abs(s[keep].imag))]
+    f = np.abs(s[order].imag) / (2.0 * np.pi)
+    shapes = N @ V[:n, order].real
+    return Modes(f[:count], shapes[:, :count], np.array([]))
+
+
+def _directional(fun, x, e, h=1e-6):
+    """(d fun / dx) e by a central difference (fun is smooth; affine for ANCF)."""
+    size = max(np.max(np.abs(e)), 1e-300)
+    return (fun(x + (h / size) * e) - fun(x - (h / size) * e)) * (size / (2.0 * h))

@@ -79,13 +79,13 @@ def solve_static(
     max_cuts: int = 8,
     x0: np.ndarray | None = None,
     chart: np.ndarray | None = None,
-    spin: float = 0.0,
+    spin: float | None = None,
 ) -> StaticSolution:
     """Equilibrium under the system's loads with the hub held at theta = 0.
 
     ``spin`` (rad/s): solve instead for the state that turns steadily with the hub at
-    theta' = spin, in the hub frame (centrifugal load, see
-    :meth:`HubSystem.steady_rotation_load`); the solution is expressed in the axis chart.
+    theta' = spin, in the hub frame (centrifugal load and drag); the solution is expressed
+    in the axis chart (also for spin = 0).
 
     Raises :class:`ConvergenceError` (with the last equilibrium in ``partial``) when a
     load step cannot be completed even after ``max_cuts`` halvings.
@@ -94,8 +94,9 @@ def solve_static(
         x, F = system.initial_state(0.0)
     else:
         x, F = np.array(x0, dtype=float), np.array(chart, dtype=float)
-    if spin:
+    if spin is not None:
         x, F = system.axis_chart(x, F)
+    spin = spin or 0.0
     m = system.n_constraints(held=True)
     mu = np.zeros(m)
     beam = system.beam
