@@ -4,6 +4,7 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 
@@ -82,3 +83,21 @@ def test_run_writes_netcdf_csv_and_plot(tmp_path, formulation):
     assert ds["time"].attrs["units"] == "s" and "beam" in ds.attrs["scenario"]
     assert (tmp_path / "r.csv").read_text().startswith("time,")
     assert (tmp_path / "r.png").stat().st_size > 10000
+
+
+def test_campbell_writes_figure_and_data(tmp_path):
+    import xarray as xr
+
+    scen = tmp_path / "exp2.toml"
+    scen.write_text(hubbeam("example", "exp2").stdout)
+    out = hubbeam("campbell", str(scen), "--omega", "0:5:3", "--count", "2", "--set", "beam.elements=3",
+                  "--formulations", "ancf,ffr", "-o", str(tmp_path / "c.png"), "--data", str(tmp_path / "c.nc"), "--json")
+    assert out.returncode == 0, out.stderr
+    d = json.loads(out.stdout)
+    ancf, ffr = np.array(d["frequencies_hz"]["ancf"]), np.array(d["frequencies_hz"]["ffr"])
+    assert ancf.shape == (3, 2)
+    assert ancf[-1, 0] > ancf[0, 0] and ffr[-1, 0] < ffr[0, 0]  # stiffening vs the linear FFR's softening
+    assert (tmp_path / "c.png").stat().st_size > 10000
+    assert xr.open_dataset(tmp_path / "c.nc")["frequency_hz"].dims == ("formulation", "omega", "mode")
+    bad = hubbeam("campbell", str(scen), "--omega", "0:5", "-o", str(tmp_path / "x.png"))
+    assert bad.returncode == 2 and "--omega" in bad.stderr and "Traceback" not in bad.stderr

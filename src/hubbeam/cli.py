@@ -41,6 +41,12 @@ def _parser() -> argparse.ArgumentParser:
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
     st.add_argument("--plot", help="PNG figure of the deformed beam")
     scenario_cmd("modes", "natural frequencies about the static equilibrium")
+    camp = scenario_cmd("campbell", "natural frequencies about the steadily rotating state against hub speed")
+    camp.add_argument("--omega", required=True, metavar="START:STOP:N", help="hub speeds (rad/s)")
+    camp.add_argument("--count", type=int, default=6, help="modes per speed (default 6)")
+    camp.add_argument("-o", "--output", help="PNG figure")
+    camp.add_argument("--data", help="NetCDF file of the frequencies")
+    camp.add_argument("--formulations", default="ancf,ffr,ffr+", help="comma-separated: ancf, ffr, ffr+ (default all)")
     rep = sub.add_parser("reproduce", help="rerun the paper's tables and figures (Secs. 5 and 6)")
     rep.add_argument("-o", "--output", required=True, help="directory for report.md, tables.json and figures")
     rep.add_argument("--quick", action="store_true", help="experiment 2 at dt = 5 ms (same physics; < 10 min on 2 cores)")
@@ -137,6 +143,42 @@ def _cmd_run(args, scenario) -> dict:
     return summary
 
 
+def _cmd_campbell(args, scenario) -> dict:
+    from hubbeam.studies.campbell import campbell
+    from hubbeam.studies.variants import FORMULATIONS, parse_range
+
+    speeds = parse_range(args.omega, "--omega")
+    if (speeds < 0).any():
+        raise ScenarioError("--omega: hub speeds must be >= 0")
+    if not 1 <= args.count <= 50:
+        raise ScenarioError(f"--count: must be between 1 and 50 (got {args.count})")
+    forms = tuple(f.strip() for f in args.formulations.split(","))
+    unknown = [f for f in forms if f not in FORMULATIONS]
+    if unknown:
+        raise ScenarioError(f"--formulations: unknown {', '.join(unknown)} (use {', '.join(FORMULATIONS)})")
+    progress, finish = _progress_bar(len(forms) * speeds.size, label="campbell", unit="points")
+    try:
+        ds = campbell(scenario, speeds, count=args.count, formulations=forms,
+                      progress=(lambda done, total: progress(done)) if progress else None)
+    finally:
+        finish()
+    if args.output:
+        from hubbeam import plots
+
+        plots.plot_campbell(ds, args.output, title=f"Campbell diagram: {scenario.name}")
+    if args.data:
+        from hubbeam.io.results import write_netcdf
+
+        write_netcdf(ds, args.data)
+    result = {"omega": speeds.tolist(),
+              "frequencies_hz": {str(f): ds["frequency_hz"].sel(formulation=f).values.tolist() for f in forms}}
+    if not args.json:
+        for f in forms:
+            first = ds["frequency_hz"].sel(formulation=f).values[:, 0]
+            print(f"{f:5s} first mode: {first[0]:.4f} Hz at {speeds[0]:g} rad/s -> {first[-1]:.4f} Hz at {speeds[-1]:g} rad/s")
+    return result
+
+
 def _cmd_reproduce(args) -> int:
     from hubbeam.reproduce.pipeline import reproduce
 
@@ -152,13 +194,14 @@ def _cmd_reproduce(args) -> int:
     return 0
 
 
-def _progress_bar(t_end: float):
+def _progress_bar(t_end: float, label: str = "simulating", unit: str = "s"):
     """A rich progress bar on a terminal, nothing otherwise: (update(t), finish())."""
     if not sys.stderr.isatty():
         return None, lambda: None
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
-    bar = Progress(TextColumn("simulating"), BarColumn(), TextColumn("t = {task.completed:.2f} s"),
+    done = "t = {task.completed:.2f} s" if unit == "s" else "{task.completed:.0f} / {task.total:.0f} " + unit
+    bar = Progress(TextColumn(label), BarColumn(), TextColumn(done),
                    TimeRemainingColumn(), transient=True)
     task = bar.add_task("run", total=t_end)
     bar.start()
@@ -174,7 +217,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "reproduce":
             return _cmd_reproduce(args)
         scenario = load_scenario(args.scenario, args.overrides)
-        handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run}[args.command]
+        handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell}[args.command]
         result = handler(args, scenario)
         if args.json:
             print(json.dumps(result))

@@ -77,3 +77,29 @@ def plot_xy(series: dict, path, xlabel: str, ylabel: str, title: str = "", vline
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def plot_campbell(ds, path, title: str = "") -> None:
+    """Campbell diagram of a :func:`hubbeam.studies.campbell.campbell` dataset: each
+    formulation's modes against hub speed, with the 1x and 2x speed lines."""
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    omega = ds["omega"].values
+    styles = {"ancf": "-", "ffr": "--", "ffr+": ":"}
+    names = {"ancf": "ANCF", "ffr": "FFR (paper, linear)", "ffr+": "FFR + geometric stiffening"}
+    for k, form in enumerate(ds["formulation"].values):
+        f = ds["frequency_hz"].sel(formulation=form).values
+        for m in range(f.shape[1]):
+            ax.plot(omega, f[:, m], styles.get(str(form), "-"), color=f"C{k}", lw=1.4,
+                    label=names.get(str(form), str(form)) if m == 0 else None)
+    for mult in (1, 2):
+        ax.plot(omega, mult * omega / (2 * np.pi), color="0.5", lw=0.8)
+        ax.annotate(f"{mult}x", (omega[-1], mult * omega[-1] / (2 * np.pi)), fontsize=8, color="0.4")
+    ax.set_xlabel("hub speed (rad/s)")
+    ax.set_ylabel("natural frequency (Hz)")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

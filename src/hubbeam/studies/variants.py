@@ -1,0 +1,38 @@
+"""Scenario variants and value ranges shared by the studies."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hubbeam.io.scenario import Scenario, ScenarioError, apply_overrides, validate
+
+#: formulation labels -> the overrides that select them
+FORMULATIONS = {
+    "ancf": ['beam.formulation="ancf"'],
+    "ffr": ['beam.formulation="ffr"', "beam.geometric_stiffening=false"],
+    "ffr+": ['beam.formulation="ffr"', "beam.geometric_stiffening=true"],
+}
+
+
+def variant(scenario: Scenario, overrides: list[str]) -> Scenario:
+    """A copy of ``scenario`` with ``--set``-style overrides, validated again."""
+    data = scenario.to_dict()
+    if overrides and any(o.startswith("beam.formulation") for o in overrides):
+        data["beam"].pop("gauss_points", None)  # an ANCF-only key
+        data["beam"].pop("geometric_stiffening", None)
+    return validate(apply_overrides(data, overrides))
+
+
+def parse_range(text: str, what: str) -> np.ndarray:
+    """'START:STOP:N' -> N values from START to STOP (numpy.linspace); one number -> itself."""
+    parts = text.split(":")
+    try:
+        if len(parts) == 1:
+            return np.array([float(parts[0])])
+        if len(parts) == 3:
+            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
+            if n >= 1 and np.isfinite(start) and np.isfinite(stop):
+                return np.linspace(start, stop, n)
+    except ValueError:
+        pass
+    raise ScenarioError(f"{what}: expected START:STOP:N with N >= 1 (got {text!r})")
