@@ -12,8 +12,11 @@ import json
 import os
 import sys
 
+import numpy as np
+
 from hubbeam.io.scenario import EXAMPLES, ScenarioError, example_text, load_scenario
 from hubbeam.solvers.errors import ComputationError
+
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # argparse prints usage and exits 2: keep it to two lines
@@ -47,6 +50,12 @@ def _parser() -> argparse.ArgumentParser:
     camp.add_argument("-o", "--output", help="PNG figure")
     camp.add_argument("--data", help="NetCDF file of the frequencies")
     camp.add_argument("--formulations", default="ancf,ffr,ffr+", help="comma-separated: ancf, ffr, ffr+ (default all)")
+    sw = scenario_cmd("sweep", "run the scenario over the cartesian product of varied keys, on Dask")
+    sw.add_argument("--vary", action="append", required=True, metavar="KEY=START:STOP:N",
+                    help="a varied key and its values (numpy.linspace); repeat for more keys")
+    sw.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster here)")
+    sw.add_argument("--workers", type=int, default=None, help="LocalCluster worker processes (default: all cores)")
+    sw.add_argument("-o", "--output", required=True, help="NetCDF file of the merged results")
     rep = sub.add_parser("reproduce", help="rerun the paper's tables and figures (Secs. 5 and 6)")
     rep.add_argument("-o", "--output", required=True, help="directory for report.md, tables.json and figures")
     rep.add_argument("--quick", action="store_true", help="experiment 2 at dt = 5 ms (same physics; < 10 min on 2 cores)")
@@ -179,6 +188,37 @@ def _cmd_campbell(args, scenario) -> dict:
     return result
 
 
+def _cmd_sweep(args, scenario) -> dict:
+    from hubbeam.io.results import write_netcdf
+    from hubbeam.studies.sweep import format_value, sweep
+    from hubbeam.studies.variants import parse_vary
+
+    varied = {}
+    for text in args.vary:
+        key, values, integral = parse_vary(text)
+        varied[key] = (values, integral)
+    if args.workers is not None and args.workers < 1:
+        raise ScenarioError(f"--workers: must be >= 1 (got {args.workers})")
+    # check the first point here, so that a bad key is a clear error and not a sweep of failures
+    first = [f"{k}={format_value(v[0][0], v[1])}" for k, v in varied.items()]
+    from hubbeam.io.scenario import apply_overrides, validate
+
+    validate(apply_overrides(scenario.to_dict(), first))
+    total = int(np.prod([len(v[0]) for v in varied.values()]))
+    progress, finish = _progress_bar(total, label="sweep", unit="points")
+    try:
+        ds = sweep(scenario, varied, scheduler=args.scheduler, workers=args.workers,
+                   progress=(lambda done, n: progress(done)) if progress else None)
+    finally:
+        finish()
+    ds.attrs["scenario_toml"] = json.dumps(scenario.to_dict())
+    write_netcdf(ds, args.output)
+    failed = int(ds["failed"].sum())
+    if not args.json:
+        print(f"{total} points ({failed} failed) -> {args.output}")
+    return {"points": total, "failed": failed, "output": args.output, "dims": dict(ds.sizes)}
+
+
 def _cmd_reproduce(args) -> int:
     from hubbeam.reproduce.pipeline import reproduce
 
@@ -217,7 +257,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "reproduce":
             return _cmd_reproduce(args)
         scenario = load_scenario(args.scenario, args.overrides)
-        handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell}[args.command]
+        handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
+                   "sweep": _cmd_sweep}[args.command]
         result = handler(args, scenario)
         if args.json:
             print(json.dumps(result))

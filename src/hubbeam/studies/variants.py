@@ -36,3 +36,15 @@ def parse_range(text: str, what: str) -> np.ndarray:
     except ValueError:
         pass
     raise ScenarioError(f"{what}: expected START:STOP:N with N >= 1 (got {text!r})")
+
+
+def parse_vary(text: str) -> tuple[str, np.ndarray, bool]:
+    """'KEY=START:STOP:N' -> (key, values, integral); integral when START and STOP are written
+    as integers and every value is one (for keys such as beam.elements)."""
+    key, sep, rng = text.partition("=")
+    if not sep or not key.strip():
+        raise ScenarioError(f"--vary: expected KEY=START:STOP:N (got {text!r})")
+    values = parse_range(rng, f"--vary {key.strip()}")
+    ends = rng.split(":")[:2]
+    integral = all(e.strip().lstrip("+-").isdigit() for e in ends) and np.allclose(values, np.round(values))
+    return key.strip(), values, bool(integral)

@@ -1,0 +1,150 @@
+"""Parameter sweeps on Dask: the cartesian product of varied scenario keys as independent tasks.
+
+Each point is the scenario with ``--set``-style overrides, run by its own analysis kind
+(dynamic: the sensors over time; static: tip displacement; modes: frequencies). Points
+run on a ``dask.distributed`` cluster (a LocalCluster of one single-threaded worker
+process per core by default, or any running scheduler). A point that fails is kept as
+failed, with its message and whatever it produced, and the sweep goes on.
+"""
+
+from __future__ import annotations
+
+import itertools
+import logging
+import os
+
+import numpy as np
+import xarray as xr
+
+from hubbeam.io.scenario import Scenario, ScenarioError
+
+
+def format_value(value: float, integral: bool) -> str:
+    return str(int(round(value))) if integral else repr(float(value))
+
+
+def grid(varied: dict[str, tuple[np.ndarray, bool]]) -> list[tuple[tuple[int, ...], list[str]]]:
+    """[(index tuple, overrides)] over the cartesian product of the varied keys."""
+    keys = list(varied)
+    axes = [range(len(varied[k][0])) for k in keys]
+    out = []
+    for idx in itertools.product(*axes):
+        out.append((idx, [f"{k}={format_value(varied[k][0][i], varied[k][1])}" for k, i in zip(keys, idx)]))
+    return out
+
+
+def evaluate(scenario_data: dict, overrides: list[str]) -> dict:
+    """Run one point (in a worker): {'kind', 'values': {name: scalar or (times, values)}, 'failure'}."""
+    from hubbeam import api
+    from hubbeam.io.scenario import apply_overrides, validate
+    from hubbeam.simulation import simulate
+    from hubbeam.solvers.errors import ComputationError
+
+    try:
+        scenario = validate(apply_overrides(scenario_data, overrides))
+    except ScenarioError as exc:
+        return {"kind": None, "values": {}, "failure": str(exc)}
+    kind = scenario.analysis.kind
+    try:
+        if kind == "static":
+            d = api.static(scenario).to_dict()
+            return {"kind": kind, "values": {f"tip_{k}": v for k, v in d["tip_displacement"].items()}, "failure": None}
+        if kind == "modes":
+            f = api.modes(scenario).to_dict()["frequencies_hz"]
+            return {"kind": kind, "values": {"frequency_hz": np.array(f)}, "failure": None}
+        a = scenario.analysis
+        traj, failure = None, None
+        try:
+            traj = simulate(api.build_system(scenario), scenario.sensors, a.t_end, a.dt, a.spectral_radius,
+                            scenario.output_dt)
+        except ComputationError as exc:
+            traj, failure = exc.partial, str(exc)
+        from hubbeam.io.results import to_dataset
+
+        values = {}
+        if traj is not None and traj.times:
+            ds = to_dataset(traj, scenario)
+            values = {name: (ds["time"].values, ds[name].values) for name in ds.data_vars}
+        return {"kind": kind, "values": values, "failure": failure}
+    except ComputationError as exc:
+        return {"kind": kind, "values": {}, "failure": str(exc)}
+
+
+def _merge(varied, points, results) -> xr.Dataset:
+    keys = list(varied)
+    shape = tuple(len(varied[k][0]) for k in keys)
+    coords = {k: varied[k][0].round().astype(int) if varied[k][1] else varied[k][0] for k in keys}
+    failed = np.zeros(shape, dtype=bool)
+    message = np.full(shape, "", dtype=object)
+    time = None
+    for res in results.values():
+        for val in res["values"].values():
+            if isinstance(val, tuple) and (time is None or val[0].size > time.size):
+                time = val[0]
+    data: dict[str, np.ndarray] = {}
+    for idx, _ in points:
+        res = results[idx]
+        failed[idx] = res["failure"] is not None
+        message[idx] = res["failure"] or ""
+        for name, val in res["values"].items():
+            if isinstance(val, tuple):
+                arr = data.setdefault(name, np.full(shape + (time.size,), np.nan))
+                arr[idx][: val[1].size] = val[1]
+            else:
+                val = np.atleast_1d(np.asarray(val, dtype=float))
+                arr = data.setdefault(name, np.full(shape + (50,), np.nan) if name == "frequency_hz" else np.full(shape, np.nan))
+                if name == "frequency_hz":
+                    arr[idx][: val.size] = val
+                else:
+                    arr[idx] = val[0]
+    ds = xr.Dataset(coords=coords)
+    for name, arr in data.items():
+        if name == "frequency_hz":
+            n = int(np.max(np.sum(np.isfinite(arr), axis=-1))) if arr.size else 0
+            ds[name] = (keys + ["mode"], arr[..., :n])
+            ds = ds.assign_coords(mode=np.arange(1, n + 1))
+        elif arr.ndim == len(keys) + 1:
+            ds[name] = (keys + ["time"], arr)
+        else:
+            ds[name] = (keys, arr)
+    if time is not None:
+        ds = ds.assign_coords(time=("time", time, {"units": "s"}))
+    ds["failed"] = (keys, failed)
+    ds["message"] = (keys, message.astype(str))
+    return ds
+
+
+def sweep(scenario: Scenario, varied: dict[str, tuple[np.ndarray, bool]], scheduler: str | None = None,
+          workers: int | None = None, progress=None) -> xr.Dataset:
+    """Run the cartesian product of ``varied`` ({key: (values, integral)}) on Dask and merge
+    the points into one Dataset with one dimension per varied key (plus 'time' or 'mode'),
+    and 'failed' / 'message' per point. ``progress(done, total)`` after each point."""
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    points = grid(varied)
+    data = scenario.to_dict()
+    if scheduler:
+        client, cluster = Client(scheduler), None
+    else:
+        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                               dashboard_address=None, silence_logs=logging.CRITICAL)
+        client = Client(cluster)
+    try:
+        futures = {client.submit(evaluate, data, overrides, pure=False): idx for idx, overrides in points}
+        results = {}
+        for k, fut in enumerate(as_completed(futures), 1):
+            idx = futures[fut]
+            try:
+                results[idx] = fut.result()
+            except Exception as exc:  # a worker died: the point fails, the sweep goes on
+                results[idx] = {"kind": None, "values": {}, "failure": f"{exc.__class__.__name__}: {exc}"}
+            if progress:
+                progress(k, len(points))
+    finally:
+        if cluster is not None:
+            cluster.close()
+        client.close()
+    ds = _merge(varied, points, results)
+    ds.attrs["scenario"] = scenario.name
+    ds.attrs["varied"] = ", ".join(varied)
+    return ds
