@@ -56,6 +56,11 @@ def _parser() -> argparse.ArgumentParser:
     sw.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster here)")
     sw.add_argument("--workers", type=int, default=None, help="LocalCluster worker processes (default: all cores)")
     sw.add_argument("-o", "--output", required=True, help="NetCDF file of the merged results")
+    idf = scenario_cmd("identify", "fit scenario parameters to a measured time series (least squares)")
+    idf.add_argument("measured", help="CSV with a header row: a 'time' column (s) and the signal's column")
+    idf.add_argument("--fit", nargs="+", required=True, metavar="KEY", help="scenario keys to fit (e.g. damping.linear)")
+    idf.add_argument("--signal", default="strain_P1", help="the sensor (column) to match (default strain_P1)")
+    idf.add_argument("-o", "--output", help="PNG figure of fit and data")
     rep = sub.add_parser("reproduce", help="rerun the paper's tables and figures (Secs. 5 and 6)")
     rep.add_argument("-o", "--output", required=True, help="directory for report.md, tables.json and figures")
     rep.add_argument("--quick", action="store_true", help="experiment 2 at dt = 5 ms (same physics; < 10 min on 2 cores)")
@@ -219,6 +224,42 @@ def _cmd_sweep(args, scenario) -> dict:
     return {"points": total, "failed": failed, "output": args.output, "dims": dict(ds.sizes)}
 
 
+def _read_measured(path: str, signal: str):
+    import pandas as pd
+
+    try:
+        table = pd.read_csv(path)
+    except FileNotFoundError:
+        raise ScenarioError(f"{path}: no such file") from None
+    except Exception as exc:
+        raise ScenarioError(f"{path}: cannot read as CSV ({exc.__class__.__name__})") from None
+    for column in ("time", signal):
+        if column not in table.columns:
+            raise ScenarioError(f"{path}: no column {column!r} (columns: {', '.join(map(str, table.columns))})")
+    data = table[["time", signal]].apply(pd.to_numeric, errors="coerce").dropna()
+    return data["time"].to_numpy(float), data[signal].to_numpy(float)
+
+
+def _cmd_identify(args, scenario) -> dict:
+    from hubbeam.studies.identify import identify
+
+    times, measured = _read_measured(args.measured, args.signal)
+    fit = identify(scenario, times, measured, args.fit, signal=args.signal)
+    if args.output:
+        from hubbeam import plots
+
+        plots.plot_fit(fit.times, fit.measured, fit.fitted, args.output, args.signal,
+                       title=f"{scenario.name}: fit of {', '.join(args.fit)}")
+    d = fit.to_dict()
+    if not args.json:
+        for name, p in d["parameters"].items():
+            print(f"{name} = {p['value']:.6g} +- {p['ci95']:.3g} (95 %), from {p['initial']:.6g}")
+        if len(args.fit) > 1:
+            print(f"correlation: {np.array2string(np.array(d['correlation']), precision=3)}")
+        print(f"rms residual {d['rms_residual']:.3g}, {d['simulations']} simulations")
+    return d
+
+
 def _cmd_reproduce(args) -> int:
     from hubbeam.reproduce.pipeline import reproduce
 
@@ -258,7 +299,7 @@ def main(argv: list[str] | None = None) -> int:
             return _cmd_reproduce(args)
         scenario = load_scenario(args.scenario, args.overrides)
         handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
-                   "sweep": _cmd_sweep}[args.command]
+                   "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]
         result = handler(args, scenario)
         if args.json:
             print(json.dumps(result))

@@ -103,3 +103,21 @@ def plot_campbell(ds, path, title: str = "") -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def plot_fit(times, measured, fitted, path, signal: str, title: str = "") -> None:
+    """Measured data and the fitted model, with the residual below."""
+    fig, (ax, axr) = plt.subplots(2, 1, figsize=(9, 5.5), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+    ax.plot(times, measured, ".", ms=3, color="0.4", label="measured")
+    ax.plot(times, fitted, "-", color="C0", lw=1.4, label="fitted model")
+    ax.set_ylabel(signal)
+    ax.legend(loc="best", fontsize=8)
+    ax.grid(alpha=0.3)
+    axr.plot(times, np.asarray(measured) - np.asarray(fitted), ".", ms=3, color="C3")
+    axr.set_ylabel("residual")
+    axr.set_xlabel("time (s)")
+    axr.grid(alpha=0.3)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

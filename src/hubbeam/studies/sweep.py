@@ -114,15 +114,14 @@ def _merge(varied, points, results) -> xr.Dataset:
     return ds
 
 
-def sweep(scenario: Scenario, varied: dict[str, tuple[np.ndarray, bool]], scheduler: str | None = None,
-          workers: int | None = None, progress=None) -> xr.Dataset:
-    """Run the cartesian product of ``varied`` ({key: (values, integral)}) on Dask and merge
-    the points into one Dataset with one dimension per varied key (plus 'time' or 'mode'),
-    and 'failed' / 'message' per point. ``progress(done, total)`` after each point."""
+def run_on_dask(func, arguments: list[tuple], scheduler: str | None = None, workers: int | None = None,
+                progress=None) -> list:
+    """``func(*args)`` for every tuple of ``arguments`` as independent Dask tasks, on a running
+    scheduler or a LocalCluster (one single-threaded worker process per core). Results come
+    back in the order of ``arguments``; a task that raises gives ``{"failure": message}``.
+    ``progress(done, total)`` after each task."""
     from dask.distributed import Client, LocalCluster, as_completed
 
-    points = grid(varied)
-    data = scenario.to_dict()
     if scheduler:
         client, cluster = Client(scheduler), None
     else:
@@ -130,20 +129,35 @@ def sweep(scenario: Scenario, varied: dict[str, tuple[np.ndarray, bool]], schedu
                                dashboard_address=None, silence_logs=logging.CRITICAL)
         client = Client(cluster)
     try:
-        futures = {client.submit(evaluate, data, overrides, pure=False): idx for idx, overrides in points}
-        results = {}
-        for k, fut in enumerate(as_completed(futures), 1):
-            idx = futures[fut]
+        futures = {client.submit(func, *args, pure=False): k for k, args in enumerate(arguments)}
+        results = [None] * len(arguments)
+        for done, fut in enumerate(as_completed(futures), 1):
             try:
-                results[idx] = fut.result()
-            except Exception as exc:  # a worker died: the point fails, the sweep goes on
-                results[idx] = {"kind": None, "values": {}, "failure": f"{exc.__class__.__name__}: {exc}"}
+                results[futures[fut]] = fut.result()
+            except Exception as exc:  # a task or a worker died: that point fails, the rest go on
+                results[futures[fut]] = {"failure": f"{exc.__class__.__name__}: {exc}"}
             if progress:
-                progress(k, len(points))
+                progress(done, len(arguments))
     finally:
         if cluster is not None:
             cluster.close()
         client.close()
+    return results
+
+
+def sweep(scenario: Scenario, varied: dict[str, tuple[np.ndarray, bool]], scheduler: str | None = None,
+          workers: int | None = None, progress=None) -> xr.Dataset:
+    """Run the cartesian product of ``varied`` ({key: (values, integral)}) on Dask and merge
+    the points into one Dataset with one dimension per varied key (plus 'time' or 'mode'),
+    and 'failed' / 'message' per point. ``progress(done, total)`` after each point."""
+    points = grid(varied)
+    data = scenario.to_dict()
+    outcomes = run_on_dask(evaluate, [(data, overrides) for _, overrides in points], scheduler, workers, progress)
+    results = {}
+    for (idx, _), res in zip(points, outcomes):
+        res.setdefault("values", {})
+        res.setdefault("failure", None)
+        results[idx] = res
     ds = _merge(varied, points, results)
     ds.attrs["scenario"] = scenario.name
     ds.attrs["varied"] = ", ".join(varied)
