@@ -101,3 +101,19 @@ def test_campbell_writes_figure_and_data(tmp_path):
     assert xr.open_dataset(tmp_path / "c.nc")["frequency_hz"].dims == ("formulation", "omega", "mode")
     bad = hubbeam("campbell", str(scen), "--omega", "0:5", "-o", str(tmp_path / "x.png"))
     assert bad.returncode == 2 and "--omega" in bad.stderr and "Traceback" not in bad.stderr
+
+
+def test_identify_reads_a_csv_and_fits(tmp_path):
+    scen = tmp_path / "exp1.toml"
+    scen.write_text(hubbeam("example", "exp1").stdout)
+    common = ["--set", "beam.elements=2", "--set", "analysis.dt=0.002"]
+    made = hubbeam("run", str(scen), "--set", "analysis.t_end=0.4", "--csv", str(tmp_path / "m.csv"), *common)
+    assert made.returncode == 0, made.stderr
+    out = hubbeam("identify", str(scen), str(tmp_path / "m.csv"), "--fit", "damping.linear", "--set",
+                  "damping.linear=1.0", *common, "-o", str(tmp_path / "fit.png"), "--json")
+    assert out.returncode == 0, out.stderr
+    p = json.loads(out.stdout)["parameters"]["damping.linear"]
+    assert abs(p["value"] - 1.73) < 1e-3 and p["initial"] == 1.0
+    assert (tmp_path / "fit.png").stat().st_size > 10000
+    bad = hubbeam("identify", str(scen), str(tmp_path / "m.csv"), "--fit", "damping.linear", "--signal", "nope")
+    assert bad.returncode == 2 and "no column 'nope'" in bad.stderr

@@ -61,6 +61,15 @@ def _parser() -> argparse.ArgumentParser:
     idf.add_argument("--fit", nargs="+", required=True, metavar="KEY", help="scenario keys to fit (e.g. damping.linear)")
     idf.add_argument("--signal", default="strain_P1", help="the sensor (column) to match (default strain_P1)")
     idf.add_argument("-o", "--output", help="PNG figure of fit and data")
+    app = sub.add_parser("applicability", help="map FFR's error against ANCF over deflection and hub speed")
+    app.add_argument("scenario", nargs="?", default=None, help="scenario file (default: the bundled exp1)")
+    app.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
+    app.add_argument("--thickness", default="0.001:0.004:7", metavar="START:STOP:N", help="plate thickness (m)")
+    app.add_argument("--ratio", default="0:0.6:7", metavar="START:STOP:N", help="hub speed / first natural frequency")
+    app.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster here)")
+    app.add_argument("--workers", type=int, default=None, help="LocalCluster worker processes (default: all cores)")
+    app.add_argument("-o", "--output", required=True, help="directory for applicability.png, .nc and .md")
+    app.add_argument("--json", action="store_true", help="print one JSON object on stdout")
     rep = sub.add_parser("reproduce", help="rerun the paper's tables and figures (Secs. 5 and 6)")
     rep.add_argument("-o", "--output", required=True, help="directory for report.md, tables.json and figures")
     rep.add_argument("--quick", action="store_true", help="experiment 2 at dt = 5 ms (same physics; < 10 min on 2 cores)")
@@ -260,6 +269,48 @@ def _cmd_identify(args, scenario) -> dict:
     return d
 
 
+def _cmd_applicability(args) -> dict:
+    import time
+    from pathlib import Path
+
+    from hubbeam import plots
+    from hubbeam.io.results import write_netcdf
+    from hubbeam.io.scenario import load_example
+    from hubbeam.studies.applicability import applicability_map
+    from hubbeam.studies.variants import parse_range
+
+    scenario = load_scenario(args.scenario, args.overrides) if args.scenario else load_example("exp1", args.overrides)
+    thickness, ratio = parse_range(args.thickness, "--thickness"), parse_range(args.ratio, "--ratio")
+    if (thickness <= 0).any() or (ratio < 0).any() or (ratio >= 1).any():
+        raise ScenarioError("--thickness must be > 0 and --ratio in [0, 1)")
+    total = thickness.size * (ratio.size + 1)
+    progress, finish = _progress_bar(total, label="applicability", unit="tasks")
+    start = time.perf_counter()
+    try:
+        ds = applicability_map(scenario, thickness, ratio, scheduler=args.scheduler, workers=args.workers,
+                               progress=(lambda done, n: progress(done)) if progress else None)
+    finally:
+        finish()
+    wall = time.perf_counter() - start
+    out = Path(args.output)
+    out.mkdir(parents=True, exist_ok=True)
+    write_netcdf(ds, out / "applicability.nc")
+    plots.plot_applicability(ds, out / "applicability.png", title=f"FFR against ANCF: {scenario.name}")
+    lines = ["| h (mm) | w_m/L | " + " | ".join(f"ω/ω1 = {r:.2f}" for r in ratio) + " |",
+             "|---|---|" + "---|" * ratio.size]
+    for i, h in enumerate(thickness):
+        cells = [f"{ds['frequency_error_pct'].values[i, j]:+.1f} / {ds['deflection_error_pct'].values[i, j]:+.1f}"
+                 for j in range(ratio.size)]
+        lines.append(f"| {1000 * h:.2f} | {ds['w_m_over_L'].values[i]:.2f} | " + " | ".join(cells) + " |")
+    (out / "applicability.md").write_text(
+        f"# FFR's error against ANCF ({scenario.name})\n\nEach cell: first-frequency error / tip-deflection error "
+        f"of FFR in percent. {total} tasks, {wall:.0f} s.\n\n" + "\n".join(lines) + "\n")
+    failed = int((ds["message"] != "").sum())
+    if not args.json:
+        print(f"{total} tasks ({failed} failed) in {wall:.0f} s -> {out}/applicability.png, .nc, .md")
+    return {"tasks": total, "failed": failed, "wall_time_s": wall, "output": str(out)}
+
+
 def _cmd_reproduce(args) -> int:
     from hubbeam.reproduce.pipeline import reproduce
 
@@ -297,6 +348,11 @@ def main(argv: list[str] | None = None) -> int:
             return 0
         if args.command == "reproduce":
             return _cmd_reproduce(args)
+        if args.command == "applicability":
+            result = _cmd_applicability(args)
+            if args.json:
+                print(json.dumps(result))
+            return 0
         scenario = load_scenario(args.scenario, args.overrides)
         handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
                    "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]

@@ -121,3 +121,31 @@ def plot_fit(times, measured, fitted, path, signal: str, title: str = "") -> Non
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def plot_applicability(ds, path, title: str = "") -> None:
+    """FFR's frequency and deflection errors against ANCF over (w_m / L, omega / omega_1), with
+    the paper's 38 % and 33 % lines and the +-5 % and +-20 % contours."""
+    x = np.repeat(ds["w_m_over_L"].values[:, None], ds.sizes["ratio"], axis=1)
+    y = np.repeat(ds["ratio"].values[None, :], ds.sizes["thickness"], axis=0)
+    order = np.argsort(ds["w_m_over_L"].values)
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8), sharey=True)
+    for ax, name, label in zip(axes, ("frequency_error_pct", "deflection_error_pct"),
+                               ("first-frequency error of FFR (%)", "tip-deflection error of FFR (%)")):
+        z = ds[name].values
+        level = float(np.nanmax(np.abs(z))) if np.any(np.isfinite(z)) else 1.0
+        cs = ax.contourf(x[order], y[order], z[order], levels=21, cmap="RdBu_r", vmin=-level, vmax=level)
+        lines = ax.contour(x[order], y[order], np.abs(z[order]), levels=[5, 20], colors="k", linewidths=0.8)
+        ax.clabel(lines, fmt="%g %%", fontsize=8)
+        ax.plot(x, y, "k.", ms=3)
+        ax.axvline(0.38, color="C2", ls="--", lw=1.2, label="paper: w_m = 38 % of L")
+        ax.axhline(0.33, color="C1", ls="--", lw=1.2, label="paper: omega = 33 % of omega_1")
+        fig.colorbar(cs, ax=ax, label=label)
+        ax.set_xlabel("peak deflection w_m / L after release (ANCF)")
+        ax.set_title(label)
+    axes[0].set_ylabel("hub speed omega / omega_1")
+    axes[0].legend(loc="upper right", fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
