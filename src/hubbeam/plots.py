@@ -69,6 +69,11 @@ def plot_xy(series: dict, path, xlabel: str, ylabel: str, title: str = "", vline
         ax.plot(x, y, "o-", color=f"C{k}", label=label, lw=1.2, ms=4)
     if vline is not None:
         ax.axvline(vline, color="k", ls="--", lw=0.8)
+    _finish_single(fig, ax, path, xlabel, ylabel, title)
+
+
+def _finish_single(fig, ax, path, xlabel: str, ylabel: str, title: str) -> None:
+    """Labels, grid, legend and title of a one-panel figure; save and close it."""
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
@@ -94,15 +99,8 @@ def plot_campbell(ds, path, title: str = "") -> None:
     for mult in (1, 2):
         ax.plot(omega, mult * omega / (2 * np.pi), color="0.5", lw=0.8)
         ax.annotate(f"{mult}x", (omega[-1], mult * omega[-1] / (2 * np.pi)), fontsize=8, color="0.4")
-    ax.set_xlabel("hub speed (rad/s)")
-    ax.set_ylabel("natural frequency (Hz)")
     ax.set_ylim(bottom=0)
-    ax.grid(alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _finish_single(fig, ax, path, "hub speed (rad/s)", "natural frequency (Hz)", title)
 
 
 def plot_fit(times, measured, fitted, path, signal: str, title: str = "") -> None:

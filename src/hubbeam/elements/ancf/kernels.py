@@ -177,6 +177,8 @@ def rotary_inertia_kernel(q, qdot, F, length, S, dS, w, inertia, force):
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
     force[:] = 0.0
     Z = np.empty(8)
+    Xq = np.empty(8)
+    Xv = np.empty(8)
     e = np.empty(4)
     G = np.empty((4, 8))
     H = np.empty((4, 8, 8))
@@ -187,15 +189,13 @@ def rotary_inertia_kernel(q, qdot, F, length, S, dS, w, inertia, force):
         qe = q[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
         ve = qdot[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
         for g in range(w.shape[0]):
-            Z[:] = 0.0
-            for a in range(4):
-                o = _VEC_OFFSETS[a]
-                for i in range(3):
-                    for k in range(3):
-                        Z[i] += F[k, i] * dS[g, a] * qe[o + k]
-                        Z[3 + i] += F[k, i] * dS[g, a] * ve[o + k]
-                Z[6] += S[g, a] * qe[_ANG_OFFSETS[a]]
-                Z[7] += S[g, a] * ve[_ANG_OFFSETS[a]]
+            # Z = (F^T r0', F^T d r0'/dt, theta_1, d theta_1/dt); the r0'' slots of X are unused
+            gauss_variables(qe, F, S[g], dS[g], dS[g], Xq)
+            gauss_variables(ve, F, S[g], dS[g], dS[g], Xv)
+            Z[0:3] = Xq[0:3]
+            Z[3:6] = Xv[0:3]
+            Z[6] = Xq[6]
+            Z[7] = Xv[6]
             strain_jet(Z, e, G, H)
             QX = np.zeros(4)
             for i in range(3):
