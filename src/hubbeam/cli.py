@@ -56,6 +56,7 @@ def _parser() -> argparse.ArgumentParser:
     sw.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster here)")
     sw.add_argument("--workers", type=int, default=None, help="LocalCluster worker processes (default: all cores)")
     sw.add_argument("-o", "--output", required=True, help="NetCDF file of the merged results")
+    sw.add_argument("--plot", help="PNG figure of the results (up to four variables)")
     idf = scenario_cmd("identify", "fit scenario parameters to a measured time series (least squares)")
     idf.add_argument("measured", help="CSV with a header row: a 'time' column (s) and the signal's column")
     idf.add_argument("--fit", nargs="+", required=True, metavar="KEY", help="scenario keys to fit (e.g. damping.linear)")
@@ -227,6 +228,10 @@ def _cmd_sweep(args, scenario) -> dict:
         finish()
     ds.attrs["scenario_toml"] = json.dumps(scenario.to_dict())
     write_netcdf(ds, args.output)
+    if args.plot:
+        from hubbeam import plots
+
+        plots.plot_sweep(ds, args.plot, title=f"sweep of {scenario.name} over {', '.join(varied)}")
     failed = int(ds["failed"].sum())
     if not args.json:
         print(f"{total} points ({failed} failed) -> {args.output}")

@@ -147,3 +147,37 @@ def plot_applicability(ds, path, title: str = "") -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def plot_sweep(ds, path, variables: list[str] | None = None, title: str = "") -> None:
+    """A sweep's results: time series (one curve per point) or values against the first
+    varied key (one curve per value of the others), one panel per variable (at most 4)."""
+    keys = [d for d in ds["failed"].dims]
+    names = variables or [n for n in ds.data_vars if n not in ("failed", "message") and ds[n].dtype.kind == "f"][:4]
+    fig, axes = plt.subplots(len(names), 1, figsize=(9, 2.6 * len(names) + 0.6), squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        da = ds[name]
+        stacked = da.stack(point=keys)
+        for k in range(stacked.sizes["point"]):
+            curve = stacked.isel(point=k)
+            label = ", ".join(f"{key} = {curve[key].item():g}" for key in keys)
+            if "time" in da.dims:
+                ax.plot(ds["time"].values, curve.values, lw=1, label=label)
+            elif "mode" in da.dims:
+                ax.plot(ds["mode"].values, curve.values, "o-", lw=1, label=label)
+        if "time" not in da.dims and "mode" not in da.dims:
+            first = keys[0]
+            rest = [k for k in keys if k != first]
+            lines = da.stack(rest_=rest) if rest else da.expand_dims(rest_=[0])
+            for k in range(lines.sizes["rest_"]):
+                ax.plot(ds[first].values, lines.isel(rest_=k).values, "o-", lw=1)
+            ax.set_xlabel(first)
+        else:
+            ax.set_xlabel("time (s)" if "time" in da.dims else "mode")
+        ax.set_ylabel(f"{name}\n({da.attrs.get('units', '')})", fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(loc="best", fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

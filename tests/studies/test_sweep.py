@@ -29,3 +29,16 @@ def test_dynamic_sweep_on_a_local_cluster_keeps_failed_points():
     ok = ds["strain_P1"].sel({"analysis.dt": 0.001})
     assert np.all(np.isfinite(ok.values)) and ok.sizes["time"] == 11
     assert np.all(np.isnan(ds["strain_P1"].sel({"analysis.dt": 0.004}).values))
+
+
+def test_sweep_plot(tmp_path):
+    import xarray as xr
+
+    from hubbeam.plots import plot_sweep
+
+    t = np.linspace(0, 1, 5)
+    ds = xr.Dataset({"strain_P1": (("beam.thickness", "time"), np.outer([1.0, 2.0], t), {"units": "1"}),
+                     "failed": (("beam.thickness",), [False, False])},
+                    coords={"beam.thickness": [0.002, 0.003], "time": t})
+    plot_sweep(ds, tmp_path / "s.png")
+    assert (tmp_path / "s.png").stat().st_size > 5000

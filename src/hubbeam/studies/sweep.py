@@ -61,11 +61,12 @@ def evaluate(scenario_data: dict, overrides: list[str]) -> dict:
             traj, failure = exc.partial, str(exc)
         from hubbeam.io.results import to_dataset
 
-        values = {}
+        values, units = {}, {}
         if traj is not None and traj.times:
             ds = to_dataset(traj, scenario)
             values = {name: (ds["time"].values, ds[name].values) for name in ds.data_vars}
-        return {"kind": kind, "values": values, "failure": failure}
+            units = {name: ds[name].attrs.get("units", "") for name in ds.data_vars}
+        return {"kind": kind, "values": values, "units": units, "failure": failure}
     except ComputationError as exc:
         return {"kind": kind, "values": {}, "failure": str(exc)}
 
@@ -97,6 +98,9 @@ def _merge(varied, points, results) -> xr.Dataset:
                     arr[idx][: val.size] = val
                 else:
                     arr[idx] = val[0]
+    units = {}
+    for res in results.values():
+        units.update(res.get("units", {}))
     ds = xr.Dataset(coords=coords)
     for name, arr in data.items():
         if name == "frequency_hz":
@@ -107,6 +111,8 @@ def _merge(varied, points, results) -> xr.Dataset:
             ds[name] = (keys + ["time"], arr)
         else:
             ds[name] = (keys, arr)
+    for name in data:
+        ds[name].attrs["units"] = units.get(name, "Hz" if name == "frequency_hz" else "m" if name.startswith("tip_") else "")
     if time is not None:
         ds = ds.assign_coords(time=("time", time, {"units": "s"}))
     ds["failed"] = (keys, failed)
