@@ -31,6 +31,7 @@ def add_element_blocks_dense(A, blocks, offset, scale):
                 A[o + i, o + j] += scale * blocks[e, i, j]
 
 
+@njit(cache=True)
 def add_block_banded(ab: np.ndarray, rows: np.ndarray, cols: np.ndarray, block: np.ndarray, ku: int) -> None:
     """ab += block placed at the given global rows and columns (entries must lie in the band)."""
     for a, i in enumerate(rows):

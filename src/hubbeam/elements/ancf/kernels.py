@@ -67,6 +67,7 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, want_tangent, force, 
     B = np.empty((8, 16))
     gW = np.empty(8)
     HW = np.empty((8, 8))
+    T = np.empty((8, 16))
     energy = 0.0
     chart_margin = 2.0
     for el in range(n_el):
@@ -79,21 +80,39 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, want_tangent, force, 
             L = np.sqrt(X[0] ** 2 + X[1] ** 2 + X[2] ** 2)
             chart_margin = min(chart_margin, s0 / L)
             jw = w[g] * length
-            gW[:] = 0.0
             for k in range(4):
                 energy += 0.5 * jw * stiffness[k] * e[k] * e[k]
-                gW += stiffness[k] * e[k] * G[k]
-            gauss_operator(F, S[g], dS[g], d2S[g], B)
-            fe = jw * (B.T @ gW)
-            for i in range(ELEMENT_DOFS):
-                force[NODE_DOFS * el + i] += fe[i]
-            if want_tangent:
-                HW[:, :] = 0.0
+            for i in range(8):
+                acc = 0.0
                 for k in range(4):
-                    for i in range(8):
-                        for j in range(8):
-                            HW[i, j] += stiffness[k] * (G[k, i] * G[k, j] + e[k] * H[k, i, j])
-                tangent[el] += jw * (B.T @ (HW @ B))
+                    acc += stiffness[k] * e[k] * G[k, i]
+                gW[i] = acc
+            gauss_operator(F, S[g], dS[g], d2S[g], B)
+            # force += jw B^T gW and tangent += jw B^T HW B, without temporaries
+            for j in range(ELEMENT_DOFS):
+                acc = 0.0
+                for i in range(8):
+                    acc += B[i, j] * gW[i]
+                force[NODE_DOFS * el + j] += jw * acc
+            if want_tangent:
+                for i in range(8):
+                    for j in range(8):
+                        acc = 0.0
+                        for k in range(4):
+                            acc += stiffness[k] * (G[k, i] * G[k, j] + e[k] * H[k, i, j])
+                        HW[i, j] = acc
+                for i in range(8):
+                    for j in range(ELEMENT_DOFS):
+                        acc = 0.0
+                        for k in range(8):
+                            acc += HW[i, k] * B[k, j]
+                        T[i, j] = acc
+                for i in range(ELEMENT_DOFS):
+                    for j in range(ELEMENT_DOFS):
+                        acc = 0.0
+                        for k in range(8):
+                            acc += B[k, i] * T[k, j]
+                        tangent[el, i, j] += jw * acc
     return energy, chart_margin
 
 
@@ -141,7 +160,12 @@ def mass_kernel(q, F, length, S, dS, w, rho_a, rho_iy, rho_iz, mass):
                     Bm[i, _ANG_OFFSETS[a]] = ng_[i] * S[g, a]
                     Bn[i, _ANG_OFFSETS[a]] = -mg[i] * S[g, a]
             jw = w[g] * length
-            mass[el] += jw * (rho_a * (Nr.T @ Nr) + rho_iz * (Bm.T @ Bm) + rho_iy * (Bn.T @ Bn))
+            for i in range(ELEMENT_DOFS):
+                for j in range(ELEMENT_DOFS):
+                    acc = 0.0
+                    for k in range(3):
+                        acc += rho_a * Nr[k, i] * Nr[k, j] + rho_iz * Bm[k, i] * Bm[k, j] + rho_iy * Bn[k, i] * Bn[k, j]
+                    mass[el, i, j] += jw * acc
 
 
 @njit(cache=True)
