@@ -26,7 +26,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="hubbeam", description="Rotating hub with a 3D flexible beam (ANCF with torsion).")
+    p = _Parser(prog="hubbeam", description="Rotating hub with a 3D flexible beam: ANCF with torsion and FFR, side by side.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     def scenario_cmd(name, help_):
@@ -43,7 +43,7 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--plot", help="PNG figure")
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
     st.add_argument("--plot", help="PNG figure of the deformed beam")
-    scenario_cmd("modes", "natural frequencies about the static equilibrium")
+    scenario_cmd("modes", "natural frequencies about the static equilibrium (steady rotation for a constant drive)")
     camp = scenario_cmd("campbell", "natural frequencies about the steadily rotating state against hub speed")
     camp.add_argument("--omega", required=True, metavar="START:STOP:N", help="hub speeds (rad/s)")
     camp.add_argument("--count", type=int, default=6, help="modes per speed (default 6)")
