@@ -70,7 +70,7 @@ class StaticResult:
             "tip_displacement": tip_displacement(self.system, sol.x),
             "tip_position": [float(v) for v in self.system.tip_position(sol.x)],
             "root_reaction_force": [float(v) for v in -lam[0:3]],
-            "hub_holding_torque": float(-lam[6]) if lam.shape[0] > 6 else 0.0,
+            "hub_holding_torque": self.system.drive_torque(lam),
             "newton_iterations": sol.newton_iterations,
             "load_steps": sol.load_steps,
             "chart_switches": sol.chart_switches,

@@ -42,7 +42,7 @@ MEASURES = {
     "surface_strain": _surface_strain,
     "hub_angle": lambda sensor, system, state, work: float(state.x[0]),
     "hub_angular_velocity": lambda sensor, system, state, work: float(state.v[0]),
-    "hub_torque": lambda sensor, system, state, work: float(-state.lam[6]) if state.lam.shape[0] > 6 else 0.0,
+    "hub_torque": lambda sensor, system, state, work: system.drive_torque(state.lam),
     "tip_deflection": lambda sensor, system, state, work: system.tip_displacement(state.x),
     "energy": _energy,
     "angular_momentum": lambda sensor, system, state, work: system.angular_momentum(state.x, state.v, state.chart),

@@ -101,7 +101,7 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
 
     def power(st):
         p_d = system.dissipated_power(st.x, st.v, st.chart)
-        torque = (-st.lam[6] if st.lam.shape[0] > 6 else 0.0) + system.hub_torque
+        torque = system.drive_torque(st.lam) + system.hub_torque
         return p_d, torque * st.v[0]
 
     def record(st):

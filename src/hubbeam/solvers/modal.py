@@ -15,11 +15,12 @@ relative to a fixed chart that a rigid rotation needs is not a cubic along a ben
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.linalg import eig, eigh, null_space
 
+from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.solvers.static import StaticSolution
 from hubbeam.system.model import HubSystem
 
@@ -89,35 +90,25 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     x_s, F, lam = steady.x, steady.chart, steady.multipliers
     m = lam.shape[0]
     nx = x_s.shape[0]
-    saved = system.damping
     if not include_damping:
-        system.damping = (0.0, 0.0)
-    try:
-        def forces(x, v, a):
-            res = system.dynamic_residual(x, v, a, lam, F, 0.0, 1.0, 1.0)
-            return np.concatenate([res[0:1], res[1 + m :]])
+        system = replace(system, damping=(0.0, 0.0))
 
-        def generator(y):
-            return system.steady_rotation_rates(y, F, 1.0)[0]
+    def forces(x, v, a):
+        res = system.dynamic_residual(x, v, a, lam, F, 0.0, 1.0, 1.0)
+        return np.concatenate([res[0:1], res[1 + m :]])
 
-        def steady_rates(y):
-            return omega * generator(y), system.steady_rotation_rates(y, F, omega)[1]
+    def generator(y):
+        return system.steady_rotation_rates(y, F, 1.0)[0]
 
-        def column(fun, i, scale):
-            e = np.zeros(nx)
-            e[i] = 1e-7 * scale
-            return (fun(e) - fun(-e)) / (2e-7 * scale)
+    def steady_rates(y):
+        return omega * generator(y), system.steady_rotation_rates(y, F, omega)[1]
 
-        K = np.empty((nx, nx))
-        G = np.empty((nx, nx))
-        M = np.empty((nx, nx))
-        v_s, a_s = steady_rates(x_s)
-        for i in range(nx):
-            K[:, i] = column(lambda e: forces(x_s + e, *steady_rates(x_s + e)), i, max(1.0, abs(x_s[i])))
-            G[:, i] = column(lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), i, 1.0)
-            M[:, i] = column(lambda e: forces(x_s, v_s, a_s + e), i, 1.0)
-    finally:
-        system.damping = saved
+    v_s, a_s = steady_rates(x_s)
+    zero, unit = np.zeros(nx), relative_steps(np.zeros(nx))
+    K = central_difference_jacobian(lambda y: forces(y, *steady_rates(y)), x_s, relative_steps(x_s))
+    G = central_difference_jacobian(
+        lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), zero, unit)
+    M = central_difference_jacobian(lambda e: forces(x_s, v_s, a_s + e), zero, unit)
     _, jac, _ = system.constraints(x_s, F, system.drive_angle(0.0, held=True))
     A = np.zeros((jac.shape[0], nx))
     A[:, 0 : jac.shape[1]] = jac

@@ -104,10 +104,7 @@ class AncfHubSystem(HubSystem):
         Mb = self.beam.mass_blocks(q, F)
         _, Qv = self.beam.rotary_inertia(q, vel[1:], F)
         _, Qd, _ = self.beam.drag(vel[1:], *self.damping)
-        Q = Qv + Qd
-        a = acc[1:]
-        for e in range(self.beam.elements):
-            Q[8 * e : 8 * e + 16] -= Mb[e] @ a[8 * e : 8 * e + 16]
+        Q = Qv + Qd - self.beam.apply_mass(Mb, acc[1:])
         W = omega**2 * (np.outer(AXIS, AXIS) - np.eye(3))  # (w x)^2
         D = np.zeros((16, 16))
         for k in (0, 3, 8, 11):
@@ -238,9 +235,7 @@ class AncfHubSystem(HubSystem):
         m = jac.shape[0]
         kq = 1 + m
         res = np.empty(1 + m + beam.ndof)
-        qdd = acc[1:]
-        for e in range(beam.elements):
-            fq[8 * e : 8 * e + 16] += Mb[e] @ qdd[8 * e : 8 * e + 16]
+        fq += beam.apply_mass(Mb, acc[1:])
         fq[0:7] += jac[:, 1:8].T @ lam
         res[0] = coef_k * (self.hub_inertia * acc[0] - self.hub_torque + jac[:, 0] @ lam)
         res[1:kq] = scale * phi
@@ -280,10 +275,7 @@ class AncfHubSystem(HubSystem):
         beam = self.beam
         q, qd = x[1:], v[1:]
         Mb = beam.mass_blocks(q, F)
-        kinetic = 0.5 * self.hub_inertia * v[0] ** 2
-        for e in range(beam.elements):
-            ve = qd[8 * e : 8 * e + 16]
-            kinetic += 0.5 * ve @ Mb[e] @ ve
+        kinetic = 0.5 * self.hub_inertia * v[0] ** 2 + 0.5 * qd @ beam.apply_mass(Mb, qd)
         strain = beam.elastic(q, F, tangent=False)[0]
         gravity = -self.gravity_load @ q
         return {"kinetic": kinetic, "strain": strain, "gravity": gravity}
@@ -302,12 +294,7 @@ class AncfHubSystem(HubSystem):
             x, F = x_axis, F_axis
         xi, _ = self.steady_rotation_rates(x, F, 1.0)
         Mb = beam.mass_blocks(x[1:], F)
-        h = self.hub_inertia * v[0]
-        qd, xq = v[1:], xi[1:]
-        for e in range(beam.elements):
-            sl = slice(8 * e, 8 * e + 16)
-            h += qd[sl] @ Mb[e] @ xq[sl]
-        return float(h)
+        return float(self.hub_inertia * v[0] + v[1:] @ beam.apply_mass(Mb, xi[1:]))
 
     def dissipated_power(self, x, v, F) -> float:
         """Power of the drag of Eq. 37 (W, >= 0)."""

@@ -119,6 +119,16 @@ class AncfBeam:
         )
         return out
 
+    def apply_mass(self, blocks: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """M u for the assembled mass matrix whose element blocks (n_el, 16, 16) are ``blocks``."""
+        n = NODE_DOFS
+        idx = n * np.arange(self.elements)[:, None] + np.arange(2 * n)
+        per_element = np.einsum("eij,ej->ei", blocks, u[idx])
+        out = np.zeros(self.ndof)
+        out[: -n] += per_element[:, :n].ravel()
+        out[n:] += per_element[:, n:].ravel()
+        return out
+
     def rotary_inertia(self, q: np.ndarray, qdot: np.ndarray, F: np.ndarray) -> tuple[float, np.ndarray]:
         """Rotational kinetic energy of the sections (J) and their quadratic-velocity force Q_v."""
         S, dS, _, w = self._tables

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.elements.ffr.cardan import angular_velocity_matrix, angular_velocity_matrix_rate, rotation_matrix
+from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.system.assembly import DenseMatrix
 from hubbeam.system.hub import hub_frame
 from hubbeam.system.model import AXIS, HubSystem
@@ -268,14 +269,7 @@ class FfrHubSystem(HubSystem):
             return res
 
         z = np.concatenate([[x[0]], mu, x[1:]])
-        res = residual(z)
-        A = np.empty((z.size, z.size))
-        for i in range(z.size):
-            step = 1e-7 * max(1.0, abs(z[i]))
-            e = np.zeros_like(z)
-            e[i] = step
-            A[:, i] = (residual(z + e) - residual(z - e)) / (2 * step)
-        return res, DenseMatrix(A)
+        return residual(z), DenseMatrix(central_difference_jacobian(residual, z, relative_steps(z)))
 
     def linearised(self, x, lam, F, factor=1.0, held=False, theta_p=0.0):
         """K (central differences of the force rows, constraint Hessian included), M and A."""
@@ -291,12 +285,7 @@ class FfrHubSystem(HubSystem):
             out[1:BODY] += jac[:, 1:].T @ lam
             return out
 
-        K = np.empty((self.nx, self.nx))
-        for i in range(self.nx):
-            step = 1e-7 * max(1.0, abs(x[i]))
-            e = np.zeros(self.nx)
-            e[i] = step
-            K[:, i] = (forces(x + e) - forces(x - e)) / (2 * step)
+        K = central_difference_jacobian(forces, x, relative_steps(x))
         A0, D = self._body(x)
         H = self._H(D)
         M = np.zeros((self.nx, self.nx))

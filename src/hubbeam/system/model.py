@@ -78,6 +78,12 @@ class HubSystem:
         """EA / l: scales the constraint rows of the statics to the stiffness entries (N/m)."""
         return self.beam.section.stiffness[0] / self.beam.element_length
 
+    @staticmethod
+    def drive_torque(lam: np.ndarray) -> float:
+        """Torque the drive applies to the hub (N m): minus the driving constraint's multiplier;
+        zero for a free hub (no driving constraint)."""
+        return float(-lam[6]) if lam.shape[0] > 6 else 0.0
+
     def tip_displacement(self, x: np.ndarray) -> dict[str, float]:
         """Tip centroid displacement from its undeformed place, in the hub frame (m)."""
         A = hub_frame(x[0])
