@@ -121,3 +121,20 @@ def modes(scenario: Scenario) -> ModalResult:
         about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
     return ModalResult(st, modal_analysis(st.system, st.solution, count=count, free_hub=scenario.hub.motion == "free"),
                        about=about)
+
+
+def run(scenario: Scenario, progress=None):
+    """Time integration of a scenario's dynamic analysis with all its settings (step,
+    spectral radius, output step, Newton options). Returns (trajectory, failure): on a
+    ComputationError, failure is that error and the trajectory holds the results up to it."""
+    from hubbeam.simulation import simulate
+    from hubbeam.solvers.errors import ComputationError
+    from hubbeam.solvers.generalized_alpha import NewtonOptions
+
+    a = scenario.analysis
+    newton = NewtonOptions(tolerance=a.tolerance, modified=a.newton == "modified")
+    try:
+        return simulate(build_system(scenario), scenario.sensors, a.t_end, a.dt, a.spectral_radius,
+                        scenario.output_dt, progress, newton), None
+    except ComputationError as exc:
+        return exc.partial, exc

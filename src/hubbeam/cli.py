@@ -124,19 +124,10 @@ def _cmd_run(args, scenario) -> dict:
         return _cmd_modes(args, scenario)
     from hubbeam import api
     from hubbeam.io import results
-    from hubbeam.simulation import simulate
-    from hubbeam.solvers.generalized_alpha import NewtonOptions
 
-    system = api.build_system(scenario)
-    a = scenario.analysis
-    newton = NewtonOptions(tolerance=a.tolerance, modified=a.newton == "modified")
-    progress, finish = _progress_bar(a.t_end)
-    failure = None
+    progress, finish = _progress_bar(scenario.analysis.t_end)
     try:
-        traj = simulate(system, scenario.sensors, a.t_end, a.dt, a.spectral_radius, scenario.output_dt, progress,
-                        newton)
-    except ComputationError as exc:
-        failure, traj = exc, exc.partial
+        traj, failure = api.run(scenario, progress)
     finally:
         finish()
     if traj is not None and traj.times:

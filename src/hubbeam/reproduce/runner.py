@@ -25,18 +25,11 @@ def run_case(case: Case) -> Outcome:
     from hubbeam import api
     from hubbeam.io.results import to_dataset
     from hubbeam.io.scenario import load_example
-    from hubbeam.simulation import simulate
-    from hubbeam.solvers.errors import ComputationError
 
     start = time.perf_counter()
     scenario = load_example(case.example, case.overrides())
-    a = scenario.analysis
-    failure = None
-    try:
-        traj = simulate(api.build_system(scenario), scenario.sensors, a.t_end, a.dt, a.spectral_radius,
-                        scenario.output_dt)
-    except ComputationError as exc:
-        traj, failure = exc.partial, str(exc)
+    traj, error = api.run(scenario)
+    failure = None if error is None else str(error)
     ds = to_dataset(traj, scenario) if traj is not None and traj.times else None
     return Outcome(case, ds, failure, time.perf_counter() - start)
 

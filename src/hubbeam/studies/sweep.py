@@ -36,8 +36,8 @@ def grid(varied: dict[str, tuple[np.ndarray, bool]]) -> list[tuple[tuple[int, ..
 def evaluate(scenario_data: dict, overrides: list[str]) -> dict:
     """Run one point (in a worker): {'kind', 'values': {name: scalar or (times, values)}, 'failure'}."""
     from hubbeam import api
+    from hubbeam.io.results import to_dataset
     from hubbeam.io.scenario import apply_overrides, validate
-    from hubbeam.simulation import simulate
     from hubbeam.solvers.errors import ComputationError
 
     try:
@@ -52,15 +52,8 @@ def evaluate(scenario_data: dict, overrides: list[str]) -> dict:
         if kind == "modes":
             f = api.modes(scenario).to_dict()["frequencies_hz"]
             return {"kind": kind, "values": {"frequency_hz": np.array(f)}, "failure": None}
-        a = scenario.analysis
-        traj, failure = None, None
-        try:
-            traj = simulate(api.build_system(scenario), scenario.sensors, a.t_end, a.dt, a.spectral_radius,
-                            scenario.output_dt)
-        except ComputationError as exc:
-            traj, failure = exc.partial, str(exc)
-        from hubbeam.io.results import to_dataset
-
+        traj, error = api.run(scenario)
+        failure = None if error is None else str(error)
         values, units = {}, {}
         if traj is not None and traj.times:
             ds = to_dataset(traj, scenario)

@@ -15,7 +15,7 @@ import numpy as np
 
 from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
 from hubbeam.system.assembly import BandMatrix, add_block_banded, add_element_blocks_banded, add_element_blocks_dense
-from hubbeam.system.beam import NODE_DOFS, AncfBeam
+from hubbeam.system.beam import NODE_DOFS
 from hubbeam.system.clamp import clamp_constraints
 from hubbeam.system.hub import clamp_frame, hub_frame
 from hubbeam.system.loads import tip_moment_load
