@@ -13,6 +13,9 @@ from hubbeam.solvers.static import StaticSolution, solve_static
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
 from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.system.ancf_system import AncfHubSystem
+
+#: analysis.newton of a scenario -> NewtonOptions.update (when the iteration matrix is rebuilt)
+NEWTON_UPDATES = {"full": "iteration", "step": "step", "modified": "adaptive"}
 from hubbeam.system.ffr_system import FfrHubSystem
 from hubbeam.system.hub import DriveProfile
 from hubbeam.system.model import HubSystem
@@ -132,7 +135,7 @@ def run(scenario: Scenario, progress=None):
     from hubbeam.solvers.generalized_alpha import NewtonOptions
 
     a = scenario.analysis
-    newton = NewtonOptions(tolerance=a.tolerance, modified=a.newton == "modified")
+    newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
         return simulate(build_system(scenario), scenario.sensors, a.t_end, a.dt, a.spectral_radius,
                         scenario.output_dt, progress, newton), None

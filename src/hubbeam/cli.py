@@ -131,15 +131,16 @@ def _cmd_run(args, scenario) -> dict:
     finally:
         finish()
     if traj is not None and traj.times:
-        ds = results.to_dataset(traj, scenario)
         if args.output:
-            results.write_netcdf(ds, args.output)
-        if args.csv:
-            results.write_csv(ds, args.csv)
-        if args.plot:
-            from hubbeam import plots
+            results.write_trajectory_netcdf(traj, scenario, args.output)
+        if args.csv or args.plot:
+            ds = results.to_dataset(traj, scenario)
+            if args.csv:
+                results.write_csv(ds, args.csv)
+            if args.plot:
+                from hubbeam import plots
 
-            plots.plot_timeseries(ds, args.plot, title=scenario.name)
+                plots.plot_timeseries(ds, args.plot, title=scenario.name)
     if failure is not None:
         raise failure
     final = {name: values[-1] for name, values in traj.records.items()}

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from hubbeam.sensors import measure
+from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers.errors import ComputationError, ConvergenceError
 from hubbeam.solvers.static import solve_static
@@ -27,6 +28,7 @@ class Trajectory:
     steps: int = 0
     newton_iterations: int = 0
     chart_switches: int = 0
+    factorisations: int | None = None  # LU factorisations of the iteration matrix (counted by compiled steps)
     wall_time_s: float = 0.0
 
     def append(self, t, values):
@@ -81,15 +83,97 @@ def initial_state(system: HubSystem, load_steps: int = 20) -> ga.AlphaState:
     return ga.init(system, x0, F0)
 
 
+class PythonSteps:
+    """Steps of :func:`hubbeam.solvers.generalized_alpha.step` (any system), with the work
+    integrals of the energy balance (trapezoidal rule on the dissipated and drive power)."""
+
+    def __init__(self, system: HubSystem, params, newton, dt, state: ga.AlphaState, work: dict) -> None:
+        self.system, self.params, self.newton, self.dt, self.work = system, params, newton, dt, work
+        self.matrix = None
+        self.power = self._power(state)
+        self.factorisations = None  # counted by the compiled steps only
+
+    def _power(self, st):
+        system = self.system
+        torque = system.drive_torque(st.lam) + system.hub_torque
+        return system.dissipated_power(st.x, st.v, st.chart), torque * st.v[0]
+
+    def advance(self, state, n_steps):
+        """Up to n_steps steps: (state, steps taken, Newton iterations, chart limit reached, error or None)."""
+        iterations = 0
+        for k in range(n_steps):
+            try:
+                state, its, self.matrix = ga.step(self.system, state, self.dt, self.params, self.newton, self.matrix)
+            except (ConvergenceError, ChartSingularityError) as exc:
+                return state, k, iterations, False, exc
+            iterations += its
+            p_new = self._power(state)
+            self.work["dissipated"] += 0.5 * self.dt * (self.power[0] + p_new[0])
+            self.work["drive"] += 0.5 * self.dt * (self.power[1] + p_new[1])
+            self.power = p_new
+            if self.system.chart_margin(state.x, state.chart) < CHART_LIMIT:
+                return state, k + 1, iterations, True, None
+        return state, n_steps, iterations, False, None
+
+    def chart_changed(self):
+        self.matrix = None
+
+
+class CompiledSteps(PythonSteps):
+    """The same steps in compiled code (:func:`hubbeam.solvers.compiled_alpha.advance`) for
+    systems that provide a compiled model (the ANCF system)."""
+
+    def __init__(self, system, params, newton, dt, state, work) -> None:
+        super().__init__(system, params, newton, dt, state, work)
+        self.model = system.compiled_model()
+        n = 1 + state.lam.shape[0] + (state.x.shape[0] - 1)
+        bw = self.model.bandwidth
+        self.lu = np.zeros((3 * bw + 1, n), order="F")
+        self.ipiv = np.zeros(n, dtype=np.int32)
+        self.lu_valid = np.zeros(1, dtype=np.int64)
+        self.factorisations = 0
+        self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
+        tol = newton.tolerance * max(system.length_scale, 1.0)
+        self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations)
+
+    def advance(self, state, n_steps):
+        x, v, xdd, a, lam = (np.array(u, dtype=float) for u in (state.x, state.v, state.xdd, state.a, state.lam))
+        work = np.zeros(2)
+        power = np.array(self.power, dtype=float)
+        status, steps, its, factorisations, size = compiled_alpha.advance(
+            self.model, np.ascontiguousarray(state.chart), state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha,
+            self.options, self.system.mass_scale, CHART_LIMIT, self.lu, self.ipiv, self.lu_valid, work, power)
+        self.work["dissipated"] += work[0]
+        self.work["drive"] += work[1]
+        self.factorisations += factorisations
+        self.power = (power[0], power[1])
+        new = replace(state, t=state.t + steps * self.dt, x=x, v=v, xdd=xdd, a=a, lam=lam)
+        error = {
+            compiled_alpha.NOT_CONVERGED: ConvergenceError(
+                f"Newton did not converge in {self.newton.max_iterations} iterations (last |dx| = {size:.2e})"),
+            compiled_alpha.NOT_FINITE: ConvergenceError("non-finite Newton increment"),
+            compiled_alpha.SINGULAR_MATRIX: ConvergenceError(
+                "singular iteration matrix (a constraint lost rank or a mass vanished)"),
+            compiled_alpha.CHART_SINGULARITY: ChartSingularityError(
+                "a beam tangent is at the singular direction of the rotation chart"),
+        }.get(status)
+        return new, steps, its, status == compiled_alpha.CHART_LIMIT_REACHED, error
+
+    def chart_changed(self):
+        self.lu_valid[0] = 0
+
+
 def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
              output_dt: float | None = None, progress=None, newton: ga.NewtonOptions = ga.NewtonOptions(),
              state: ga.AlphaState | None = None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
 
-    ``progress(t)`` is called after every step when given. On failure a ComputationError
-    names the time and step and carries the trajectory so far in ``partial``. When a beam
-    tangent comes within 60 deg of the chart's singular direction the state is moved to a
-    better chart (counted in ``Trajectory.chart_switches``).
+    Steps run in compiled code between output times when the system has a compiled model
+    (:class:`CompiledSteps`), else step by step in Python (:class:`PythonSteps`).
+    ``progress(t)`` is called after every output time when given. On failure a
+    ComputationError names the time and step and carries the trajectory so far in
+    ``partial``. When a beam tangent comes within 60 deg of the chart's singular direction
+    the state is moved to a better chart (counted in ``Trajectory.chart_switches``).
     """
     params = ga.AlphaParameters.from_spectral_radius(spectral_radius)
     if state is None:
@@ -99,41 +183,35 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
     traj = Trajectory()
     work = {"dissipated": 0.0, "drive": 0.0}
 
-    def power(st):
-        p_d = system.dissipated_power(st.x, st.v, st.chart)
-        torque = system.drive_torque(st.lam) + system.hub_torque
-        return p_d, torque * st.v[0]
-
     def record(st):
         traj.append(st.t, {s.name: measure(s, system, st, work) for s in sensors})
 
     record(state)
-    p_prev = power(state)
-    matrix = None
+    steps_class = CompiledSteps if system.compiled_model() is not None else PythonSteps
+    stepper = steps_class(system, params, newton, dt, state, work)
     start = time.perf_counter()
-    for k in range(1, n_steps + 1):
-        try:
-            state_new, its, matrix = ga.step(system, state, dt, params, newton, matrix)
-        except (ConvergenceError, ChartSingularityError) as exc:
-            traj.wall_time_s = time.perf_counter() - start
-            raise ComputationError(
-                f"time integration failed at t = {state.t + dt:.6g} s (step {k}): {exc}. "
-                f"Try a smaller analysis.dt (now {dt:g} s), more beam.elements or a smaller analysis.spectral_radius.",
-                partial=traj,
-            ) from exc
-        state = state_new
+    k = 0
+    while k < n_steps:
+        chunk = min(every - k % every, n_steps - k)
+        state, done, its, chart_limit, error = stepper.advance(state, chunk)
+        k += done
         traj.steps = k
         traj.newton_iterations += its
-        p_new = power(state)
-        work["dissipated"] += 0.5 * dt * (p_prev[0] + p_new[0])
-        work["drive"] += 0.5 * dt * (p_prev[1] + p_new[1])
-        p_prev = p_new
+        if error is not None:
+            traj.wall_time_s = time.perf_counter() - start
+            raise ComputationError(
+                f"time integration failed at t = {state.t + dt:.6g} s (step {k + 1}): {error}. "
+                f"Try a smaller analysis.dt (now {dt:g} s), more beam.elements or a smaller analysis.spectral_radius.",
+                partial=traj,
+            ) from error
         if k % every == 0 or k == n_steps:
             record(state)
-        if system.chart_margin(state.x, state.chart) < CHART_LIMIT:
+        if chart_limit:
             state = change_chart(system, state, system.better_chart(state.x))
+            stepper.chart_changed()
             traj.chart_switches += 1
         if progress is not None:
             progress(state.t)
     traj.wall_time_s = time.perf_counter() - start
+    traj.factorisations = stepper.factorisations
     return traj

@@ -174,3 +174,20 @@ def test_drag_force_and_damping_matrix():
     C_fd = -central_difference(lambda v: beam.drag(v, c1, c2)[1], qdot, 1e-7)
     assert np.allclose(C, C_fd, atol=1e-6 * np.max(np.abs(C)))
     assert np.isclose(power, -Qd @ qdot)
+
+
+def test_rotary_inertia_force_subtracts_the_rotary_mass_times_acceleration():
+    """The kernel's force with an acceleration is Q_v - M_rot acc, M_rot = M - M_trans."""
+    from hubbeam.elements.ancf import kernels
+
+    fat = AncfBeam(1.45, 2, plate(width=0.3, thickness=0.2), gauss_points=6)
+    q, F = bent_state(fat, seed=6, amplitude=0.1)
+    rng = np.random.default_rng(11)
+    qdot, acc = rng.normal(size=q.size), rng.normal(size=q.size)
+    _, Qv = fat.rotary_inertia(q, qdot, F)
+    M_rot = _dense(fat, fat.mass_blocks(q, F)) - fat.section.mass_per_length * _dense(fat, _trans_blocks(fat))
+    S, dS, _, w = fat._tables
+    out = np.empty(q.size)
+    kernels.rotary_inertia_kernel(q, qdot, acc, F, fat.element_length, S, dS, w, fat._inertia, 0.0, out,
+                                  np.empty((0, 16, 16)))
+    assert np.allclose(out, Qv - M_rot @ acc, atol=1e-10 * np.max(np.abs(M_rot @ acc)))

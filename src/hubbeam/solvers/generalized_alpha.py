@@ -22,6 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from hubbeam.solvers.errors import ConvergenceError
 from hubbeam.system.assembly import Factorisation
@@ -58,25 +59,43 @@ class AlphaState:
     chart: np.ndarray
 
 
+#: when the iteration matrix is rebuilt and factorised (NewtonOptions.update)
+UPDATES = ("iteration", "step", "adaptive")
+
+
 @dataclass(frozen=True)
 class NewtonOptions:
     """Newton settings of a step.
 
     ``tolerance``: on the increment of the coordinates, relative to the beam length (an
     increment-based test: the force residual of a stiff axial beam is floored by round-off
-    at EA * 1e-16 * |r'|, far above any fixed force tolerance). For modified Newton the
-    increment is multiplied by rate / (1 - rate), the estimate of the remaining error
+    at EA * 1e-16 * |r'|, far above any fixed force tolerance). When the matrix is reused
+    the increment is multiplied by rate / (1 - rate), the estimate of the remaining error
     from the observed contraction rate (Hairer and Wanner, IV.8).
-    ``modified``: reuse the factorised iteration matrix across iterations and steps and
-    refresh it when the contraction rate exceeds ``refresh_rate`` (or on the next step
-    after a step that needed more than ``refresh_iterations``); full Newton otherwise.
+    ``update``: when the iteration matrix is rebuilt and factorised:
+    "iteration" (full Newton), "step" (once per step at the predictor, reused by the step's
+    further iterations: each step costs one factorisation and, as the matrix is that of the
+    current step, converges about as fast as full Newton), or "adaptive" (modified Newton:
+    reused across iterations and steps, refreshed when the contraction rate exceeds
+    ``refresh_rate`` or on the next step after a step that needed more than
+    ``refresh_iterations``). "step" and "adaptive" refresh within a step too when the rate
+    exceeds ``refresh_rate``.
     """
 
     tolerance: float = 1e-9
     max_iterations: int = 25
-    modified: bool = False
+    update: str = "iteration"
     refresh_rate: float = 0.25
     refresh_iterations: int = 6
+
+    def __post_init__(self) -> None:
+        if self.update not in UPDATES:
+            raise ValueError(f"Newton matrix update {self.update!r}: choose one of {UPDATES}")
+
+    @property
+    def update_code(self) -> int:
+        """0, 1, 2 for "iteration", "step", "adaptive" (for compiled code)."""
+        return UPDATES.index(self.update)
 
 
 @dataclass(frozen=True)
@@ -137,36 +156,77 @@ def _constraint_acceleration_terms(system: HubSystem, x, v, F, t):
     return terms
 
 
+@njit(cache=True)
+def predict(x_n, v_n, xdd_n, a_n, h, am, af, beta, gamma, x, v, xdd):
+    """Predictor: xdd_{n+1} = xdd_n, and x_{n+1}, v_{n+1} consistent with it (written into x, v, xdd)."""
+    for i in range(x_n.shape[0]):
+        xdd[i] = xdd_n[i]
+        a = ((1.0 - af) * xdd_n[i] + af * xdd_n[i] - am * a_n[i]) / (1.0 - am)
+        v[i] = v_n[i] + h * (1.0 - gamma) * a_n[i] + h * gamma * a
+        x[i] = x_n[i] + h * v_n[i] + h * h * (0.5 - beta) * a_n[i] + h * h * beta * a
+
+
+@njit(cache=True)
+def apply_increment(dz, gprime, bprime, lam_factor, x, v, xdd, lam):
+    """Newton correction from dz = [dtheta, dmu, dq]: x += dx, v += gamma' dx, xdd += beta' dx,
+    lambda += lam_factor dmu. Returns max |dx|."""
+    m = lam.shape[0]
+    size = 0.0
+    for i in range(x.shape[0]):
+        d = dz[0] if i == 0 else dz[m + i]
+        x[i] += d
+        v[i] += gprime * d
+        xdd[i] += bprime * d
+        size = max(size, abs(d))
+    for i in range(m):
+        lam[i] += lam_factor * dz[1 + i]
+    return size
+
+
+@njit(cache=True)
+def algorithmic_acceleration(xdd, xdd_n, a_n, am, af):
+    """a_{n+1} from (1 - alpha_m) a_{n+1} + alpha_m a_n = (1 - alpha_f) xdd_{n+1} + alpha_f xdd_n."""
+    return ((1.0 - af) * xdd + af * xdd_n - am * a_n) / (1.0 - am)
+
+
+@njit(cache=True)
+def newton_error(size, previous, reused):
+    """(error estimate, contraction rate) after an increment of max size ``size``; ``previous``
+    is the last increment since the matrix was refreshed (inf right after a refresh);
+    ``reused``: the matrix is kept across iterations (update "step" or "adaptive")."""
+    rate = size / previous
+    if reused and np.isfinite(previous):
+        return (size * rate / (1.0 - rate) if rate < 1.0 else np.inf), rate
+    return size, rate
+
+
 def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
          options: NewtonOptions = NewtonOptions(), matrix: IterationMatrix | None = None
          ) -> tuple[AlphaState, int, IterationMatrix | None]:
-    """One step of length h.
+    """One step of length h (any :class:`HubSystem`; the ANCF system also has the compiled
+    loop :func:`hubbeam.solvers.compiled_alpha.advance`, which runs the same algorithm).
 
     Returns the new state, the Newton iterations it took and the iteration matrix to
-    reuse on the next step (modified Newton; None for full Newton).
+    reuse on the next step (update "adaptive"; None otherwise).
     """
     am, af, beta, gamma = p.alpha_m, p.alpha_f, p.beta, p.gamma
     t1 = state.t + h
-    # predictor: xdd_{n+1} = xdd_n, and a, x, v consistent with it
-    xdd = state.xdd.copy()
-    a = ((1.0 - af) * xdd + af * state.xdd - am * state.a) / (1.0 - am)
-    v = state.v + h * (1.0 - gamma) * state.a + h * gamma * a
-    x = state.x + h * state.v + h * h * (0.5 - beta) * state.a + h * h * beta * a
+    x, v, xdd = np.empty_like(state.x), np.empty_like(state.x), np.empty_like(state.x)
+    predict(state.x, state.v, state.xdd, state.a, h, am, af, beta, gamma, x, v, xdd)
     lam = state.lam.copy()
     bprime = (1.0 - am) / (beta * h * h * (1.0 - af))
     gprime = gamma / (beta * h)
     ck = beta * h * h
     s = system.mass_scale
-    m = lam.shape[0]
-    xscale = max(system.length_scale, 1.0)
-    tol = options.tolerance * xscale
+    tol = options.tolerance * max(system.length_scale, 1.0)
     coefs = (ck * bprime, ck * gprime, ck, s)
 
     def fresh_matrix():
         res, matrix = system.dynamic_equations(x, v, xdd, lam, state.chart, t1, *coefs)
         return res, factorise(matrix, h, state.chart)
 
-    if not options.modified or matrix is None or not matrix.valid_for(h, state.chart):
+    reused = options.update != "iteration"
+    if options.update != "adaptive" or matrix is None or not matrix.valid_for(h, state.chart):
         res, matrix = fresh_matrix()
     else:
         res = system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s)
@@ -175,22 +235,13 @@ def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
         dz = matrix.solve(-res)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("non-finite Newton increment")
-        dx = np.concatenate([[dz[0]], dz[1 + m :]])
-        x += dx
-        v += gprime * dx
-        xdd += bprime * dx
-        lam += s * dz[1 : 1 + m] / ck
-        size = np.max(np.abs(dx))
-        rate = size / previous  # 0 on the first iteration with a fresh matrix
-        if options.modified and np.isfinite(previous):
-            error = size * rate / (1.0 - rate) if rate < 1.0 else np.inf
-        else:
-            error = size
+        size = apply_increment(dz, gprime, bprime, s / ck, x, v, xdd, lam)
+        error, rate = newton_error(size, previous, reused)
         if error <= tol:
-            a_new = ((1.0 - af) * xdd + af * state.xdd - am * state.a) / (1.0 - am)
-            keep = matrix if options.modified and it <= options.refresh_iterations else None
+            a_new = algorithmic_acceleration(xdd, state.xdd, state.a, am, af)
+            keep = matrix if options.update == "adaptive" and it <= options.refresh_iterations else None
             return AlphaState(t1, x, v, xdd, a_new, lam, state.chart), it, keep
-        if not options.modified or rate > options.refresh_rate:
+        if not reused or rate > options.refresh_rate:
             res, matrix = fresh_matrix()
             previous = np.inf
         else:

@@ -14,8 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
+from hubbeam.system.ancf_equations import CHART_SINGULAR, FIXED, FREE, PRESCRIBED, AncfModel, equations_of_motion
 from hubbeam.system.assembly import BandMatrix, add_block_banded, add_element_blocks_banded, add_element_blocks_dense
-from hubbeam.system.beam import NODE_DOFS
+from hubbeam.system.beam import NODE_DOFS, ChartSingularityError
 from hubbeam.system.clamp import clamp_constraints
 from hubbeam.system.hub import clamp_frame, hub_frame
 from hubbeam.system.loads import tip_moment_load
@@ -193,54 +194,47 @@ class AncfHubSystem(HubSystem):
         return ab, bw
 
     # ------------------------------------------------------------ dynamics
-    def _dynamic_terms(self, x, v, F, t, tangent: bool):
-        """Everything the equations of motion need at (x, v, t): the q-force f_int - Q_ext -
-        Q_v - Q_d, the element mass blocks, the constraints and (with ``tangent``) the
-        element stiffness and damping blocks and the tip-load Jacobian."""
+    def compiled_model(self) -> AncfModel:
+        """The constants of the compiled equations of motion (:mod:`hubbeam.system.ancf_equations`),
+        from the system's current fields."""
         beam = self.beam
-        q, qd = x[1:], v[1:]
-        _, f_int, Kb = beam.elastic(q, F, tangent=tangent)
-        Mb = beam.mass_blocks(q, F)
-        _, Qv = beam.rotary_inertia(q, qd, F)
-        _, Qd, Cb = beam.drag(qd, *self.damping)
-        Q, Jload = self.external_load(q, F, 1.0)
-        phi, jac, hess = self.constraints(x, F, self.drive_angle(t))
-        return f_int - Q - Qv - Qd, Mb, phi, jac, hess, (Kb, Cb, Jload)
+        S, dS, d2S, w = beam._tables
+        sec = beam.section
+        motion = {"free": FREE, "prescribed": PRESCRIBED, "fixed": FIXED}[self.motion]
+        d = self.drive
+        return AncfModel(
+            S, dS, d2S, w, float(beam.element_length), beam._stiffness, beam._trans_mass,
+            beam._inertia, float(sec.width), float(self.damping[0]), float(self.damping[1]),
+            np.ascontiguousarray(self.gravity_load, dtype=float), np.asarray(self.tip_force, dtype=float),
+            np.asarray(self.tip_moment, dtype=float), float(self.radius), float(self.twist),
+            float(self.hub_inertia), float(self.hub_torque), motion,
+            (d.code, float(d.omega_s), float(d.T), float(d.t1)), self.bandwidth(self.n_constraints(motion != FREE)),
+        )
 
-    def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
-        """Scaled residual of the equations of motion (Eq. 77) on z = [theta, mu, q].
-
-        Force rows: coef_k (M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda), the hub row
-        coef_k (J theta'' - T + Phi_theta^T lambda); constraint rows: scale Phi(x, t).
-        """
-        fq, Mb, phi, jac, _, _ = self._dynamic_terms(x, v, F, t, tangent=False)
-        return self._assemble_residual(x, acc, lam, fq, Mb, phi, jac, coef_k, scale)
-
-    def dynamic_equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale):
-        """Scaled residual (see :meth:`dynamic_residual`) and Newton matrix of the equations of motion.
-
-        The matrix is coef_m M + coef_c C + coef_k (K - dQ/dq + lambda.d2Phi) on the unknowns
-        z = [theta, mu, q], lambda = scale mu / coef_k; the small velocity derivative of the
-        rotary-inertia force Q_v is left out (it only slows Newton, never changes the answer).
-        Returns (residual, BandMatrix).
-        """
-        fq, Mb, phi, jac, hess, (Kb, Cb, Jload) = self._dynamic_terms(x, v, F, t, tangent=True)
-        res = self._assemble_residual(x, acc, lam, fq, Mb, phi, jac, coef_k, scale)
-        blocks = coef_k * Kb + coef_m * Mb + coef_c * Cb
-        ab, bw = self.newton_matrix(blocks, coef_k * Jload, jac, coef_k * hess(lam), coef_m * self.hub_inertia, scale)
+    def _equations(self, x, v, acc, lam, F, t, coefs, want_matrix):
+        model = self.compiled_model()
+        n = 1 + lam.shape[0] + self.beam.ndof
+        res = np.empty(n)
+        bw = model.bandwidth
+        ab = np.zeros((3 * bw + 1, n) if want_matrix else (0, 0), order="F")
+        margin, _ = equations_of_motion(model, np.ascontiguousarray(F), *(np.asarray(a, dtype=float) for a in (x, v, acc, lam)),
+                                        float(t), *map(float, coefs), want_matrix, res, ab)
+        if not margin > CHART_SINGULAR:
+            raise ChartSingularityError(
+                f"a beam tangent is at the singular direction of the rotation chart (1 + d.tau = {margin:.2e})"
+            )
         return res, BandMatrix(ab, bw)
 
-    def _assemble_residual(self, x, acc, lam, fq, Mb, phi, jac, coef_k, scale):
-        beam = self.beam
-        m = jac.shape[0]
-        kq = 1 + m
-        res = np.empty(1 + m + beam.ndof)
-        fq += beam.apply_mass(Mb, acc[1:])
-        fq[0:7] += jac[:, 1:8].T @ lam
-        res[0] = coef_k * (self.hub_inertia * acc[0] - self.hub_torque + jac[:, 0] @ lam)
-        res[1:kq] = scale * phi
-        res[kq:] = coef_k * fq
-        return res
+    def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
+        """Scaled residual of the equations of motion (Eq. 77) on z = [theta, mu, q]
+        (:func:`~hubbeam.system.ancf_equations.equations_of_motion`)."""
+        return self._equations(x, v, acc, lam, F, t, (0.0, 0.0, coef_k, scale), False)[0]
+
+    def dynamic_equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale):
+        """Scaled residual and Newton matrix coef_m M + coef_c C + coef_k (K - dQ/dq +
+        lambda.d2Phi) of the equations of motion on z = [theta, mu, q], lambda = scale mu / coef_k
+        (:func:`~hubbeam.system.ancf_equations.equations_of_motion`). Returns (residual, BandMatrix)."""
+        return self._equations(x, v, acc, lam, F, t, (coef_m, coef_c, coef_k, scale), True)
 
     # ------------------------------------------------------------ linearisation
     def linearised(self, x, lam, F, factor=1.0, held=False, theta_p=0.0):

@@ -48,6 +48,9 @@ class AncfBeam:
         S, dS, d2S = hermite(xi, self.element_length)
         self._tables = (np.ascontiguousarray(S), np.ascontiguousarray(dS), np.ascontiguousarray(d2S), w)
         self._stiffness = np.array(self.section.stiffness)
+        sec = self.section
+        self._trans_mass = kernels.translational_mass_block(self.element_length, S, w, sec.mass_per_length)
+        self._inertia = np.array([sec.density * (sec.i_y + sec.i_z), sec.density * sec.i_y, sec.density * sec.i_z])
 
     # ---------------------------------------------------------------- layout
     @property
@@ -93,10 +96,10 @@ class AncfBeam:
         """
         S, dS, d2S, w = self._tables
         force = np.empty(self.ndof)
-        blocks = np.empty((self.elements, 16, 16)) if tangent else np.empty((0, 16, 16))
+        blocks = np.zeros((self.elements if tangent else 0, 16, 16))
         U, margin = kernels.elastic_kernel(
             np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(F), self.element_length, S, dS, d2S, w,
-            self._stiffness, tangent, force, blocks,
+            self._stiffness, 1.0, force, blocks,
         )
         if not margin > 1e-6 or not np.isfinite(U):
             raise ChartSingularityError(
@@ -111,11 +114,12 @@ class AncfBeam:
     def mass_blocks(self, q: np.ndarray, F: np.ndarray) -> np.ndarray:
         """Element mass matrices (n_el, 16, 16) of Eq. 35 (kg, kg m, kg m^2 blocks)."""
         S, dS, _, w = self._tables
-        sec = self.section
-        out = np.empty((self.elements, 16, 16))
-        kernels.mass_kernel(
-            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(F), self.element_length, S, dS, w,
-            sec.mass_per_length, sec.density * sec.i_y, sec.density * sec.i_z, out,
+        out = np.zeros((self.elements, 16, 16))
+        kernels.add_translational_mass(self._trans_mass, self.elements, 1.0, out)
+        z = np.zeros(self.ndof)
+        kernels.rotary_inertia_kernel(
+            np.ascontiguousarray(q, dtype=float), z, z, np.ascontiguousarray(F), self.element_length, S, dS, w,
+            self._inertia, 1.0, np.empty(self.ndof), out,
         )
         return out
 
@@ -132,12 +136,10 @@ class AncfBeam:
     def rotary_inertia(self, q: np.ndarray, qdot: np.ndarray, F: np.ndarray) -> tuple[float, np.ndarray]:
         """Rotational kinetic energy of the sections (J) and their quadratic-velocity force Q_v."""
         S, dS, _, w = self._tables
-        sec = self.section
         out = np.empty(self.ndof)
-        inertia = np.array([sec.density * (sec.i_y + sec.i_z), sec.density * sec.i_y, sec.density * sec.i_z])
         T = kernels.rotary_inertia_kernel(
-            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(qdot, dtype=float), np.ascontiguousarray(F),
-            self.element_length, S, dS, w, inertia, out,
+            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(qdot, dtype=float), np.zeros(self.ndof),
+            np.ascontiguousarray(F), self.element_length, S, dS, w, self._inertia, 0.0, out, np.empty((0, 16, 16)),
         )
         return T, out
 
@@ -145,10 +147,10 @@ class AncfBeam:
         """Damping of Eq. 37 on the centre line: (dissipated power W, Q_d, element damping matrices)."""
         S, _, _, w = self._tables
         force = np.empty(self.ndof)
-        blocks = np.empty((self.elements, 16, 16))
+        blocks = np.zeros((self.elements, 16, 16))
         power = kernels.drag_kernel(
             np.ascontiguousarray(qdot, dtype=float), self.element_length, S, w, self.section.width,
-            float(linear), float(quadratic), force, blocks,
+            float(linear), float(quadratic), 1.0, force, blocks,
         )
         return power, force, blocks
 

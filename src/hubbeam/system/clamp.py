@@ -25,28 +25,66 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 from hubbeam.elements.ancf.frame import section_frame
 from hubbeam.system.hub import clamp_frame, hub_frame
 
 
 
-def clamp_twist_angle(theta: float, twist: float, F: np.ndarray, near: float | None = None) -> float:
-    """delta(theta): theta_1 of the clamped section in chart F (the branch nearest ``near``)."""
+@njit(cache=True)
+def clamp_twist_angle(theta: float, twist: float, F: np.ndarray, near: float = math.nan) -> float:
+    """delta(theta): theta_1 of the clamped section in chart F (the branch nearest ``near``;
+    the principal one for nan)."""
     C = clamp_frame(theta, twist)
-    _, m0, n0 = section_frame(F.T @ C[:, 0], 0.0)
-    delta = math.atan2(np.dot(C[:, 1], F @ n0), np.dot(C[:, 1], F @ m0))
-    if near is not None:
-        delta += 2.0 * math.pi * round((near - delta) / (2.0 * math.pi))
+    tau = np.empty(3)
+    for i in range(3):
+        tau[i] = F[0, i] * C[0, 0] + F[1, i] * C[1, 0] + F[2, i] * C[2, 0]
+    _, m0, n0 = section_frame(tau, 0.0)
+    m0g = F @ m0
+    n0g = F @ n0
+    delta = math.atan2(C[0, 1] * n0g[0] + C[1, 1] * n0g[1] + C[2, 1] * n0g[2],
+                       C[0, 1] * m0g[0] + C[1, 1] * m0g[1] + C[2, 1] * m0g[2])
+    if not math.isnan(near):
+        delta += 2.0 * math.pi * math.floor((near - delta) / (2.0 * math.pi) + 0.5)
     return delta
 
 
-def _twist_angle_rates(theta: float, F: np.ndarray) -> tuple[float, float]:
-    """d delta / d theta and d2 delta / d theta2 (the twist beta drops out)."""
+@njit(cache=True)
+def clamp_equations(c, radius, twist, F, held, drive, lam, phi_val, jac, hess):
+    """Phi (m), dPhi/dc (m x 8) and sum_i lambda_i d2 Phi_i / dc2 (8 x 8), written into the
+    given arrays; m = 7 when ``held`` (the drive theta = ``drive``), else 6."""
+    theta = c[0]
     A = hub_frame(theta)
-    d = F[:, 0]
-    den = 1.0 + np.dot(d, A[:, 0])
-    return -d[1] / den, d[1] * np.dot(d, A[:, 2]) / den**2
+    u0, u1, u2 = c[4], c[5], c[6]
+    delta = clamp_twist_angle(theta, twist, F, c[7])
+    # d delta / d theta and d2 delta / d theta2 (the twist beta drops out)
+    den = 1.0 + F[0, 0] * A[0, 0] + F[1, 0] * A[1, 0] + F[2, 0] * A[2, 0]
+    d1 = -F[1, 0] / den
+    d2 = F[1, 0] * (F[0, 0] * A[0, 2] + F[1, 0] * A[1, 2] + F[2, 0] * A[2, 2]) / den**2
+    iu = A[0, 0] * u0 + A[1, 0] * u1 + A[2, 0] * u2
+    ku = A[0, 2] * u0 + A[1, 2] * u1 + A[2, 2] * u2
+    jac[:, :] = 0.0
+    for i in range(3):
+        phi_val[i] = c[1 + i] - radius * A[i, 0]
+        jac[i, 0] = -radius * A[i, 2]
+        jac[i, 1 + i] = 1.0
+        jac[3, 4 + i] = A[i, 1]
+        jac[4, 4 + i] = A[i, 2]
+    phi_val[3] = A[0, 1] * u0 + A[1, 1] * u1 + A[2, 1] * u2
+    phi_val[4] = ku
+    phi_val[5] = c[7] - delta
+    jac[4, 0] = -iu
+    jac[5, 0] = -d1
+    jac[5, 7] = 1.0
+    if held:
+        phi_val[6] = theta - drive
+        jac[6, 0] = 1.0
+    hess[:, :] = 0.0
+    hess[0, 0] = radius * (lam[0] * A[0, 0] + lam[1] * A[1, 0] + lam[2] * A[2, 0]) - lam[4] * ku - lam[5] * d2
+    for i in range(3):
+        hess[0, 4 + i] = -lam[4] * A[i, 0]
+        hess[4 + i, 0] = -lam[4] * A[i, 0]
 
 
 def clamp_constraints(c: np.ndarray, radius: float, twist: float, F: np.ndarray, drive: float | None):
@@ -54,35 +92,17 @@ def clamp_constraints(c: np.ndarray, radius: float, twist: float, F: np.ndarray,
 
     ``drive`` is theta_p(t) for a prescribed or fixed hub, None for a free hub.
     """
-    theta = c[0]
-    r, u, phi = c[1:4], c[4:7], c[7]
-    A = hub_frame(theta)
-    i_h, j_h, k_h = A[:, 0], A[:, 1], A[:, 2]
-    delta = clamp_twist_angle(theta, twist, F, near=phi)
-    d1, d2 = _twist_angle_rates(theta, F)
-    m = 6 if drive is None else 7
-    phi_val = np.empty(m)
-    jac = np.zeros((m, 8))
-    phi_val[0:3] = r - radius * i_h
-    phi_val[3] = np.dot(j_h, u)
-    phi_val[4] = np.dot(k_h, u)
-    phi_val[5] = phi - delta
-    jac[0:3, 0] = -radius * k_h
-    jac[0:3, 1:4] = np.eye(3)
-    jac[3, 4:7] = j_h
-    jac[4, 0] = -np.dot(i_h, u)
-    jac[4, 4:7] = k_h
-    jac[5, 0] = -d1
-    jac[5, 7] = 1.0
-    if drive is not None:
-        phi_val[6] = theta - drive
-        jac[6, 0] = 1.0
+    held = drive is not None
+    m = 7 if held else 6
+    c = np.ascontiguousarray(c, dtype=float)
+    F = np.ascontiguousarray(F, dtype=float)
+    phi_val, jac = np.empty(m), np.empty((m, 8))
+    args = (c, float(radius), float(twist), F, held, float(drive) if held else 0.0)
+    clamp_equations(*args, np.zeros(m), phi_val, jac, np.empty((8, 8)))
 
     def hessian(lam: np.ndarray) -> np.ndarray:
-        Hc = np.zeros((8, 8))
-        Hc[0, 0] = radius * np.dot(lam[0:3], i_h) - lam[4] * np.dot(k_h, u) - lam[5] * d2
-        Hc[0, 4:7] = -lam[4] * i_h
-        Hc[4:7, 0] = -lam[4] * i_h
+        Hc = np.empty((8, 8))
+        clamp_equations(*args, np.asarray(lam, dtype=float), np.empty(m), np.empty((m, 8)), Hc)
         return Hc
 
     return phi_val, jac, hessian

@@ -11,14 +11,23 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 
+@njit(cache=True)
 def hub_frame(theta: float) -> np.ndarray:
     """A_h(theta) (Eq. 74); its columns are i_h, j_h, k_h in global components."""
     c, s = math.cos(theta), math.sin(theta)
-    return np.array([[c, 0.0, -s], [0.0, 1.0, 0.0], [s, 0.0, c]])
+    A = np.zeros((3, 3))
+    A[0, 0] = c
+    A[0, 2] = -s
+    A[1, 1] = 1.0
+    A[2, 0] = s
+    A[2, 2] = c
+    return A
 
 
+@njit(cache=True)
 def clamp_frame(theta: float, twist: float) -> np.ndarray:
     """Section frame [tau m n] of the clamped root: the hub frame turned by -beta about i_h.
 
@@ -27,9 +36,39 @@ def clamp_frame(theta: float, twist: float) -> np.ndarray:
     """
     A = hub_frame(theta)
     cb, sb = math.cos(twist), math.sin(twist)
-    m = cb * A[:, 1] - sb * A[:, 2]
-    n = sb * A[:, 1] + cb * A[:, 2]
-    return np.column_stack([A[:, 0], m, n])
+    C = np.empty((3, 3))
+    for i in range(3):
+        C[i, 0] = A[i, 0]
+        C[i, 1] = cb * A[i, 1] - sb * A[i, 2]
+        C[i, 2] = sb * A[i, 1] + cb * A[i, 2]
+    return C
+
+
+#: codes of the drive profiles inside compiled code
+DRIVE_CODES = {"rest": 0, "constant": 1, "exponential": 2, "spin_up": 3}
+
+
+@njit(cache=True)
+def drive_values(code: int, w: float, T: float, t1: float, t: float):
+    """(theta, theta', theta'') of profile ``code`` (:data:`DRIVE_CODES`) at time t."""
+    if code == 0:
+        return 0.0, 0.0, 0.0
+    if code == 1:
+        return w * t, w, 0.0
+    if code == 2:  # Eqs. 81 and 83
+        if t < t1:
+            e = math.exp(-5.0 * t / T)
+            return w * (t + T / 5.0 * e - T / 5.0), w * (1.0 - e), w * 5.0 / T * e
+        e1 = math.exp(-5.0 * t1 / T)
+        return w * (t1 + T / 5.0 * e1 - T / 5.0) + w * (t - t1), w, 0.0
+    # Kane, Ryan & Banerjee (1987)
+    if t < T:
+        a = 2.0 * math.pi / T
+        theta = (w / T) * (t * t / 2.0 + (T / (2 * math.pi)) ** 2 * (math.cos(a * t) - 1.0))
+        omega = (w / T) * (t - math.sin(a * t) / a)
+        alpha = (w / T) * (1.0 - math.cos(a * t))
+        return theta, omega, alpha
+    return w * (t - T / 2.0), w, 0.0
 
 
 @dataclass(frozen=True)
@@ -41,24 +80,13 @@ class DriveProfile:
     T: float = 1.0
     t1: float = math.inf
 
+    def __post_init__(self) -> None:
+        if self.kind not in DRIVE_CODES:
+            raise ValueError(f"unknown drive profile {self.kind!r}; choose one of {sorted(DRIVE_CODES)}")
+
+    @property
+    def code(self) -> int:
+        return DRIVE_CODES[self.kind]
+
     def __call__(self, t: float) -> tuple[float, float, float]:
-        w, T = self.omega_s, self.T
-        if self.kind == "rest":
-            return 0.0, 0.0, 0.0
-        if self.kind == "constant":
-            return w * t, w, 0.0
-        if self.kind == "exponential":  # Eqs. 81 and 83
-            if t < self.t1:
-                e = math.exp(-5.0 * t / T)
-                return w * (t + T / 5.0 * e - T / 5.0), w * (1.0 - e), w * 5.0 / T * e
-            e1 = math.exp(-5.0 * self.t1 / T)
-            return w * (self.t1 + T / 5.0 * e1 - T / 5.0) + w * (t - self.t1), w, 0.0
-        if self.kind == "spin_up":  # Kane, Ryan & Banerjee (1987)
-            if t < T:
-                a = 2.0 * math.pi / T
-                theta = (w / T) * (t * t / 2.0 + (T / (2 * math.pi)) ** 2 * (math.cos(a * t) - 1.0))
-                omega = (w / T) * (t - math.sin(a * t) / a)
-                alpha = (w / T) * (1.0 - math.cos(a * t))
-                return theta, omega, alpha
-            return w * (t - T / 2.0), w, 0.0
-        raise ValueError(f"unknown drive profile {self.kind!r}")
+        return drive_values(self.code, float(self.omega_s), float(self.T), float(self.t1), float(t))

@@ -20,29 +20,54 @@ for rotation in one plane about M it is, which is the case of the end-moment tes
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
+
+
+@njit(cache=True)
+def _cross(a, b):
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+@njit(cache=True)
+def tip_moment_terms(u, moment, F, Q, J):
+    """Generalized force Q (4: r0'(3), theta_1) of a fixed-direction tip moment and its
+    Jacobian J (4 x 3) with respect to r0' (global components), written into Q and J.
+    It does not depend on theta_1."""
+    U = F.T @ u
+    Mc = F.T @ moment
+    L2 = U[0] * U[0] + U[1] * U[1] + U[2] * U[2]
+    L = np.sqrt(L2)
+    s = Mc[0] * U[0] + Mc[1] * U[1] + Mc[2] * U[2]
+    w = np.array([0.0, -U[2], U[1]])  # e0 x U
+    g = 1.0 / (L2 * (L + U[0]))
+    MxU = _cross(Mc, U)
+    QU = MxU / L2 - s * g * w
+    grad_g = np.empty(3)
+    for k in range(3):
+        grad_g[k] = -g * (2.0 * U[k] / L2 + (U[k] / L + (1.0 if k == 0 else 0.0)) / (L + U[0]))
+    dQU = np.empty((3, 3))
+    # d(M x U)/dU = [M]x ;  d(e0 x U)/dU = [e0]x
+    skM = np.array([[0.0, -Mc[2], Mc[1]], [Mc[2], 0.0, -Mc[0]], [-Mc[1], Mc[0], 0.0]])
+    ske = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+    for i in range(3):
+        for j in range(3):
+            dQU[i, j] = (skM[i, j] / L2 - 2.0 * MxU[i] * U[j] / L2**2
+                         - g * w[i] * Mc[j] - s * g * ske[i, j] - s * w[i] * grad_g[j])
+    dQphi = (Mc - s * U / L2) / L
+    Qg = F @ QU
+    Jg = F @ dQU @ F.T
+    dg = F @ dQphi
+    for i in range(3):
+        Q[i] = Qg[i]
+        for j in range(3):
+            J[i, j] = Jg[i, j]
+        J[3, i] = dg[i]
+    Q[3] = s / L
 
 
 def tip_moment_load(u: np.ndarray, moment: np.ndarray, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Generalized force (4: r0'(3), theta_1) of a fixed-direction tip moment and its
     Jacobian (4 x 3) with respect to r0' (global components). It does not depend on theta_1."""
-    U = F.T @ np.asarray(u, dtype=float)
-    Mc = F.T @ np.asarray(moment, dtype=float)
-    L2 = U @ U
-    L = np.sqrt(L2)
-    e0 = np.array([1.0, 0.0, 0.0])
-    s = Mc @ U
-    w = np.cross(e0, U)
-    g = 1.0 / (L2 * (L + U[0]))
-    QU = np.cross(Mc, U) / L2 - s * g * w
-    Qphi = s / L
-
-    def skew(a):
-        return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-
-    grad_g = -g * (2.0 * U / L2 + (U / L + e0) / (L + U[0]))
-    dQU = skew(Mc) / L2 - 2.0 * np.outer(np.cross(Mc, U), U) / L2**2
-    dQU -= g * np.outer(w, Mc) + s * g * skew(e0) + s * np.outer(w, grad_g)
-    dQphi = (Mc - (Mc @ U) * U / L2) / L
-    Q = np.concatenate([F @ QU, [Qphi]])
-    J = np.vstack([F @ dQU @ F.T, (F @ dQphi)[None, :]])
+    Q, J = np.empty(4), np.empty((4, 3))
+    tip_moment_terms(np.asarray(u, dtype=float), np.asarray(moment, dtype=float), np.ascontiguousarray(F, dtype=float), Q, J)
     return Q, J

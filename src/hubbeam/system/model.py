@@ -49,6 +49,11 @@ class HubSystem:
         self.tip_force = np.asarray(self.tip_force, dtype=float)
         self.tip_moment = np.asarray(self.tip_moment, dtype=float)
 
+    def compiled_model(self):
+        """Constants for compiled time integration (:mod:`hubbeam.solvers.compiled_alpha`), or
+        None when the formulation integrates step by step in Python."""
+        return None
+
     def n_constraints(self, held: bool) -> int:
         """Six clamp equations, and the drive theta = theta_p(t) when the hub is held."""
         return 7 if held else 6

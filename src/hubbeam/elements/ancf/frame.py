@@ -54,42 +54,6 @@ def section_frame(U, phi):
     return T, c * m0 + s * n0, -s * m0 + c * n0
 
 
-@njit(cache=True)
-def section_frame_jacobian(U, phi):
-    """Frame vectors and their derivatives with respect to U (3x3 each).
-
-    Returns m, n, dm/dU, dn/dU in chart components; dm/dphi = n and dn/dphi = -m.
-    """
-    L = np.sqrt(U[0] * U[0] + U[1] * U[1] + U[2] * U[2])
-    T = U / L
-    den = 1.0 + T[0]
-    m0, n0 = untwisted_frame(T)
-    # d(tau)/dU = (I - T T^T) / L
-    P = np.empty((3, 3))
-    for i in range(3):
-        for j in range(3):
-            P[i, j] = ((1.0 if i == j else 0.0) - T[i] * T[j]) / L
-    w = T.copy()
-    w[0] += 1.0
-    dm0_dT = np.empty((3, 3))
-    dn0_dT = np.empty((3, 3))
-    h1 = T[1] / den
-    h2 = T[2] / den
-    for j in range(3):
-        gh1 = ((1.0 if j == 1 else 0.0) - (T[1] / den if j == 0 else 0.0)) / den
-        gh2 = ((1.0 if j == 2 else 0.0) - (T[2] / den if j == 0 else 0.0)) / den
-        for i in range(3):
-            dm0_dT[i, j] = -w[i] * gh1 - (h1 if i == j else 0.0)
-            dn0_dT[i, j] = -w[i] * gh2 - (h2 if i == j else 0.0)
-    c = np.cos(phi)
-    s = np.sin(phi)
-    m = c * m0 + s * n0
-    n = -s * m0 + c * n0
-    dm = (c * dm0_dT + s * dn0_dT) @ P
-    dn = (-s * dm0_dT + c * dn0_dT) @ P
-    return m, n, dm, dn
-
-
 def frame_global(F: np.ndarray, r_prime: np.ndarray, theta: float) -> np.ndarray:
     """R = [tau m n] (3x3, global components) for one r0' (global) and theta_1."""
     T, m, n = section_frame(F.T @ np.asarray(r_prime, dtype=float), float(theta))

@@ -1,9 +1,20 @@
-"""Compiled element loops of the ANCF beam: elastic force and tangent, mass matrix.
+"""Compiled element loops of the ANCF beam, one per physical term.
 
 Node coordinates (paper Eq. 14): [r0 (3), r0' (3), theta_1, theta_1'], 8 per node;
 element e joins nodes e and e+1, so its 16 coordinates are q[8e : 8e + 16].
 Integrals use Gauss-Legendre points on each element; ``S, dS, d2S`` are the Hermite
 functions tabulated at those points (:func:`hubbeam.elements.hermite.hermite`).
+
+The Gauss-point variables X = (r0', r0'', theta_1, theta_1') (global components) are
+linear in the element coordinates, and each coordinate enters exactly two of them: the
+component k of the vector coefficient of Hermite function a enters r0'_k with weight
+S_a' and r0''_k with S_a''; the twist coefficient of function a enters theta_1 with S_a
+and theta_1' with S_a' (:data:`DOF_FIRST`, :data:`DOF_SECOND`, :func:`dof_weights`). The
+kernels use this sparsity instead of a dense 8 x 16 operator. Strain and frame
+quantities are computed in chart components (U = F^T r0') and rotated back.
+
+Matrix kernels *add* ``scale`` times their element blocks (n_el, 16, 16) to ``blocks``,
+so that an iteration matrix coef_m M + coef_c C + coef_k K is built in one array.
 """
 
 from __future__ import annotations
@@ -11,72 +22,117 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from hubbeam.elements.ancf.frame import section_frame_jacobian
-from hubbeam.elements.ancf.strain import strain_jet
+from hubbeam.elements.ancf.strain import PHI, PSI, jet_workspace, strain_jet
 
 NODE_DOFS = 8
 ELEMENT_DOFS = 16
 #: offsets of the four Hermite coefficient groups inside an element's 16 coordinates
 _VEC_OFFSETS = (0, 3, 8, 11)
 _ANG_OFFSETS = (6, 7, 14, 15)
+#: for each element coordinate: the Hermite function it multiplies ...
+DOF_SHAPE = np.array([0, 0, 0, 1, 1, 1, 0, 1, 2, 2, 2, 3, 3, 3, 2, 3])
+#: ... its vector component (-1 for the twist coordinates) ...
+DOF_COMPONENT = np.array([0, 1, 2, 0, 1, 2, -1, -1, 0, 1, 2, 0, 1, 2, -1, -1])
+#: ... and the two Gauss-point variables it enters (index into X)
+DOF_FIRST = np.array([0, 1, 2, 0, 1, 2, PHI, PHI, 0, 1, 2, 0, 1, 2, PHI, PHI])
+DOF_SECOND = np.array([3, 4, 5, 3, 4, 5, PSI, PSI, 3, 4, 5, 3, 4, 5, PSI, PSI])
 
 
-@njit(cache=True)
-def gauss_variables(qe, F, S, dS, d2S, X):
-    """Fill X = (F^T r0', F^T r0'', theta, theta') at one Gauss point from qe (16)."""
-    X[:] = 0.0
-    for a in range(4):
-        o = _VEC_OFFSETS[a]
+@njit(cache=True, error_model="numpy")
+def dof_weights(S, dS, d2S, g, w1, w2):
+    """Weights of the element coordinates in X at Gauss point g: X[DOF_FIRST[j]] gets
+    w1[j] qe[j], X[DOF_SECOND[j]] gets w2[j] qe[j] (r0' and theta_1 rows use S', S)."""
+    for j in range(ELEMENT_DOFS):
+        a = DOF_SHAPE[j]
+        if DOF_COMPONENT[j] >= 0:
+            w1[j] = dS[g, a]
+            w2[j] = d2S[g, a]
+        else:
+            w1[j] = S[g, a]
+            w2[j] = dS[g, a]
+
+
+@njit(cache=True, error_model="numpy")
+def gauss_variables(q, o, F, w1, w2, Y, X):
+    """X = (F^T r0', F^T r0'', theta_1, theta_1') (chart components) from the element
+    coordinates q[o : o + 16]; Y: scratch (8)."""
+    for i in range(8):
+        Y[i] = 0.0
+    for j in range(ELEMENT_DOFS):
+        Y[DOF_FIRST[j]] += w1[j] * q[o + j]
+        Y[DOF_SECOND[j]] += w2[j] * q[o + j]
+    _to_chart(F, Y, X)
+
+
+@njit(cache=True, error_model="numpy")
+def _to_chart(F, Y, X):
+    """X = T^T Y, T = blockdiag(F, F, 1, 1): global to chart components of an 8-vector."""
+    for b in range(2):
         for i in range(3):
-            for k in range(3):
-                X[i] += F[k, i] * dS[a] * qe[o + k]
-                X[3 + i] += F[k, i] * d2S[a] * qe[o + k]
-        X[6] += S[a] * qe[_ANG_OFFSETS[a]]
-        X[7] += dS[a] * qe[_ANG_OFFSETS[a]]
+            X[3 * b + i] = F[0, i] * Y[3 * b] + F[1, i] * Y[3 * b + 1] + F[2, i] * Y[3 * b + 2]
+    X[6] = Y[6]
+    X[7] = Y[7]
 
 
-@njit(cache=True)
-def gauss_operator(F, S, dS, d2S, B):
-    """B (8 x 16) with X = B qe at one Gauss point."""
-    B[:, :] = 0.0
-    for a in range(4):
-        o = _VEC_OFFSETS[a]
+@njit(cache=True, error_model="numpy")
+def _to_global(F, X, Y):
+    """Y = T X, T = blockdiag(F, F, 1, 1): chart to global components of an 8-vector."""
+    for b in range(2):
         for i in range(3):
-            for k in range(3):
-                B[i, o + k] = F[k, i] * dS[a]
-                B[3 + i, o + k] = F[k, i] * d2S[a]
-        B[6, _ANG_OFFSETS[a]] = S[a]
-        B[7, _ANG_OFFSETS[a]] = dS[a]
+            Y[3 * b + i] = F[i, 0] * X[3 * b] + F[i, 1] * X[3 * b + 1] + F[i, 2] * X[3 * b + 2]
+    Y[6] = X[6]
+    Y[7] = X[7]
 
 
-@njit(cache=True)
-def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, want_tangent, force, tangent):
-    """Strain energy (Eq. 19), internal force dU/dq and element tangents.
+@njit(cache=True, error_model="numpy")
+def _matrix_to_global(F, A, tmp, out):
+    """out = T A T^T for an 8 x 8 matrix A in chart components (T as in :func:`_to_global`)."""
+    for c in range(8):
+        for b in range(2):
+            for i in range(3):
+                tmp[3 * b + i, c] = F[i, 0] * A[3 * b, c] + F[i, 1] * A[3 * b + 1, c] + F[i, 2] * A[3 * b + 2, c]
+        tmp[6, c] = A[6, c]
+        tmp[7, c] = A[7, c]
+    for r in range(8):
+        for b in range(2):
+            for i in range(3):
+                out[r, 3 * b + i] = tmp[r, 3 * b] * F[i, 0] + tmp[r, 3 * b + 1] * F[i, 1] + tmp[r, 3 * b + 2] * F[i, 2]
+        out[r, 6] = tmp[r, 6]
+        out[r, 7] = tmp[r, 7]
+
+
+@njit(cache=True, error_model="numpy")
+def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, scale, force, blocks):
+    """Strain energy (Eq. 19), internal force dU/dq and (when ``blocks`` has n_el rows) tangent.
 
     stiffness = (EA, GJ_t, EI_y, EI_z) in N, N m^2. ``force`` (n_dof) is overwritten with
-    dU/dq (the internal force, opposite to Q_f of Eq. 36); ``tangent`` (n_el, 16, 16)
-    receives the element Hessians when ``want_tangent``. Returns (U, min(1 + d.tau)).
+    dU/dq (the internal force, opposite to Q_f of Eq. 36); ``scale`` times the element
+    Hessians is added to ``blocks`` (n_el, 16, 16) unless ``blocks`` is empty.
+    Returns (U, min(1 + d.tau)).
     """
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
-    ng = w.shape[0]
+    want_tangent = blocks.shape[0] == n_el
     force[:] = 0.0
+    ws = jet_workspace()
     X = np.empty(8)
     e = np.empty(4)
     G = np.empty((4, 8))
     H = np.empty((4, 8, 8))
-    B = np.empty((8, 16))
     gW = np.empty(8)
+    gY = np.empty(8)
     HW = np.empty((8, 8))
-    T = np.empty((8, 16))
+    HY = np.empty((8, 8))
+    tmp = np.empty((8, 8))
+    w1 = np.empty(ELEMENT_DOFS)
+    w2 = np.empty(ELEMENT_DOFS)
     energy = 0.0
     chart_margin = 2.0
     for el in range(n_el):
-        qe = q[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
-        if want_tangent:
-            tangent[el, :, :] = 0.0
-        for g in range(ng):
-            gauss_variables(qe, F, S[g], dS[g], d2S[g], X)
-            s0 = strain_jet(X, e, G, H)
+        o = NODE_DOFS * el
+        for g in range(w.shape[0]):
+            dof_weights(S, dS, d2S, g, w1, w2)
+            gauss_variables(q, o, F, w1, w2, gY, X)
+            s0 = strain_jet(X, e, G, H, ws, want_tangent)
             L = np.sqrt(X[0] ** 2 + X[1] ** 2 + X[2] ** 2)
             chart_margin = min(chart_margin, s0 / L)
             jw = w[g] * length
@@ -87,88 +143,74 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, want_tangent, force, 
                 for k in range(4):
                     acc += stiffness[k] * e[k] * G[k, i]
                 gW[i] = acc
-            gauss_operator(F, S[g], dS[g], d2S[g], B)
-            # force += jw B^T gW and tangent += jw B^T HW B, without temporaries
+            _to_global(F, gW, gY)
             for j in range(ELEMENT_DOFS):
-                acc = 0.0
-                for i in range(8):
-                    acc += B[i, j] * gW[i]
-                force[NODE_DOFS * el + j] += jw * acc
+                force[o + j] += jw * (w1[j] * gY[DOF_FIRST[j]] + w2[j] * gY[DOF_SECOND[j]])
             if want_tangent:
                 for i in range(8):
-                    for j in range(8):
+                    for j in range(i, 8):
                         acc = 0.0
                         for k in range(4):
                             acc += stiffness[k] * (G[k, i] * G[k, j] + e[k] * H[k, i, j])
                         HW[i, j] = acc
-                for i in range(8):
-                    for j in range(ELEMENT_DOFS):
-                        acc = 0.0
-                        for k in range(8):
-                            acc += HW[i, k] * B[k, j]
-                        T[i, j] = acc
-                for i in range(ELEMENT_DOFS):
-                    for j in range(ELEMENT_DOFS):
-                        acc = 0.0
-                        for k in range(8):
-                            acc += B[k, i] * T[k, j]
-                        tangent[el, i, j] += jw * acc
+                        HW[j, i] = acc
+                _matrix_to_global(F, HW, tmp, HY)
+                _add_sandwich(blocks, el, HY, w1, w2, scale * jw)
     return energy, chart_margin
 
 
-@njit(cache=True)
-def mass_kernel(q, F, length, S, dS, w, rho_a, rho_iy, rho_iz, mass):
-    """Element mass matrices (Eq. 35): translational rho A plus rotary rho I_z |m_s|^2, rho I_y |n_s|^2.
+@njit(cache=True, error_model="numpy")
+def _add_sandwich(blocks, el, HY, w1, w2, factor):
+    """blocks[el] += factor B^T HY B for the two-entry columns of B (:func:`dof_weights`)."""
+    for i in range(ELEMENT_DOFS):
+        a1, a2 = DOF_FIRST[i], DOF_SECOND[i]
+        for j in range(i, ELEMENT_DOFS):
+            b1, b2 = DOF_FIRST[j], DOF_SECOND[j]
+            val = factor * (w1[i] * (w1[j] * HY[a1, b1] + w2[j] * HY[a1, b2])
+                            + w2[i] * (w1[j] * HY[a2, b1] + w2[j] * HY[a2, b2]))
+            blocks[el, i, j] += val
+            if j != i:
+                blocks[el, j, i] += val
 
-    mass (n_el, 16, 16) is overwritten. rho_iy = rho int z^2 dA multiplies the motion of n,
-    rho_iz = rho int y^2 dA that of m (kg m).
-    """
-    n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
-    ng = w.shape[0]
-    Nr = np.empty((3, 16))
-    Bm = np.empty((3, 16))
-    Bn = np.empty((3, 16))
-    U = np.empty(3)
+
+@njit(cache=True, error_model="numpy")
+def translational_mass_block(length, S, w, rho_a):
+    """The element's translational mass rho A int S^T S dx (Eq. 35, first term): 16 x 16,
+    the same for every element of equal length and independent of q."""
+    out = np.zeros((ELEMENT_DOFS, ELEMENT_DOFS))
+    for g in range(w.shape[0]):
+        jw = w[g] * length * rho_a
+        for a in range(4):
+            for b in range(4):
+                val = jw * S[g, a] * S[g, b]
+                for k in range(3):
+                    out[_VEC_OFFSETS[a] + k, _VEC_OFFSETS[b] + k] += val
+    return out
+
+
+@njit(cache=True, error_model="numpy")
+def add_translational_mass(block, n_el, scale, blocks):
+    """blocks[e] += scale * block for every element."""
     for el in range(n_el):
-        qe = q[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
-        mass[el, :, :] = 0.0
-        for g in range(ng):
-            U[:] = 0.0
-            phi = 0.0
-            for a in range(4):
-                o = _VEC_OFFSETS[a]
-                for i in range(3):
-                    for k in range(3):
-                        U[i] += F[k, i] * dS[g, a] * qe[o + k]
-                phi += S[g, a] * qe[_ANG_OFFSETS[a]]
-            m, n, dm, dn = section_frame_jacobian(U, phi)
-            # global derivatives: dm_glob/dr0' = F dm F^T, dm_glob/dtheta = F n
-            dmg = F @ dm @ F.T
-            dng = F @ dn @ F.T
-            mg = F @ m
-            ng_ = F @ n
-            Nr[:, :] = 0.0
-            Bm[:, :] = 0.0
-            Bn[:, :] = 0.0
-            for a in range(4):
-                o = _VEC_OFFSETS[a]
-                for i in range(3):
-                    Nr[i, o + i] = S[g, a]
-                    for k in range(3):
-                        Bm[i, o + k] = dmg[i, k] * dS[g, a]
-                        Bn[i, o + k] = dng[i, k] * dS[g, a]
-                    Bm[i, _ANG_OFFSETS[a]] = ng_[i] * S[g, a]
-                    Bn[i, _ANG_OFFSETS[a]] = -mg[i] * S[g, a]
-            jw = w[g] * length
-            for i in range(ELEMENT_DOFS):
-                for j in range(ELEMENT_DOFS):
-                    acc = 0.0
-                    for k in range(3):
-                        acc += rho_a * Nr[k, i] * Nr[k, j] + rho_iz * Bm[k, i] * Bm[k, j] + rho_iy * Bn[k, i] * Bn[k, j]
-                    mass[el, i, j] += jw * acc
+        for i in range(ELEMENT_DOFS):
+            for j in range(ELEMENT_DOFS):
+                blocks[el, i, j] += scale * block[i, j]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
+def translational_mass_product(block, u, out):
+    """out += M_trans u (the same element block on every element)."""
+    n_el = (u.shape[0] - NODE_DOFS) // NODE_DOFS
+    for el in range(n_el):
+        o = NODE_DOFS * el
+        for i in range(ELEMENT_DOFS):
+            acc = 0.0
+            for j in range(ELEMENT_DOFS):
+                acc += block[i, j] * u[o + j]
+            out[o + i] += acc
+
+
+@njit(cache=True, error_model="numpy")
 def distributed_load(n_el, length, S, w, load, out):
     """Generalized force of a constant load per unit length ``load`` (N/m, global): int S1^T p dx (Eq. 32)."""
     out[:] = 0.0
@@ -181,82 +223,136 @@ def distributed_load(n_el, length, S, w, load, out):
                     out[NODE_DOFS * el + o + i] += jw * S[g, a] * load[i]
 
 
-@njit(cache=True)
-def rotary_inertia_kernel(q, qdot, F, length, S, dS, w, inertia, force):
-    """Quadratic-velocity force Q_v of the section's rotary inertia and its kinetic energy.
+@njit(cache=True, error_model="numpy")
+def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, force, blocks):
+    """Rotary inertia of the sections: kinetic energy, generalized force and mass matrix.
 
     The angular velocity of the section in its own frame, omega = (omega.tau, omega.m,
     omega.n), is the same function of (r0', d r0'/dt, theta_1, d theta_1/dt) as the
     curvature (kappa1, kappa2, kappa3) is of (r0', r0'', theta_1, theta_1') (compare
-    Eqs. 8 and 25), so :func:`strain_jet` gives omega with its exact derivatives, and
-    T_rot = 1/2 int (rho (I_y + I_z) omega1^2 + rho I_y omega2^2 + rho I_z omega3^2) dx.
-    Lagrange's equations then give M_rot (as :func:`mass_kernel`) and
+    Eqs. 8 and 25), so :func:`strain_jet` gives omega = B(X) Xdot with B = d omega / d Xdot
+    and d omega / dX, X = (r0', theta_1). With J = diag(rho (I_y + I_z), rho I_y, rho I_z)
+    (``inertia``, kg m) the kinetic energy is T_rot = 1/2 int omega^T J omega dx, and
+    Lagrange's equations for a body-frame angular velocity are Euler's equations projected
+    by B: B^T (J omega_dot + omega x J omega) with omega_dot = B Xddot + (d omega / dX) Xdot.
+    Hence the mass M_rot = int B^T J B dx (Eq. 35's rotary terms, rho I_z |m_s|^2 +
+    rho I_y |n_s|^2) and the quadratic-velocity force (the paper's Q_ve, Eq. 36)
 
-        Q_v = -sum_i c_i [ (d omega_i / d Xdot)(d omega_i / dX . Xdot)
-                           + omega_i (d2 omega_i / dXdot dX) Xdot - omega_i d omega_i / dX ],
+        Q_v = -int B^T (J (d omega / dX) Xdot + omega x J omega) dx.
 
-    X = (r0', theta_1) (the paper's Q_ve, Eq. 36). inertia = (rho (I_y + I_z), rho I_y,
-    rho I_z) in kg m. ``force`` (n_dof) is overwritten with Q_v. Returns T_rot (J).
+    ``force`` (n_dof) is overwritten with Q_v - M_rot ``acc``; ``scale`` M_rot is added to
+    ``blocks`` (n_el, 16, 16) unless it is empty. Returns T_rot (J).
     """
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
+    want_matrix = blocks.shape[0] == n_el
     force[:] = 0.0
+    ws = jet_workspace()
     Z = np.empty(8)
     Xq = np.empty(8)
     Xv = np.empty(8)
+    Xa = np.empty(8)
     e = np.empty(4)
     G = np.empty((4, 8))
-    H = np.empty((4, 8, 8))
-    xi = (0, 1, 2, 6)  # X = (U, phi) inside Z = (U, Udot, phi, phidot)
-    vi = (3, 4, 5, 7)  # Xdot
+    H = np.empty((0, 0, 0))
+    B = np.empty((3, 4))
+    h = np.empty(3)
+    QX = np.empty(8)
+    QY = np.empty(8)
+    Mx = np.empty((4, 4))
+    Mg = np.empty((4, 4))
+    w1 = np.empty(ELEMENT_DOFS)
+    w2 = np.empty(ELEMENT_DOFS)
+    xi = (0, 1, 2, PHI)  # X = (U, phi) inside Z = (U, Udot, phi, phidot)
+    vi = (3, 4, 5, PSI)  # Xdot
+    J0, J1, J2 = inertia[0], inertia[1], inertia[2]
     energy = 0.0
     for el in range(n_el):
-        qe = q[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
-        ve = qdot[NODE_DOFS * el : NODE_DOFS * el + ELEMENT_DOFS]
+        o = NODE_DOFS * el
         for g in range(w.shape[0]):
             # Z = (F^T r0', F^T d r0'/dt, theta_1, d theta_1/dt); the r0'' slots of X are unused
-            gauss_variables(qe, F, S[g], dS[g], dS[g], Xq)
-            gauss_variables(ve, F, S[g], dS[g], dS[g], Xv)
-            Z[0:3] = Xq[0:3]
-            Z[3:6] = Xv[0:3]
+            dof_weights(S, dS, dS, g, w1, w2)
+            gauss_variables(q, o, F, w1, w1, QY, Xq)
+            gauss_variables(qdot, o, F, w1, w1, QY, Xv)
+            gauss_variables(acc, o, F, w1, w1, QY, Xa)
+            for i in range(3):
+                Z[i] = Xq[i]
+                Z[3 + i] = Xv[i]
             Z[6] = Xq[6]
             Z[7] = Xv[6]
-            strain_jet(Z, e, G, H)
-            QX = np.zeros(4)
+            strain_jet(Z, e, G, H, ws, False)
+            om0, om1, om2 = e[1], e[2], e[3]
+            # omega x J omega
+            gy0 = (J2 - J1) * om1 * om2
+            gy1 = (J0 - J2) * om2 * om0
+            gy2 = (J1 - J0) * om0 * om1
             for i in range(3):
-                c = inertia[i]
-                om = e[i + 1]
-                energy += 0.5 * w[g] * length * c * om * om
-                rate = 0.0  # d omega / dX . Xdot
+                rate = 0.0  # (d omega_i / dX) Xdot + B_i Xddot
                 for k in range(4):
-                    rate += G[i + 1, xi[k]] * Z[vi[k]]
-                for r in range(4):
-                    mixed = 0.0
-                    for k in range(4):
-                        mixed += H[i + 1, vi[r], xi[k]] * Z[vi[k]]
-                    QX[r] -= c * (G[i + 1, vi[r]] * rate + om * mixed - om * G[i + 1, xi[r]])
+                    B[i, k] = G[i + 1, vi[k]]
+                    rate += G[i + 1, xi[k]] * Z[vi[k]] + B[i, k] * Xa[xi[k]]
+                h[i] = inertia[i] * rate
+            h[0] += gy0
+            h[1] += gy1
+            h[2] += gy2
             jw = w[g] * length
-            for a in range(4):
-                o = _VEC_OFFSETS[a]
-                for k in range(3):
-                    acc = 0.0
-                    for i in range(3):
-                        acc += F[k, i] * QX[i]
-                    force[NODE_DOFS * el + o + k] += jw * dS[g, a] * acc
-                force[NODE_DOFS * el + _ANG_OFFSETS[a]] += jw * S[g, a] * QX[3]
+            energy += 0.5 * jw * (J0 * om0 * om0 + J1 * om1 * om1 + J2 * om2 * om2)
+            for i in range(8):
+                QX[i] = 0.0
+            for k in range(4):
+                QX[xi[k]] = -(B[0, k] * h[0] + B[1, k] * h[1] + B[2, k] * h[2])
+            _to_global(F, QX, QY)
+            for j in range(ELEMENT_DOFS):
+                force[o + j] += jw * w1[j] * QY[DOF_FIRST[j]]
+            if want_matrix:
+                for r in range(4):
+                    for c in range(4):
+                        Mx[r, c] = J0 * B[0, r] * B[0, c] + J1 * B[1, r] * B[1, c] + J2 * B[2, r] * B[2, c]
+                _mass_to_global(F, Mx, Mg)
+                for i in range(ELEMENT_DOFS):
+                    ci = _rotary_column(i)
+                    for j in range(ELEMENT_DOFS):
+                        blocks[el, i, j] += scale * jw * w1[i] * w1[j] * Mg[ci, _rotary_column(j)]
     return energy
 
 
-@njit(cache=True)
-def drag_kernel(qdot, length, S, w, frontal_width, c1, c2, force, blocks):
+@njit(cache=True, error_model="numpy")
+def _rotary_column(j):
+    """Index in (r0' (3), theta_1) of the Gauss-point variable that element coordinate j
+    moves with weight w1[j] (:func:`dof_weights`)."""
+    c = DOF_COMPONENT[j]
+    return c if c >= 0 else 3
+
+
+@njit(cache=True, error_model="numpy")
+def _mass_to_global(F, Mx, Mg):
+    """Mg = T Mx T^T on (r0', theta_1), T = blockdiag(F, 1)."""
+    for r in range(4):
+        for c in range(4):
+            acc = 0.0
+            for a in range(4):
+                Fra = (F[r, a] if a < 3 else 0.0) if r < 3 else (1.0 if a == 3 else 0.0)
+                if Fra == 0.0:
+                    continue
+                for b in range(4):
+                    Fcb = (F[c, b] if b < 3 else 0.0) if c < 3 else (1.0 if b == 3 else 0.0)
+                    acc += Fra * Mx[a, b] * Fcb
+            Mg[r, c] = acc
+
+
+@njit(cache=True, error_model="numpy")
+def drag_kernel(qdot, length, S, w, frontal_width, c1, c2, scale, force, blocks):
     """Damping of Eq. 37-39: f_d = -(c1 + c2 |v|) v per unit frontal area on the centre-line
     velocity v, times the frontal width b per unit length.
 
-    ``force`` (n_dof) is overwritten with Q_d, ``blocks`` (n_el, 16, 16) with -dQ_d/dqdot
-    (the damping matrix). Returns the dissipated power -Q_d . qdot (W).
+    ``force`` (n_dof) is overwritten with Q_d; ``scale`` times -dQ_d/dqdot (the damping
+    matrix) is added to ``blocks`` (n_el, 16, 16) unless ``blocks`` is empty.
+    Returns the dissipated power -Q_d . qdot (W).
     """
     n_el = (qdot.shape[0] - NODE_DOFS) // NODE_DOFS
     force[:] = 0.0
-    blocks[:, :, :] = 0.0
+    if c1 == 0.0 and c2 == 0.0:
+        return 0.0
+    want_matrix = blocks.shape[0] == n_el
     power = 0.0
     v = np.empty(3)
     for el in range(n_el):
@@ -275,6 +371,8 @@ def drag_kernel(qdot, length, S, w, frontal_width, c1, c2, force, blocks):
                 oa = _VEC_OFFSETS[a]
                 for k in range(3):
                     force[NODE_DOFS * el + oa + k] -= jw * S[g, a] * coef * v[k]
+                if not want_matrix:
+                    continue
                 for b in range(4):
                     ob = _VEC_OFFSETS[b]
                     for k in range(3):
@@ -282,5 +380,5 @@ def drag_kernel(qdot, length, S, w, frontal_width, c1, c2, force, blocks):
                             Ckm = coef if k == m else 0.0
                             if speed > 0.0:
                                 Ckm += c2 * v[k] * v[m] / speed
-                            blocks[el, oa + k, ob + m] += jw * S[g, a] * S[g, b] * Ckm
+                            blocks[el, oa + k, ob + m] += scale * jw * S[g, a] * S[g, b] * Ckm
     return power

@@ -28,7 +28,7 @@ PHI = 6
 PSI = 7
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def strain_measures(U, V, phi, psi):
     """(eps0, kappa1, kappa2, kappa3) at one point; U, V in chart components."""
     L = np.sqrt(U[0] * U[0] + U[1] * U[1] + U[2] * U[2])
@@ -44,140 +44,160 @@ def strain_measures(U, V, phi, psi):
     return L - 1.0, psi - L * g, c * a + s * b, -s * a + c * b
 
 
-@njit(cache=True)
-def _sym_outer_add(H, coef, a, b):
-    """H += coef (a b^T + b a^T)."""
-    n = a.shape[0]
-    for i in range(n):
-        for j in range(n):
-            H[i, j] += coef * (a[i] * b[j] + b[i] * a[j])
+#: rows of the scratch arrays of :func:`strain_jet`: gradients (6-vectors on y = (U, V)) of
+#: L, lam = 1/L^2, qi = 1/(L + U0), g, a, b, L + U0, and Hessians (6 x 6) of L, lam, qi, g, a, b
+_GL, _GLAM, _GQ, _GG, _GA, _GB, _GS0 = 0, 1, 2, 3, 4, 5, 6
+_HL, _HLAM, _HQ, _HG, _HA, _HB = 0, 1, 2, 3, 4, 5
+_WS_VEC = 7
+_WS_MAT = 6
 
 
-@njit(cache=True)
-def strain_jet(X, e, G, H):
-    """Strain measures e[4], gradients G[4, 8] and Hessians H[4, 8, 8] at X.
+@njit(cache=True, error_model="numpy")
+def jet_workspace():
+    """Scratch arrays for :func:`strain_jet`, allocated once by the caller and reused."""
+    return np.empty((_WS_VEC, 6)), np.empty((_WS_MAT, 6, 6)), np.empty((3, 6)), np.empty((3, 6)), np.empty((3, 6, 6))
+
+
+@njit(cache=True, error_model="numpy")
+def strain_jet(X, e, G, H, ws, hessian):
+    """Strain measures e[4], gradients G[4, 8] and (when ``hessian``) Hessians H[4, 8, 8] at X.
 
     Order of e: eps0, kappa1 (torsion), kappa2 (about m, weak axis for b > h),
-    kappa3 (about n). Returns L + U0, the distance to the chart singularity
-    (divided by L it is 1 + d.tau).
+    kappa3 (about n). ``ws`` is a :func:`jet_workspace`; nothing is allocated.
+    Returns L + U0, the distance to the chart singularity (divided by L it is 1 + d.tau).
+
+    Every intermediate depends on y = (U, V) only, and none is more than linear in V, so
+    their Hessians live on the 6 x 6 (U, V) block with a zero V-V part; theta enters by
+    the final rotation and theta' linearly.
     """
-    U = X[0:3]
-    V = X[3:6]
+    # scratch rows (indexing the 2-D arrays directly: a view would cost a reference count)
+    vec, mat, gC, gK, HK = ws
+    U0, U1, U2 = X[0], X[1], X[2]
+    V0, V1, V2 = X[3], X[4], X[5]
     phi = X[PHI]
     psi = X[PSI]
-    L2 = U[0] * U[0] + U[1] * U[1] + U[2] * U[2]
+    L2 = U0 * U0 + U1 * U1 + U2 * U2
     L = np.sqrt(L2)
-    G[:, :] = 0.0
-    H[:, :, :] = 0.0
-
-    # L = |U|
-    gL = np.zeros(8)
-    HL = np.zeros((8, 8))
-    for i in range(3):
-        gL[i] = U[i] / L
-    for i in range(3):
-        for j in range(3):
-            HL[i, j] = ((1.0 if i == j else 0.0) - gL[i] * gL[j]) / L
-
-    # lam = 1 / L^2
     lam = 1.0 / L2
-    glam = np.zeros(8)
-    Hlam = np.zeros((8, 8))
-    for i in range(3):
-        glam[i] = -2.0 * lam * lam * U[i]
-    for i in range(3):
-        for j in range(3):
-            Hlam[i, j] = 8.0 * lam * lam * lam * U[i] * U[j] - (2.0 * lam * lam if i == j else 0.0)
 
+    # L = |U|, lam = 1/L^2 (functions of U only)
+    for p in range(6):
+        vec[_GL, p] = 0.0
+        vec[_GLAM, p] = 0.0
+    for i in range(3):
+        vec[_GL, i] = X[i] / L
+        vec[_GLAM, i] = -2.0 * lam * lam * X[i]
     # K = lam (U x V): C_i = eps_ijk U_j V_k
-    K = np.empty(3)
-    gK = np.zeros((3, 8))
-    HK = np.zeros((3, 8, 8))
+    K0 = K1 = K2 = 0.0
     for i in range(3):
         j = (i + 1) % 3
         k = (i + 2) % 3
-        Ci = U[j] * V[k] - U[k] * V[j]
-        gC = np.zeros(8)
-        gC[j] = V[k]
-        gC[k] = -V[j]
-        gC[3 + k] = U[j]
-        gC[3 + j] = -U[k]
-        K[i] = lam * Ci
-        for p in range(8):
-            gK[i, p] = lam * gC[p] + Ci * glam[p]
-        # lam * Hess(C_i): d2 C_i / dU_j dV_k = +1, d2 C_i / dU_k dV_j = -1
-        HK[i, j, 3 + k] += lam
-        HK[i, 3 + k, j] += lam
-        HK[i, k, 3 + j] -= lam
-        HK[i, 3 + j, k] -= lam
-        for p in range(8):
-            for q in range(8):
-                HK[i, p, q] += glam[p] * gC[q] + gC[p] * glam[q] + Ci * Hlam[p, q]
+        Ci = X[j] * X[3 + k] - X[k] * X[3 + j]
+        for p in range(6):
+            gC[i, p] = 0.0
+        gC[i, j] = X[3 + k]
+        gC[i, k] = -X[3 + j]
+        gC[i, 3 + k] = X[j]
+        gC[i, 3 + j] = -X[k]
+        Ki = lam * Ci
+        for p in range(6):
+            gK[i, p] = lam * gC[i, p] + Ci * vec[_GLAM, p]
+        if i == 0:
+            K0 = Ki
+        elif i == 1:
+            K1 = Ki
+        else:
+            K2 = Ki
+        if hessian:
+            for p in range(6):
+                for q in range(6):
+                    HK[i, p, q] = vec[_GLAM, p] * gC[i, q] + gC[i, p] * vec[_GLAM, q]
+            for p in range(3):
+                for q in range(3):
+                    HK[i, p, q] += Ci * (8.0 * lam * lam * lam * X[p] * X[q] - (2.0 * lam * lam if p == q else 0.0))
+            # lam * Hess(C_i): d2 C_i / dU_j dV_k = +1, d2 C_i / dU_k dV_j = -1
+            HK[i, j, 3 + k] += lam
+            HK[i, 3 + k, j] += lam
+            HK[i, k, 3 + j] -= lam
+            HK[i, 3 + j, k] -= lam
 
-    # qi = 1 / (L + U0)
-    s0 = L + U[0]
+    # qi = 1 / (L + U0); g = K0 qi
+    s0 = L + U0
     qi = 1.0 / s0
-    gs0 = gL.copy()
-    gs0[0] += 1.0
-    gq = -qi * qi * gs0
-    Hq = np.empty((8, 8))
-    for p in range(8):
-        for q in range(8):
-            Hq[p, q] = 2.0 * qi * qi * qi * gs0[p] * gs0[q] - qi * qi * HL[p, q]
-
-    # g = K0 qi
-    g = K[0] * qi
-    gg = qi * gK[0] + K[0] * gq
-    Hg = qi * HK[0] + K[0] * Hq
-    _sym_outer_add(Hg, 1.0, gq, gK[0])
-
+    for p in range(6):
+        vec[_GS0, p] = vec[_GL, p]
+    vec[_GS0, 0] += 1.0
+    for p in range(6):
+        vec[_GQ, p] = -qi * qi * vec[_GS0, p]
+    g = K0 * qi
+    for p in range(6):
+        vec[_GG, p] = qi * gK[0, p] + K0 * vec[_GQ, p]
     # a = K1 - U1 g,  b = K2 - U2 g
-    a = K[1] - U[1] * g
-    b = K[2] - U[2] * g
-    ga = gK[1] - U[1] * gg
-    ga[1] -= g
-    gb = gK[2] - U[2] * gg
-    gb[2] -= g
-    Ha = HK[1] - U[1] * Hg
-    Hb = HK[2] - U[2] * Hg
-    e1v = np.zeros(8)
-    e1v[1] = 1.0
-    e2v = np.zeros(8)
-    e2v[2] = 1.0
-    _sym_outer_add(Ha, -1.0, e1v, gg)
-    _sym_outer_add(Hb, -1.0, e2v, gg)
+    a = K1 - U1 * g
+    b = K2 - U2 * g
+    for p in range(6):
+        vec[_GA, p] = gK[1, p] - U1 * vec[_GG, p]
+        vec[_GB, p] = gK[2, p] - U2 * vec[_GG, p]
+    vec[_GA, 1] -= g
+    vec[_GB, 2] -= g
 
-    # eps0
-    e[0] = L - 1.0
-    G[0] = gL
-    H[0] = HL
-
-    # kappa1 = psi - L g
-    e[1] = psi - L * g
-    G[1] = -L * gg - g * gL
-    G[1, PSI] += 1.0
-    H[1] = -L * Hg - g * HL
-    _sym_outer_add(H[1], -1.0, gL, gg)
-
-    # kappa2, kappa3: rotation of (a, b) by theta
     c = np.cos(phi)
     s = np.sin(phi)
     k2 = c * a + s * b
     k3 = -s * a + c * b
-    g2 = c * ga + s * gb
-    g3 = -s * ga + c * gb
+    e[0] = L - 1.0
+    e[1] = psi - L * g
     e[2] = k2
     e[3] = k3
-    G[2] = g2
-    G[2, PHI] += k3
-    G[3] = g3
-    G[3, PHI] -= k2
-    H[2] = c * Ha + s * Hb
-    H[3] = -s * Ha + c * Hb
-    ephi = np.zeros(8)
-    ephi[PHI] = 1.0
-    _sym_outer_add(H[2], 1.0, ephi, g3)
-    _sym_outer_add(H[3], -1.0, ephi, g2)
-    H[2, PHI, PHI] -= k2
-    H[3, PHI, PHI] -= k3
+    for k in range(4):
+        G[k, 6] = 0.0
+        G[k, 7] = 0.0
+    for p in range(6):
+        G[0, p] = vec[_GL, p]
+        G[1, p] = -L * vec[_GG, p] - g * vec[_GL, p]
+        G[2, p] = c * vec[_GA, p] + s * vec[_GB, p]
+        G[3, p] = -s * vec[_GA, p] + c * vec[_GB, p]
+    G[1, PSI] = 1.0
+    G[2, PHI] = k3
+    G[3, PHI] = -k2
+    if not hessian:
+        return s0
+
+    for p in range(6):
+        for q in range(6):
+            mat[_HL, p, q] = 0.0
+            mat[_HQ, p, q] = 2.0 * qi * qi * qi * vec[_GS0, p] * vec[_GS0, q]
+    for p in range(3):
+        for q in range(3):
+            mat[_HL, p, q] = ((1.0 if p == q else 0.0) - vec[_GL, p] * vec[_GL, q]) / L
+            mat[_HQ, p, q] -= qi * qi * mat[_HL, p, q]
+    for p in range(6):
+        for q in range(6):
+            mat[_HG, p, q] = qi * HK[0, p, q] + K0 * mat[_HQ, p, q] + vec[_GQ, p] * gK[0, q] + gK[0, p] * vec[_GQ, q]
+    for p in range(6):
+        for q in range(6):
+            mat[_HA, p, q] = HK[1, p, q] - U1 * mat[_HG, p, q]
+            mat[_HB, p, q] = HK[2, p, q] - U2 * mat[_HG, p, q]
+    for p in range(6):
+        mat[_HA, 1, p] -= vec[_GG, p]
+        mat[_HA, p, 1] -= vec[_GG, p]
+        mat[_HB, 2, p] -= vec[_GG, p]
+        mat[_HB, p, 2] -= vec[_GG, p]
+    for k in range(4):
+        for p in range(8):
+            for q in range(6, 8):
+                H[k, p, q] = 0.0
+                H[k, q, p] = 0.0
+    for p in range(6):
+        for q in range(6):
+            H[0, p, q] = mat[_HL, p, q]
+            H[1, p, q] = -L * mat[_HG, p, q] - g * mat[_HL, p, q] - vec[_GL, p] * vec[_GG, q] - vec[_GG, p] * vec[_GL, q]
+            H[2, p, q] = c * mat[_HA, p, q] + s * mat[_HB, p, q]
+            H[3, p, q] = -s * mat[_HA, p, q] + c * mat[_HB, p, q]
+    # the rotation by theta: d/dtheta of (k2, k3) is (k3, -k2)
+    for p in range(6):
+        H[2, PHI, p] = H[2, p, PHI] = G[3, p]
+        H[3, PHI, p] = H[3, p, PHI] = -G[2, p]
+    H[2, PHI, PHI] = -k2
+    H[3, PHI, PHI] = -k3
     return s0

@@ -1,0 +1,132 @@
+"""The generalized-alpha loop of :mod:`.generalized_alpha` in compiled code, for the ANCF system.
+
+:func:`advance` runs many steps without returning to Python: predictor, Newton iterations
+on the compiled equations of motion (:func:`hubbeam.system.ancf_equations.equations_of_motion`),
+band LU from LAPACK (:mod:`.banded`), optional reuse of the factorisation (modified
+Newton), and the work integrals of the energy balance. It uses the same predictor,
+correction and convergence test as :func:`.generalized_alpha.step` (the functions are
+shared), so the two give the same steps; tests compare them.
+
+The equations are imported rather than passed in because numba cannot cache a function
+that takes another compiled function as an argument, and a cold compile costs seconds.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from hubbeam.solvers.banded import band_factor, band_solve
+from hubbeam.solvers.generalized_alpha import algorithmic_acceleration, apply_increment, newton_error, predict
+from hubbeam.system.ancf_equations import CHART_SINGULAR, dissipated_power, equations_of_motion, n_constraints
+
+#: what :func:`advance` returns as its status
+DONE, CHART_LIMIT_REACHED, NOT_CONVERGED, NOT_FINITE, SINGULAR_MATRIX, CHART_SINGULARITY = 0, 1, 2, 3, 4, 5
+
+
+@njit(cache=True)
+def drive_power(model, lam, v):
+    """Power of the drive and the external hub torque on the hub (W)."""
+    torque = model.hub_torque
+    if n_constraints(model) > 6:
+        torque -= lam[6]
+    return torque * v[0]
+
+
+@njit(cache=True)
+def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scale, chart_limit,
+            lu, ipiv, lu_valid, work, power):
+    """Take up to ``n_steps`` steps of length h from (t, x, v, xdd, a, lam) in chart F.
+
+    The state arrays are updated in place after every converged step, so on any failure
+    they hold the last good state. ``alpha`` = (alpha_m, alpha_f, beta, gamma); ``newton``
+    = (tolerance on |dx| (m), max iterations, NewtonOptions.update_code, refresh rate,
+    refresh iterations).
+    ``lu`` (band storage, Fortran order), ``ipiv`` and ``lu_valid[0]`` (1 when ``lu`` holds
+    the factors for this h and chart) carry the factorisation between calls. ``work`` (2)
+    accumulates the dissipated and the drive work (J) by the trapezoidal rule from the
+    powers in ``power`` (2, at the current state; updated).
+
+    Returns (status, steps taken, Newton iterations, LU factorisations, last |dx|): status DONE, or
+    CHART_LIMIT_REACHED after a step that brought a tangent within ``chart_limit`` of the
+    chart's singular direction (1 + d.tau < chart_limit; the caller changes the chart), or
+    a failure (NOT_CONVERGED, NOT_FINITE, SINGULAR_MATRIX, CHART_SINGULARITY).
+    """
+    am, af, beta, gamma = alpha
+    tol, max_iterations, update, refresh_rate, refresh_iterations = newton
+    reused = update != 0  # 0 "iteration", 1 "step", 2 "adaptive" (NewtonOptions.update_code)
+    bw = model.bandwidth
+    n = lu.shape[1]
+    m = lam.shape[0]
+    ck = beta * h * h
+    bprime = (1.0 - am) / (ck * (1.0 - af))
+    gprime = gamma / (beta * h)
+    coef_m, coef_c = ck * bprime, ck * gprime
+    x1 = np.empty_like(x)
+    v1 = np.empty_like(x)
+    xdd1 = np.empty_like(x)
+    lam1 = np.empty_like(lam)
+    res = np.empty(n)
+    empty = np.empty((0, 0))
+    iterations = 0
+    factorisations = 0
+    size = 0.0
+    for k in range(n_steps):
+        t1 = t + h
+        predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
+        lam1[:] = lam
+        fresh = update != 2 or lu_valid[0] == 0
+        if fresh:
+            margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale,
+                                            True, res, lu)
+        else:
+            margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, 0.0, 0.0, ck, mass_scale,
+                                            False, res, empty)
+        previous = np.inf
+        converged = False
+        for it in range(1, max_iterations + 1):
+            if not margin > CHART_SINGULAR:
+                return CHART_SINGULARITY, k, iterations, factorisations, size
+            if fresh:
+                lu_valid[0] = 0
+                factorisations += 1
+                if band_factor(lu, bw, bw, ipiv) != 0:
+                    return SINGULAR_MATRIX, k, iterations, factorisations, size
+                lu_valid[0] = 1
+            for i in range(n):
+                res[i] = -res[i]
+            band_solve(lu, bw, bw, ipiv, res)
+            iterations += 1
+            if not np.all(np.isfinite(res)):
+                lu_valid[0] = 0
+                return NOT_FINITE, k, iterations, factorisations, size
+            size = apply_increment(res, gprime, bprime, mass_scale / ck, x1, v1, xdd1, lam1)
+            error, rate = newton_error(size, previous, reused)
+            if error <= tol:
+                converged = True
+                if update != 2 or it > refresh_iterations:
+                    lu_valid[0] = 0
+                break
+            fresh = not reused or rate > refresh_rate
+            margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale,
+                                            fresh, res, lu if fresh else empty)
+            previous = np.inf if fresh else size
+        if not converged:
+            lu_valid[0] = 0
+            return NOT_CONVERGED, k, iterations, factorisations, size
+        for i in range(x.shape[0]):
+            a[i] = algorithmic_acceleration(xdd1[i], xdd[i], a[i], am, af)
+        x[:] = x1
+        v[:] = v1
+        xdd[:] = xdd1
+        lam[:] = lam1
+        t = t1
+        p_d = dissipated_power(model, v)
+        p_h = drive_power(model, lam, v)
+        work[0] += 0.5 * h * (power[0] + p_d)
+        work[1] += 0.5 * h * (power[1] + p_h)
+        power[0] = p_d
+        power[1] = p_h
+        if margin < chart_limit:
+            return CHART_LIMIT_REACHED, k + 1, iterations, factorisations, size
+    return DONE, n_steps, iterations, factorisations, size
