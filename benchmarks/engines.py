@@ -2,12 +2,15 @@
 
     python benchmarks/engines.py ENGINE ELEMENTS T_END DT
 
-ENGINE: hubbeam (ANCF with torsion, the product) | exudyn-cable (Exudyn's ObjectANCFCable,
-3D ANCF without torsion). Case A of issue 6: the reference plate (conventions.md) clamped,
-gravity along its weak axis (twist 90 deg), released from straight, generalized-alpha with
-rho_inf = 0.8, no damping. Output: integration wall time (s), steps, Newton iterations
-(when the engine reports them) and the tip's vertical displacement at the end and its
-minimum over the run (m), so that equal accuracy can be checked.
+Case A (issue 6): the reference plate (conventions.md) clamped, gravity along its weak
+axis, released from straight, generalized-alpha rho_inf = 0.8, no damping. Engines:
+hubbeam (benchmarks/case_a.toml: ANCF with torsion, the product), exudyn-ge (Exudyn's
+ObjectBeamGeometricallyExact, 3D with torsion) and exudyn-cable (ObjectANCFCable, 3D ANCF
+without torsion). Case B: Kane's spin-up: hubbeam-kane (benchmarks/case_b.toml) and
+exudyn-cable-kane. Output: integration wall time (s), steps, Newton iterations and LU
+factorisations per step (when the engine reports them) and the tip deflection (case A:
+vertical, case B: tangential, m) at the end and its minimum over the run, so that equal
+accuracy can be checked. Exudyn's Newton tolerances are set as issue 6 prescribes.
 """
 
 from __future__ import annotations
@@ -19,23 +22,30 @@ import time
 L, B, H, E, RHO = 1.45, 0.05, 0.0025, 70e9, 2700.0
 
 
-def run_hubbeam(elements: int, t_end: float, dt: float) -> dict:
+def _run_hubbeam_scenario(name: str, elements: int, t_end: float, dt: float, part: str) -> dict:
+    import os
+
     import numpy as np
 
     from hubbeam import api
-    from hubbeam.io.scenario import Sensor, load_example
-    from hubbeam.simulation import simulate
+    from hubbeam.io.scenario import load_scenario
 
-    sc = load_example("cantilever", [f"beam.elements={elements}", 'analysis.kind="dynamic"',
-                                     f"analysis.t_end={t_end}", f"analysis.dt={dt}", "analysis.spectral_radius=0.8",
-                                     "damping.linear=0.0", "damping.quadratic=0.0"])
-    system = api.build_system(sc)
-    simulate(system, [], 2 * dt, dt)  # compile (numba cache) outside the timed run
-    traj = simulate(system, [Sensor(name="tip", kind="tip_deflection")], t_end, dt, 0.8, 0.01)
-    vertical = np.array([r["vertical"] for r in traj.records["tip"]])
+    overrides = [f"beam.elements={elements}", f"analysis.t_end={t_end}", f"analysis.dt={dt}"]
+    scenario = load_scenario(os.path.join(os.path.dirname(os.path.abspath(__file__)), name), overrides)
+    api.run(scenario.model_copy(update={"analysis": scenario.analysis.model_copy(update={"t_end": 2 * dt})}))
+    traj, failure = api.run(scenario)  # the line above loaded the compiled code from the numba cache
+    if failure is not None:
+        raise failure
+    values = np.array([r[part] for r in traj.records["tip"]])
     return {"integration_s": traj.wall_time_s, "steps": traj.steps,
             "newton_per_step": traj.newton_iterations / traj.steps,
-            "tip_vertical_end": float(vertical[-1]), "tip_vertical_min": float(vertical.min())}
+            "factorisations_per_step": traj.factorisations / traj.steps,
+            "tip_end": float(values[-1]), "tip_min": float(values.min())}
+
+
+def run_hubbeam(elements: int, t_end: float, dt: float) -> dict:
+    """Case A with hubbeam (benchmarks/case_a.toml); reports the vertical tip deflection."""
+    return _run_hubbeam_scenario("case_a.toml", elements, t_end, dt, "vertical")
 
 
 def run_exudyn_cable(elements: int, t_end: float, dt: float) -> dict:
@@ -55,6 +65,110 @@ def run_exudyn_cable(elements: int, t_end: float, dt: float) -> dict:
     sensor = mbs.AddSensor(SensorNode(nodeNumber=tip, storeInternal=True,
                                       outputVariableType=exu.OutputVariableType.Displacement))
     mbs.Assemble()
+    return _solve_exudyn(mbs, sensor, t_end, dt)
+
+
+def run_exudyn_ge(elements: int, t_end: float, dt: float) -> dict:
+    """Exudyn's ObjectBeamGeometricallyExact (3D, shear deformable, with torsion) on rigid-body
+    nodes (Euler parameters), clamped by a GenericJoint to ground. Local x along the beam, y
+    along the thickness (so gravity -y bends the weak axis), z along the width."""
+    import exudyn as exu
+    import numpy as np
+    from exudyn.itemInterface import (GenericJoint, Gravity, MarkerBodyMass, MarkerNodeRigid, NodePointGround,
+                                      NodeRigidBodyEP, ObjectBeamGeometricallyExact, SensorNode)
+    from exudyn.rigidBodyUtilities import eulerParameters0
+
+    from hubbeam.elements.section import saint_venant_torsion_constant
+
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    nu = 0.33
+    G = E / (2 * (1 + nu))
+    A = B * H
+    i_y_local = B * H**3 / 12  # about local z (weak): thickness along y
+    i_z_local = H * B**3 / 12  # about local y (strong)
+    ks = 5.0 / 6.0  # shear correction of a rectangle
+    section = exu.BeamSection()
+    section.stiffnessMatrix = np.diag([E * A, ks * G * A, ks * G * A, G * saint_venant_torsion_constant(B, H),
+                                       E * i_z_local, E * i_y_local])
+    section.inertia = RHO * np.diag([i_y_local + i_z_local, i_z_local, i_y_local])
+    section.massPerLength = RHO * A
+    le = L / elements
+    nodes = [mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=[k * le, 0, 0] + list(eulerParameters0)))
+             for k in range(elements + 1)]
+    for k in range(elements):
+        beam = mbs.AddObject(ObjectBeamGeometricallyExact(nodeNumbers=[nodes[k], nodes[k + 1]], length=le,
+                                                          sectionData=section))
+        mbs.AddLoad(Gravity(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=beam)), loadVector=[0, -9.81, 0]))
+    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0, 0, 0]))
+    mbs.AddObject(GenericJoint(markerNumbers=[mbs.AddMarker(MarkerNodeRigid(nodeNumber=ground)),
+                                              mbs.AddMarker(MarkerNodeRigid(nodeNumber=nodes[0]))]))
+    sensor = mbs.AddSensor(SensorNode(nodeNumber=nodes[-1], storeInternal=True,
+                                      outputVariableType=exu.OutputVariableType.Displacement))
+    mbs.Assemble()
+    return _solve_exudyn(mbs, sensor, t_end, dt)
+
+
+KANE = {"length": 10.0, "EI": 14000.0, "EA": 7e10 * 4e-4, "rhoA": 1.2, "omega_s": 4.0, "T": 15.0}
+
+
+def kane_angle(t: float) -> float:
+    """Hub angle of Kane's spin-up (rad): hubbeam.system.hub.DriveProfile('spin_up', 4, 15)."""
+    import math
+
+    w, T = KANE["omega_s"], KANE["T"]
+    if t < T:
+        return (w / T) * (t * t / 2.0 + (T / (2 * math.pi)) ** 2 * (math.cos(2 * math.pi * t / T) - 1.0))
+    return w * (t - T / 2.0)
+
+
+def run_hubbeam_kane(elements: int, t_end: float, dt: float) -> dict:
+    """Case B with hubbeam (benchmarks/case_b.toml); reports the tangential tip deflection."""
+    return _run_hubbeam_scenario("case_b.toml", elements, t_end, dt, "tangential")
+
+
+def run_exudyn_cable_kane(elements: int, t_end: float, dt: float) -> dict:
+    """Case B with Exudyn's ObjectANCFCable: the root node at the hub centre, its slope driven
+    along i_h(theta(t)) = (cos theta, 0, sin theta) by coordinate constraints whose offsets
+    are Python user functions (Exudyn's way of prescribing a motion of coordinates)."""
+    import math
+
+    import exudyn as exu
+    import numpy as np
+    from exudyn.beams import GenerateBeamElementsAlongLine
+    from exudyn.itemInterface import (CoordinateConstraint, MarkerNodeCoordinate, NodePointGround, ObjectANCFCable,
+                                      SensorNode)
+
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    cable = ObjectANCFCable(physicsMassPerLength=KANE["rhoA"], physicsBendingStiffness=KANE["EI"],
+                            physicsAxialStiffness=KANE["EA"])
+    beam = GenerateBeamElementsAlongLine(mbs, positionStart=[0, 0, 0], positionEnd=[KANE["length"], 0, 0],
+                                         numberOfElements=elements, beamTemplate=cable,
+                                         groundConstraintsStart=[1, 1, 1, 0, 1, 0])
+    root = beam["nodes"][0]
+    ground = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
+    for coordinate, fun in ((3, math.cos), (5, math.sin)):
+        mbs.AddObject(CoordinateConstraint(
+            markerNumbers=[ground, mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=root, coordinate=coordinate))],
+            offsetUserFunction=lambda mbs, t, item, offset, fun=fun: fun(kane_angle(t)) - (1.0 if fun is math.cos else 0.0)))
+    tip = beam["nodes"][-1]
+    sensor = mbs.AddSensor(SensorNode(nodeNumber=tip, storeInternal=True,
+                                      outputVariableType=exu.OutputVariableType.Position))
+    mbs.Assemble()
+    result = _solve_exudyn(mbs, sensor, t_end, dt, component=None)
+    data = np.array(mbs.GetSensorStoredData(sensor))
+    theta = np.array([kane_angle(t) for t in data[:, 0]])
+    tangential = -np.sin(theta) * data[:, 1] + np.cos(theta) * data[:, 3]
+    result.update(tip_end=float(tangential[-1]), tip_min=float(tangential.min()))
+    return result
+
+
+def _solve_exudyn(mbs, sensor, t_end: float, dt: float, component: int | None = 2) -> dict:
+    """Generalized-alpha (rho_inf 0.8), Newton tolerances of issue 6; the tip's y displacement."""
+    import exudyn as exu
+    import numpy as np
+
     s = exu.SimulationSettings()
     s.timeIntegration.numberOfSteps = int(round(t_end / dt))
     s.timeIntegration.endTime = t_end
@@ -67,12 +181,15 @@ def run_exudyn_cable(elements: int, t_end: float, dt: float) -> dict:
     start = time.perf_counter()
     exu.SolveDynamic(mbs, s)
     wall = time.perf_counter() - start
-    y = np.array(mbs.GetSensorStoredData(sensor))[:, 2]
-    return {"integration_s": wall, "steps": s.timeIntegration.numberOfSteps, "newton_per_step": None,
-            "tip_vertical_end": float(y[-1]), "tip_vertical_min": float(y.min())}
+    result = {"integration_s": wall, "steps": s.timeIntegration.numberOfSteps, "newton_per_step": None}
+    if component is not None:
+        y = np.array(mbs.GetSensorStoredData(sensor))[:, component]
+        result.update(tip_end=float(y[-1]), tip_min=float(y.min()))
+    return result
 
 
-ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable}
+ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge": run_exudyn_ge,
+           "hubbeam-kane": run_hubbeam_kane, "exudyn-cable-kane": run_exudyn_cable_kane}
 
 if __name__ == "__main__":
     engine, elements, t_end, dt = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])

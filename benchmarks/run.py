@@ -1,18 +1,24 @@
-"""Speed benchmark: hubbeam against Exudyn on the same model (issue 6), run side by side.
+"""Speed benchmark: hubbeam against Exudyn on the same models (issue 6), run side by side.
 
-    python benchmarks/run.py [--reps 3] [--t-end 10] [--scaling] [--quick]
+    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P] [--quick]
 
-Each run is a fresh process (benchmarks/engines.py), engines alternate within every
-repetition, and the table shows medians: the integration alone (as each engine reports
-it) and the whole process (start-up, model set-up and compilation with a warm numba
-cache included), the ratios hubbeam / peer, and the tip deflection of both so that the
-comparison is at equal accuracy. Needs `pip install exudyn` (the `.[peer]` extra).
+Every run is a fresh process (benchmarks/engines.py; ``hubbeam run`` for case P), the
+engines of a case alternate within each repetition, and the tables show medians: the
+integration alone (as each engine reports it, after its compiled code is loaded) and the
+whole process (interpreter start-up, imports, model set-up, loading compiled code from
+the warm numba cache), the ratios hubbeam / peer, Newton iterations and LU
+factorisations per step where the engine reports them, and the tip deflections of both
+so that the comparison is at equal accuracy. Needs `pip install exudyn` (the `.[peer]`
+extra). The machine's core count is printed with the tables.
 
-Case A: the reference plate clamped, gravity along its weak axis, released from
-straight, 8 elements, dt = 1 ms, generalized-alpha rho_inf = 0.8, no damping.
-Peers: Exudyn's ObjectANCFCable (3D ANCF, no torsion). Not yet here: Exudyn's
-ObjectBeamGeometricallyExact (3D set-up by hand) and case B (Kane's spin-up).
-Case C (--scaling): case A with 4..64 elements, hubbeam's cost per step.
+Case A (benchmarks/case_a.toml): the reference plate clamped, gravity along its weak axis,
+released from straight, 8 elements, dt = 1 ms, generalized-alpha rho_inf = 0.8, no
+damping. Peers: Exudyn's ObjectBeamGeometricallyExact (3D, with torsion, shear
+deformable) and ObjectANCFCable (3D ANCF, no torsion).
+Case B (benchmarks/case_b.toml): Kane's spin-up, 20 elements. Peer: ObjectANCFCable on a
+clamp whose slope is driven by coordinate constraints (Python user functions).
+Case C: case A with 4 .. 64 elements, hubbeam's cost per step (it should grow linearly).
+Case P: the whole ``hubbeam run benchmarks/case_a.toml -o OUT.nc`` (wall clock).
 """
 
 from __future__ import annotations
@@ -23,6 +29,7 @@ import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -37,8 +44,41 @@ def one_run(engine: str, elements: int, t_end: float, dt: float) -> dict:
     return result
 
 
+def cli_run(t_end: float) -> float:
+    """Wall time of `hubbeam run benchmarks/case_a.toml -o OUT.nc` in a fresh process (s)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        start = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "hubbeam.cli", "run", os.path.join(HERE, "case_a.toml"), "-o",
+                        os.path.join(tmp, "case_a.nc"), "--set", f"analysis.t_end={t_end}"],
+                       capture_output=True, text=True, check=True)
+        return time.perf_counter() - start
+
+
 def median(runs, key):
     return statistics.median(r[key] for r in runs)
+
+
+def compare(title: str, engines: list[str], elements: int, reps: int, t_end: float, dt: float, tip: str) -> None:
+    runs = {e: [] for e in engines}
+    for _ in range(reps):
+        for e in engines:
+            runs[e].append(one_run(e, elements, t_end, dt))
+    print(f"\n{title}: {elements} elements, {t_end:g} s at dt = {dt:g} s; median of {reps}, {os.cpu_count()} cores")
+    print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'Newton/step':>11s} {'LU/step':>8s} "
+          f"{'tip min (m)':>12s} {'tip end (m)':>12s}   ({tip})")
+    for e in engines:
+        first = runs[e][0]
+        nps, fps = first.get("newton_per_step"), first.get("factorisations_per_step")
+        print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {median(runs[e], 'process_s'):10.3f} "
+              f"{'-' if nps is None else f'{nps:.2f}':>11s} {'-' if fps is None else f'{fps:.2f}':>8s} "
+              f"{first['tip_min']:12.5f} {first['tip_end']:12.5f}")
+    ours = runs[engines[0]]
+    for e in engines[1:]:
+        peer = runs[e][0]
+        print(f"{engines[0]} / {e}: integration {median(ours, 'integration_s') / median(runs[e], 'integration_s'):.2f}, "
+              f"process {median(ours, 'process_s') / median(runs[e], 'process_s'):.2f}; tip min differs by "
+              f"{100 * abs(ours[0]['tip_min'] / peer['tip_min'] - 1):.3f} %, tip end by "
+              f"{100 * abs(ours[0]['tip_end'] / peer['tip_end'] - 1):.3f} %")
 
 
 def main() -> None:
@@ -46,39 +86,31 @@ def main() -> None:
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--t-end", type=float, default=10.0)
     p.add_argument("--dt", type=float, default=1e-3)
-    p.add_argument("--scaling", action="store_true", help="also case C: 4..64 elements (hubbeam)")
+    p.add_argument("--cases", default="A,B,C,P", help="comma-separated subset of A, B, C, P")
     p.add_argument("--quick", action="store_true", help="1 s simulated, one repetition")
     a = p.parse_args()
     if a.quick:
         a.reps, a.t_end = 1, 1.0
-    engines = ["hubbeam", "exudyn-cable"]
+    cases = {c.strip().upper() for c in a.cases.split(",")}
     one_run("hubbeam", 8, 2 * a.dt, a.dt)  # warm the numba cache
-    runs = {e: [] for e in engines}
-    for _ in range(a.reps):
-        for e in engines:
-            runs[e].append(one_run(e, 8, a.t_end, a.dt))
-    print(f"Case A: reference plate, 8 elements, {a.t_end:g} s at dt = {a.dt:g} s, {os.cpu_count()} cores, "
-          f"median of {a.reps}")
-    print(f"{'engine':14s} {'integration s':>14s} {'process s':>10s} {'Newton/step':>12s} {'tip min (m)':>12s} "
-          f"{'tip end (m)':>12s}")
-    for e in engines:
-        nps = runs[e][0]["newton_per_step"]
-        print(f"{e:14s} {median(runs[e], 'integration_s'):14.3f} {median(runs[e], 'process_s'):10.3f} "
-              f"{'—' if nps is None else f'{nps:.2f}':>12s} {runs[e][0]['tip_vertical_min']:12.5f} "
-              f"{runs[e][0]['tip_vertical_end']:12.5f}")
-    h = runs["hubbeam"]
-    for e in engines[1:]:
-        print(f"hubbeam / {e}: integration {median(h, 'integration_s') / median(runs[e], 'integration_s'):.2f}, "
-              f"process {median(h, 'process_s') / median(runs[e], 'process_s'):.2f}, tip min differs by "
-              f"{100 * abs(h[0]['tip_vertical_min'] / runs[e][0]['tip_vertical_min'] - 1):.3f} %")
-    if a.scaling:
-        print("Case C: hubbeam cost per step against elements (1 s simulated)")
+    if "A" in cases:
+        compare("Case A (plate under gravity)", ["hubbeam", "exudyn-ge", "exudyn-cable"], 8, a.reps, a.t_end, a.dt,
+                "vertical")
+    if "B" in cases:
+        compare("Case B (Kane's spin-up)", ["hubbeam-kane", "exudyn-cable-kane"], 20, a.reps, a.t_end, a.dt,
+                "tangential")
+    if "C" in cases:
+        print(f"\nCase C: hubbeam cost per step against elements (case A, 1 s simulated, best of {a.reps})")
         base = None
         for n in (4, 8, 16, 32, 64):
-            r = one_run("hubbeam", n, 1.0, a.dt)
-            per = r["integration_s"] / r["steps"]
-            base = base or (per if n == 8 else None)
-            print(f"  {n:3d} elements: {1e3 * per:.3f} ms per step" + (f" ({per / base:.1f}x the 8-element cost)" if base else ""))
+            per = min(one_run("hubbeam", n, 1.0, a.dt)["integration_s"] for _ in range(a.reps)) / round(1.0 / a.dt)
+            base = per if n == 8 else base
+            print(f"  {n:3d} elements: {1e3 * per:.3f} ms per step"
+                  + (f" ({per / base:.1f}x the 8-element cost)" if base else ""))
+    if "P" in cases:
+        times = [cli_run(a.t_end) for _ in range(a.reps)]
+        print(f"\nCase P: `hubbeam run benchmarks/case_a.toml -o OUT.nc` ({a.t_end:g} s simulated), whole process: "
+              f"median {statistics.median(times):.2f} s of {a.reps} (warm numba cache)")
 
 
 if __name__ == "__main__":

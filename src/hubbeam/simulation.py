@@ -85,10 +85,14 @@ def initial_state(system: HubSystem, load_steps: int = 20) -> ga.AlphaState:
 
 class PythonSteps:
     """Steps of :func:`hubbeam.solvers.generalized_alpha.step` (any system), with the work
-    integrals of the energy balance (trapezoidal rule on the dissipated and drive power)."""
+    integrals of the energy balance (trapezoidal rule on the dissipated and drive power).
 
-    def __init__(self, system: HubSystem, params, newton, dt, state: ga.AlphaState, work: dict) -> None:
-        self.system, self.params, self.newton, self.dt, self.work = system, params, newton, dt, work
+    :meth:`advance` takes a chunk of steps and returns the states at the output steps in
+    it, each with the work done up to then."""
+
+    def __init__(self, system: HubSystem, params, newton, dt, state: ga.AlphaState) -> None:
+        self.system, self.params, self.newton, self.dt = system, params, newton, dt
+        self.work = {"dissipated": 0.0, "drive": 0.0}
         self.matrix = None
         self.power = self._power(state)
         self.factorisations = None  # counted by the compiled steps only
@@ -98,22 +102,28 @@ class PythonSteps:
         torque = system.drive_torque(st.lam) + system.hub_torque
         return system.dissipated_power(st.x, st.v, st.chart), torque * st.v[0]
 
-    def advance(self, state, n_steps):
-        """Up to n_steps steps: (state, steps taken, Newton iterations, chart limit reached, error or None)."""
+    def advance(self, state, n_steps, step0, every, total):
+        """Up to n_steps steps after step0 of total; states after steps that are multiples of
+        ``every`` (and the last) are returned. Returns (state, steps taken, Newton
+        iterations, chart limit reached, error or None, [(state, work)])."""
         iterations = 0
+        records = []
         for k in range(n_steps):
             try:
                 state, its, self.matrix = ga.step(self.system, state, self.dt, self.params, self.newton, self.matrix)
             except (ConvergenceError, ChartSingularityError) as exc:
-                return state, k, iterations, False, exc
+                return state, k, iterations, False, exc, records
             iterations += its
             p_new = self._power(state)
             self.work["dissipated"] += 0.5 * self.dt * (self.power[0] + p_new[0])
             self.work["drive"] += 0.5 * self.dt * (self.power[1] + p_new[1])
             self.power = p_new
+            step = step0 + k + 1
+            if step % every == 0 or step == total:
+                records.append((state, dict(self.work)))
             if self.system.chart_margin(state.x, state.chart) < CHART_LIMIT:
-                return state, k + 1, iterations, True, None
-        return state, n_steps, iterations, False, None
+                return state, k + 1, iterations, True, None, records
+        return state, n_steps, iterations, False, None, records
 
     def chart_changed(self):
         self.matrix = None
@@ -121,10 +131,17 @@ class PythonSteps:
 
 class CompiledSteps(PythonSteps):
     """The same steps in compiled code (:func:`hubbeam.solvers.compiled_alpha.advance`) for
-    systems that provide a compiled model (the ANCF system)."""
+    systems that provide a compiled model (the ANCF system): a chunk of steps is one call."""
 
-    def __init__(self, system, params, newton, dt, state, work) -> None:
-        super().__init__(system, params, newton, dt, state, work)
+    ERRORS = {
+        compiled_alpha.NOT_CONVERGED: "Newton did not converge in {its} iterations (last |dx| = {size:.2e})",
+        compiled_alpha.NOT_FINITE: "non-finite Newton increment",
+        compiled_alpha.SINGULAR_MATRIX: "singular iteration matrix (a constraint lost rank or a mass vanished)",
+        compiled_alpha.CHART_SINGULARITY: "a beam tangent is at the singular direction of the rotation chart",
+    }
+
+    def __init__(self, system, params, newton, dt, state) -> None:
+        super().__init__(system, params, newton, dt, state)
         self.model = system.compiled_model()
         n = 1 + state.lam.shape[0] + (state.x.shape[0] - 1)
         bw = self.model.bandwidth
@@ -132,35 +149,44 @@ class CompiledSteps(PythonSteps):
         self.ipiv = np.zeros(n, dtype=np.int32)
         self.lu_valid = np.zeros(1, dtype=np.int64)
         self.factorisations = 0
+        self.work_done = np.zeros(2)
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
         tol = newton.tolerance * max(system.length_scale, 1.0)
         self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations)
 
-    def advance(self, state, n_steps):
+    def advance(self, state, n_steps, step0, every, total):
         x, v, xdd, a, lam = (np.array(u, dtype=float) for u in (state.x, state.v, state.xdd, state.a, state.lam))
-        work = np.zeros(2)
+        rows = n_steps // every + 2
+        records = (np.empty(rows), np.empty((rows, x.size)), np.empty((rows, x.size)), np.empty((rows, x.size)),
+                   np.empty((rows, x.size)), np.empty((rows, lam.size)), np.empty((rows, 2)))
         power = np.array(self.power, dtype=float)
-        status, steps, its, factorisations, size = compiled_alpha.advance(
-            self.model, np.ascontiguousarray(state.chart), state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha,
-            self.options, self.system.mass_scale, CHART_LIMIT, self.lu, self.ipiv, self.lu_valid, work, power)
-        self.work["dissipated"] += work[0]
-        self.work["drive"] += work[1]
-        self.factorisations += factorisations
+        counters = np.zeros(4, dtype=np.int64)
+        chart = np.ascontiguousarray(state.chart)
+        status, size = compiled_alpha.advance(
+            self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
+            self.system.mass_scale, CHART_LIMIT, self.lu, self.ipiv, self.lu_valid, self.work_done, power,
+            counters, (step0, every, total), records)
+        steps, its, factorisations, n_rec = (int(c) for c in counters)
         self.power = (power[0], power[1])
-        new = replace(state, t=state.t + steps * self.dt, x=x, v=v, xdd=xdd, a=a, lam=lam)
-        error = {
-            compiled_alpha.NOT_CONVERGED: ConvergenceError(
-                f"Newton did not converge in {self.newton.max_iterations} iterations (last |dx| = {size:.2e})"),
-            compiled_alpha.NOT_FINITE: ConvergenceError("non-finite Newton increment"),
-            compiled_alpha.SINGULAR_MATRIX: ConvergenceError(
-                "singular iteration matrix (a constraint lost rank or a mass vanished)"),
-            compiled_alpha.CHART_SINGULARITY: ChartSingularityError(
-                "a beam tangent is at the singular direction of the rotation chart"),
-        }.get(status)
-        return new, steps, its, status == compiled_alpha.CHART_LIMIT_REACHED, error
+        self.factorisations += factorisations
+        self.work = {"dissipated": self.work_done[0], "drive": self.work_done[1]}
+        rt, rx, rv, rxdd, ra, rlam, rwork = records
+        out = [(ga.AlphaState(rt[i], rx[i], rv[i], rxdd[i], ra[i], rlam[i], state.chart),
+                {"dissipated": rwork[i, 0], "drive": rwork[i, 1]}) for i in range(n_rec)]
+        new = ga.AlphaState(state.t + steps * self.dt, x, v, xdd, a, lam, state.chart)
+        message = self.ERRORS.get(status)
+        error = None
+        if message is not None:
+            text = message.format(its=self.newton.max_iterations, size=size)
+            error = (ChartSingularityError if status == compiled_alpha.CHART_SINGULARITY else ConvergenceError)(text)
+        return new, steps, its, status == compiled_alpha.CHART_LIMIT_REACHED, error, out
 
     def chart_changed(self):
         self.lu_valid[0] = 0
+
+
+#: a run reports progress (and takes a chunk of compiled steps) about this many times
+PROGRESS_UPDATES = 100
 
 
 def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
@@ -168,9 +194,10 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
              state: ga.AlphaState | None = None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
 
-    Steps run in compiled code between output times when the system has a compiled model
-    (:class:`CompiledSteps`), else step by step in Python (:class:`PythonSteps`).
-    ``progress(t)`` is called after every output time when given. On failure a
+    Steps run in compiled code, in chunks of about 1/100 of the run, when the system has a
+    compiled model (:class:`CompiledSteps`), else step by step in Python
+    (:class:`PythonSteps`); sensors are evaluated at the output times from the states the
+    steps kept. ``progress(t)`` is called after every chunk when given. On failure a
     ComputationError names the time and step and carries the trajectory so far in
     ``partial``. When a beam tangent comes within 60 deg of the chart's singular direction
     the state is moved to a better chart (counted in ``Trajectory.chart_switches``).
@@ -181,19 +208,21 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
     n_steps = int(round((t_end - state.t) / dt))
     every = max(1, int(round((output_dt or dt) / dt)))
     traj = Trajectory()
-    work = {"dissipated": 0.0, "drive": 0.0}
 
-    def record(st):
+    def record(st, work):
         traj.append(st.t, {s.name: measure(s, system, st, work) for s in sensors})
 
-    record(state)
+    record(state, {"dissipated": 0.0, "drive": 0.0})
     steps_class = CompiledSteps if system.compiled_model() is not None else PythonSteps
-    stepper = steps_class(system, params, newton, dt, state, work)
+    stepper = steps_class(system, params, newton, dt, state)
+    chunk_size = max(1, -(-n_steps // PROGRESS_UPDATES))
     start = time.perf_counter()
     k = 0
     while k < n_steps:
-        chunk = min(every - k % every, n_steps - k)
-        state, done, its, chart_limit, error = stepper.advance(state, chunk)
+        state, done, its, chart_limit, error, records = stepper.advance(state, min(chunk_size, n_steps - k), k,
+                                                                        every, n_steps)
+        for st, work in records:
+            record(st, work)
         k += done
         traj.steps = k
         traj.newton_iterations += its
@@ -204,8 +233,6 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
                 f"Try a smaller analysis.dt (now {dt:g} s), more beam.elements or a smaller analysis.spectral_radius.",
                 partial=traj,
             ) from error
-        if k % every == 0 or k == n_steps:
-            record(state)
         if chart_limit:
             state = change_chart(system, state, system.better_chart(state.x))
             stepper.chart_changed()

@@ -82,7 +82,7 @@ class Analysis(_Strict):
     output_dt: Positive | None = None
     load_steps: Annotated[int, Field(gt=0, le=100000)] = 20
     count: Annotated[int, Field(gt=0, le=500)] = 6
-    newton: Literal["full", "step", "modified"] = "full"
+    newton: Literal["full", "step", "modified"] = "modified"
     tolerance: Annotated[float, Field(gt=0.0, lt=1e-3)] = 1e-9
 
 

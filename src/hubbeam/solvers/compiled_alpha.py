@@ -35,7 +35,7 @@ def drive_power(model, lam, v):
 
 @njit(cache=True)
 def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scale, chart_limit,
-            lu, ipiv, lu_valid, work, power):
+            lu, ipiv, lu_valid, work, power, counters, schedule, records):
     """Take up to ``n_steps`` steps of length h from (t, x, v, xdd, a, lam) in chart F.
 
     The state arrays are updated in place after every converged step, so on any failure
@@ -46,18 +46,23 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     the factors for this h and chart) carry the factorisation between calls. ``work`` (2)
     accumulates the dissipated and the drive work (J) by the trapezoidal rule from the
     powers in ``power`` (2, at the current state; updated).
+    ``counters`` (int, 4) accumulates steps, Newton iterations, LU factorisations and
+    records. ``schedule`` = (steps before this call, record every so many steps, total
+    steps of the run): the state after global step k is copied into row counters[3] of
+    ``records`` = (t, x, v, xdd, a, lambda, work) when k is a multiple of the interval or
+    the last step.
 
-    Returns (status, steps taken, Newton iterations, LU factorisations, last |dx|): status DONE, or
-    CHART_LIMIT_REACHED after a step that brought a tangent within ``chart_limit`` of the
-    chart's singular direction (1 + d.tau < chart_limit; the caller changes the chart), or
-    a failure (NOT_CONVERGED, NOT_FINITE, SINGULAR_MATRIX, CHART_SINGULARITY).
+    Returns (status, last |dx|): status DONE, or CHART_LIMIT_REACHED after a step that
+    brought a tangent within ``chart_limit`` of the chart's singular direction
+    (1 + d.tau < chart_limit; the caller changes the chart), or a failure (NOT_CONVERGED,
+    NOT_FINITE, SINGULAR_MATRIX, CHART_SINGULARITY).
     """
     am, af, beta, gamma = alpha
     tol, max_iterations, update, refresh_rate, refresh_iterations = newton
     reused = update != 0  # 0 "iteration", 1 "step", 2 "adaptive" (NewtonOptions.update_code)
+    step0, every, total = schedule
     bw = model.bandwidth
     n = lu.shape[1]
-    m = lam.shape[0]
     ck = beta * h * h
     bprime = (1.0 - am) / (ck * (1.0 - af))
     gprime = gamma / (beta * h)
@@ -67,39 +72,34 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     xdd1 = np.empty_like(x)
     lam1 = np.empty_like(lam)
     res = np.empty(n)
-    empty = np.empty((0, 0))
-    iterations = 0
-    factorisations = 0
+    empty = np.empty((0, 0)).T  # Fortran layout like lu, so both calls share one compiled version
     size = 0.0
     for k in range(n_steps):
         t1 = t + h
         predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
         lam1[:] = lam
         fresh = update != 2 or lu_valid[0] == 0
-        if fresh:
-            margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale,
-                                            True, res, lu)
-        else:
-            margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, 0.0, 0.0, ck, mass_scale,
-                                            False, res, empty)
+        stale = not fresh  # the matrix is from earlier steps
+        margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale,
+                                        fresh, res, lu if fresh else empty)
         previous = np.inf
         converged = False
         for it in range(1, max_iterations + 1):
             if not margin > CHART_SINGULAR:
-                return CHART_SINGULARITY, k, iterations, factorisations, size
+                return CHART_SINGULARITY, size
             if fresh:
                 lu_valid[0] = 0
-                factorisations += 1
+                counters[2] += 1
                 if band_factor(lu, bw, bw, ipiv) != 0:
-                    return SINGULAR_MATRIX, k, iterations, factorisations, size
+                    return SINGULAR_MATRIX, size
                 lu_valid[0] = 1
             for i in range(n):
                 res[i] = -res[i]
             band_solve(lu, bw, bw, ipiv, res)
-            iterations += 1
+            counters[1] += 1
             if not np.all(np.isfinite(res)):
                 lu_valid[0] = 0
-                return NOT_FINITE, k, iterations, factorisations, size
+                return NOT_FINITE, size
             size = apply_increment(res, gprime, bprime, mass_scale / ck, x1, v1, xdd1, lam1)
             error, rate = newton_error(size, previous, reused)
             if error <= tol:
@@ -108,12 +108,22 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                     lu_valid[0] = 0
                 break
             fresh = not reused or rate > refresh_rate
+            if reused and fresh and rate >= 1.0:  # the increment grew: not the place for the matrix
+                if stale:  # a matrix from earlier steps: restart from the predictor
+                    predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
+                    lam1[:] = lam
+                else:  # take the increment back
+                    for i in range(n):
+                        res[i] = -res[i]
+                    apply_increment(res, gprime, bprime, mass_scale / ck, x1, v1, xdd1, lam1)
+            if fresh:
+                stale = False
             margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale,
                                             fresh, res, lu if fresh else empty)
             previous = np.inf if fresh else size
         if not converged:
             lu_valid[0] = 0
-            return NOT_CONVERGED, k, iterations, factorisations, size
+            return NOT_CONVERGED, size
         for i in range(x.shape[0]):
             a[i] = algorithmic_acceleration(xdd1[i], xdd[i], a[i], am, af)
         x[:] = x1
@@ -127,6 +137,23 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         work[1] += 0.5 * h * (power[1] + p_h)
         power[0] = p_d
         power[1] = p_h
+        counters[0] += 1
+        step = step0 + k + 1
+        if step % every == 0 or step == total:
+            _record(records, counters[3], t, x, v, xdd, a, lam, work)
+            counters[3] += 1
         if margin < chart_limit:
-            return CHART_LIMIT_REACHED, k + 1, iterations, factorisations, size
-    return DONE, n_steps, iterations, factorisations, size
+            return CHART_LIMIT_REACHED, size
+    return DONE, size
+
+
+@njit(cache=True)
+def _record(records, row, t, x, v, xdd, a, lam, work):
+    rt, rx, rv, rxdd, ra, rlam, rwork = records
+    rt[row] = t
+    rx[row, :] = x
+    rv[row, :] = v
+    rxdd[row, :] = xdd
+    ra[row, :] = a
+    rlam[row, :] = lam
+    rwork[row, :] = work

@@ -79,14 +79,16 @@ class NewtonOptions:
     reused across iterations and steps, refreshed when the contraction rate exceeds
     ``refresh_rate`` or on the next step after a step that needed more than
     ``refresh_iterations``). "step" and "adaptive" refresh within a step too when the rate
-    exceeds ``refresh_rate``.
+    exceeds ``refresh_rate``. When an increment grows (rate >= 1) the fresh matrix is built
+    at the previous iterate (the increment is taken back), or at the predictor when the
+    matrix was from earlier steps.
     """
 
     tolerance: float = 1e-9
     max_iterations: int = 25
-    update: str = "iteration"
+    update: str = "adaptive"
     refresh_rate: float = 0.25
-    refresh_iterations: int = 6
+    refresh_iterations: int = 2
 
     def __post_init__(self) -> None:
         if self.update not in UPDATES:
@@ -226,7 +228,8 @@ def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
         return res, factorise(matrix, h, state.chart)
 
     reused = options.update != "iteration"
-    if options.update != "adaptive" or matrix is None or not matrix.valid_for(h, state.chart):
+    stale = not (options.update != "adaptive" or matrix is None or not matrix.valid_for(h, state.chart))
+    if not stale:
         res, matrix = fresh_matrix()
     else:
         res = system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s)
@@ -242,7 +245,14 @@ def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
             keep = matrix if options.update == "adaptive" and it <= options.refresh_iterations else None
             return AlphaState(t1, x, v, xdd, a_new, lam, state.chart), it, keep
         if not reused or rate > options.refresh_rate:
+            if reused and rate >= 1.0:  # the increment grew: do not build the matrix where it led
+                if stale:  # a matrix from earlier steps: restart from the predictor
+                    predict(state.x, state.v, state.xdd, state.a, h, am, af, beta, gamma, x, v, xdd)
+                    lam[:] = state.lam
+                else:  # take the increment back
+                    apply_increment(-dz, gprime, bprime, s / ck, x, v, xdd, lam)
             res, matrix = fresh_matrix()
+            stale = False
             previous = np.inf
         else:
             res = system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s)

@@ -195,6 +195,10 @@ class AncfHubSystem(HubSystem):
 
     # ------------------------------------------------------------ dynamics
     def compiled_model(self) -> AncfModel:
+        """Constants for compiled time integration: :meth:`equations_model`."""
+        return self.equations_model()
+
+    def equations_model(self) -> AncfModel:
         """The constants of the compiled equations of motion (:mod:`hubbeam.system.ancf_equations`),
         from the system's current fields."""
         beam = self.beam
@@ -212,7 +216,7 @@ class AncfHubSystem(HubSystem):
         )
 
     def _equations(self, x, v, acc, lam, F, t, coefs, want_matrix):
-        model = self.compiled_model()
+        model = self.equations_model()
         n = 1 + lam.shape[0] + self.beam.ndof
         res = np.empty(n)
         bw = model.bandwidth

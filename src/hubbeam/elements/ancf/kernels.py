@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from hubbeam.elements.ancf.strain import PHI, PSI, jet_workspace, strain_jet
+from hubbeam.elements.ancf.strain import PHI, PSI, strain_jet
 
 NODE_DOFS = 8
 ELEMENT_DOFS = 16
@@ -36,6 +36,8 @@ DOF_COMPONENT = np.array([0, 1, 2, 0, 1, 2, -1, -1, 0, 1, 2, 0, 1, 2, -1, -1])
 #: ... and the two Gauss-point variables it enters (index into X)
 DOF_FIRST = np.array([0, 1, 2, 0, 1, 2, PHI, PHI, 0, 1, 2, 0, 1, 2, PHI, PHI])
 DOF_SECOND = np.array([3, 4, 5, 3, 4, 5, PSI, PSI, 3, 4, 5, 3, 4, 5, PSI, PSI])
+#: ... and, for the rotary inertia on (r0' (3), theta_1), the variable it moves with weight w1
+ROTARY_COLUMN = np.array([0, 1, 2, 0, 1, 2, 3, 3, 0, 1, 2, 0, 1, 2, 3, 3])
 
 
 @njit(cache=True, error_model="numpy")
@@ -113,7 +115,6 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, scale, force, blocks)
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
     want_tangent = blocks.shape[0] == n_el
     force[:] = 0.0
-    ws = jet_workspace()
     X = np.empty(8)
     e = np.empty(4)
     G = np.empty((4, 8))
@@ -123,16 +124,19 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, scale, force, blocks)
     HW = np.empty((8, 8))
     HY = np.empty((8, 8))
     tmp = np.empty((8, 8))
+    R = np.empty((ELEMENT_DOFS, 8))
+    Ke = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
     w1 = np.empty(ELEMENT_DOFS)
     w2 = np.empty(ELEMENT_DOFS)
     energy = 0.0
     chart_margin = 2.0
     for el in range(n_el):
         o = NODE_DOFS * el
+        Ke[:, :] = 0.0
         for g in range(w.shape[0]):
             dof_weights(S, dS, d2S, g, w1, w2)
             gauss_variables(q, o, F, w1, w2, gY, X)
-            s0 = strain_jet(X, e, G, H, ws, want_tangent)
+            s0 = strain_jet(X, e, G, H, want_tangent)
             L = np.sqrt(X[0] ** 2 + X[1] ** 2 + X[2] ** 2)
             chart_margin = min(chart_margin, s0 / L)
             jw = w[g] * length
@@ -155,22 +159,36 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, scale, force, blocks)
                         HW[i, j] = acc
                         HW[j, i] = acc
                 _matrix_to_global(F, HW, tmp, HY)
-                _add_sandwich(blocks, el, HY, w1, w2, scale * jw)
+                _add_sandwich(Ke, HY, w1, w2, scale * jw, R)
+        if want_tangent:
+            _add_symmetric(blocks, el, Ke)
     return energy, chart_margin
 
 
 @njit(cache=True, error_model="numpy")
-def _add_sandwich(blocks, el, HY, w1, w2, factor):
-    """blocks[el] += factor B^T HY B for the two-entry columns of B (:func:`dof_weights`)."""
+def _add_sandwich(Ke, HY, w1, w2, factor, R):
+    """Upper triangle of Ke += factor B^T HY B for the two-entry columns of B
+    (:func:`dof_weights`); R (16 x 8): scratch for the rows of B^T HY."""
     for i in range(ELEMENT_DOFS):
         a1, a2 = DOF_FIRST[i], DOF_SECOND[i]
-        for j in range(i, ELEMENT_DOFS):
-            b1, b2 = DOF_FIRST[j], DOF_SECOND[j]
-            val = factor * (w1[i] * (w1[j] * HY[a1, b1] + w2[j] * HY[a1, b2])
-                            + w2[i] * (w1[j] * HY[a2, b1] + w2[j] * HY[a2, b2]))
-            blocks[el, i, j] += val
-            if j != i:
-                blocks[el, j, i] += val
+        u1, u2 = factor * w1[i], factor * w2[i]
+        for c in range(8):
+            R[i, c] = u1 * HY[a1, c] + u2 * HY[a2, c]
+    for j in range(ELEMENT_DOFS):
+        b1, b2 = DOF_FIRST[j], DOF_SECOND[j]
+        v1, v2 = w1[j], w2[j]
+        for i in range(j + 1):
+            Ke[i, j] += v1 * R[i, b1] + v2 * R[i, b2]
+
+
+@njit(cache=True, error_model="numpy")
+def _add_symmetric(blocks, el, Ke):
+    """blocks[el] += Ke from its upper triangle."""
+    for i in range(ELEMENT_DOFS):
+        blocks[el, i, i] += Ke[i, i]
+        for j in range(i + 1, ELEMENT_DOFS):
+            blocks[el, i, j] += Ke[i, j]
+            blocks[el, j, i] += Ke[i, j]
 
 
 @njit(cache=True, error_model="numpy")
@@ -246,7 +264,6 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
     want_matrix = blocks.shape[0] == n_el
     force[:] = 0.0
-    ws = jet_workspace()
     Z = np.empty(8)
     Xq = np.empty(8)
     Xv = np.empty(8)
@@ -266,8 +283,10 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
     vi = (3, 4, 5, PSI)  # Xdot
     J0, J1, J2 = inertia[0], inertia[1], inertia[2]
     energy = 0.0
+    Ke = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
     for el in range(n_el):
         o = NODE_DOFS * el
+        Ke[:, :] = 0.0
         for g in range(w.shape[0]):
             # Z = (F^T r0', F^T d r0'/dt, theta_1, d theta_1/dt); the r0'' slots of X are unused
             dof_weights(S, dS, dS, g, w1, w2)
@@ -279,7 +298,7 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
                 Z[3 + i] = Xv[i]
             Z[6] = Xq[6]
             Z[7] = Xv[6]
-            strain_jet(Z, e, G, H, ws, False)
+            strain_jet(Z, e, G, H, False)
             om0, om1, om2 = e[1], e[2], e[3]
             # omega x J omega
             gy0 = (J2 - J1) * om1 * om2
@@ -308,19 +327,14 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
                     for c in range(4):
                         Mx[r, c] = J0 * B[0, r] * B[0, c] + J1 * B[1, r] * B[1, c] + J2 * B[2, r] * B[2, c]
                 _mass_to_global(F, Mx, Mg)
-                for i in range(ELEMENT_DOFS):
-                    ci = _rotary_column(i)
-                    for j in range(ELEMENT_DOFS):
-                        blocks[el, i, j] += scale * jw * w1[i] * w1[j] * Mg[ci, _rotary_column(j)]
+                for j in range(ELEMENT_DOFS):
+                    cj = ROTARY_COLUMN[j]
+                    wj = scale * jw * w1[j]
+                    for i in range(j + 1):
+                        Ke[i, j] += wj * w1[i] * Mg[ROTARY_COLUMN[i], cj]
+        if want_matrix:
+            _add_symmetric(blocks, el, Ke)
     return energy
-
-
-@njit(cache=True, error_model="numpy")
-def _rotary_column(j):
-    """Index in (r0' (3), theta_1) of the Gauss-point variable that element coordinate j
-    moves with weight w1[j] (:func:`dof_weights`)."""
-    c = DOF_COMPONENT[j]
-    return c if c >= 0 else 3
 
 
 @njit(cache=True, error_model="numpy")

@@ -44,34 +44,61 @@ def strain_measures(U, V, phi, psi):
     return L - 1.0, psi - L * g, c * a + s * b, -s * a + c * b
 
 
-#: rows of the scratch arrays of :func:`strain_jet`: gradients (6-vectors on y = (U, V)) of
-#: L, lam = 1/L^2, qi = 1/(L + U0), g, a, b, L + U0, and Hessians (6 x 6) of L, lam, qi, g, a, b
-_GL, _GLAM, _GQ, _GG, _GA, _GB, _GS0 = 0, 1, 2, 3, 4, 5, 6
-_HL, _HLAM, _HQ, _HG, _HA, _HB = 0, 1, 2, 3, 4, 5
-_WS_VEC = 7
-_WS_MAT = 6
+@njit(cache=True, error_model="numpy")
+def _levi_civita(i, j, k):
+    return float((i - j) * (j - k) * (k - i)) / 2.0
 
 
 @njit(cache=True, error_model="numpy")
-def jet_workspace():
-    """Scratch arrays for :func:`strain_jet`, allocated once by the caller and reused."""
-    return np.empty((_WS_VEC, 6)), np.empty((_WS_MAT, 6, 6)), np.empty((3, 6)), np.empty((3, 6)), np.empty((3, 6, 6))
+def _partials(p, X, L, lam, qi, C0, C1, C2, K0):
+    """Derivatives with respect to y_p, y = (U, V), of the intermediates L, lam = 1/L^2,
+    C = U x V, K = lam C, qi = 1/(L + U0) and g = K0 qi (all as scalars, no arrays)."""
+    if p < 3:
+        Up = X[p]
+        gL = Up / L
+        glam = -2.0 * lam * lam * Up
+        # d(U x V)/dU_p = e_p x V
+        V0, V1, V2 = X[3], X[4], X[5]
+        if p == 0:
+            gC0, gC1, gC2 = 0.0, -V2, V1
+        elif p == 1:
+            gC0, gC1, gC2 = V2, 0.0, -V0
+        else:
+            gC0, gC1, gC2 = -V1, V0, 0.0
+        gq = -qi * qi * (gL + (1.0 if p == 0 else 0.0))
+    else:
+        gL = glam = gq = 0.0
+        # d(U x V)/dV_k = U x e_k
+        U0, U1, U2 = X[0], X[1], X[2]
+        k = p - 3
+        if k == 0:
+            gC0, gC1, gC2 = 0.0, U2, -U1
+        elif k == 1:
+            gC0, gC1, gC2 = -U2, 0.0, U0
+        else:
+            gC0, gC1, gC2 = U1, -U0, 0.0
+    gK0 = lam * gC0 + C0 * glam
+    gK1 = lam * gC1 + C1 * glam
+    gK2 = lam * gC2 + C2 * glam
+    gg = qi * gK0 + K0 * gq
+    return gL, glam, gC0, gC1, gC2, gK0, gK1, gK2, gq, gg
 
 
 @njit(cache=True, error_model="numpy")
-def strain_jet(X, e, G, H, ws, hessian):
+def strain_jet(X, e, G, H, hessian):
     """Strain measures e[4], gradients G[4, 8] and (when ``hessian``) Hessians H[4, 8, 8] at X.
 
     Order of e: eps0, kappa1 (torsion), kappa2 (about m, weak axis for b > h),
-    kappa3 (about n). ``ws`` is a :func:`jet_workspace`; nothing is allocated.
-    Returns L + U0, the distance to the chart singularity (divided by L it is 1 + d.tau).
+    kappa3 (about n). Returns L + U0, the distance to the chart singularity (divided by L
+    it is 1 + d.tau).
 
     Every intermediate depends on y = (U, V) only, and none is more than linear in V, so
-    their Hessians live on the 6 x 6 (U, V) block with a zero V-V part; theta enters by
-    the final rotation and theta' linearly.
+    their Hessians live on the upper U-U and the U-V pairs of the 6 x 6 (U, V) block;
+    theta enters by the final rotation and theta' linearly. Everything is scalar
+    arithmetic (:func:`_partials` gives the intermediates' gradients one variable at a
+    time): arrays of intermediates cost more in reference counting and memory traffic
+    than the arithmetic itself.
     """
-    # scratch rows (indexing the 2-D arrays directly: a view would cost a reference count)
-    vec, mat, gC, gK, HK = ws
     U0, U1, U2 = X[0], X[1], X[2]
     V0, V1, V2 = X[3], X[4], X[5]
     phi = X[PHI]
@@ -79,68 +106,15 @@ def strain_jet(X, e, G, H, ws, hessian):
     L2 = U0 * U0 + U1 * U1 + U2 * U2
     L = np.sqrt(L2)
     lam = 1.0 / L2
-
-    # L = |U|, lam = 1/L^2 (functions of U only)
-    for p in range(6):
-        vec[_GL, p] = 0.0
-        vec[_GLAM, p] = 0.0
-    for i in range(3):
-        vec[_GL, i] = X[i] / L
-        vec[_GLAM, i] = -2.0 * lam * lam * X[i]
-    # K = lam (U x V): C_i = eps_ijk U_j V_k
-    K0 = K1 = K2 = 0.0
-    for i in range(3):
-        j = (i + 1) % 3
-        k = (i + 2) % 3
-        Ci = X[j] * X[3 + k] - X[k] * X[3 + j]
-        for p in range(6):
-            gC[i, p] = 0.0
-        gC[i, j] = X[3 + k]
-        gC[i, k] = -X[3 + j]
-        gC[i, 3 + k] = X[j]
-        gC[i, 3 + j] = -X[k]
-        Ki = lam * Ci
-        for p in range(6):
-            gK[i, p] = lam * gC[i, p] + Ci * vec[_GLAM, p]
-        if i == 0:
-            K0 = Ki
-        elif i == 1:
-            K1 = Ki
-        else:
-            K2 = Ki
-        if hessian:
-            for p in range(6):
-                for q in range(6):
-                    HK[i, p, q] = vec[_GLAM, p] * gC[i, q] + gC[i, p] * vec[_GLAM, q]
-            for p in range(3):
-                for q in range(3):
-                    HK[i, p, q] += Ci * (8.0 * lam * lam * lam * X[p] * X[q] - (2.0 * lam * lam if p == q else 0.0))
-            # lam * Hess(C_i): d2 C_i / dU_j dV_k = +1, d2 C_i / dU_k dV_j = -1
-            HK[i, j, 3 + k] += lam
-            HK[i, 3 + k, j] += lam
-            HK[i, k, 3 + j] -= lam
-            HK[i, 3 + j, k] -= lam
-
-    # qi = 1 / (L + U0); g = K0 qi
+    C0 = U1 * V2 - U2 * V1
+    C1 = U2 * V0 - U0 * V2
+    C2 = U0 * V1 - U1 * V0
+    K0, K1, K2 = lam * C0, lam * C1, lam * C2
     s0 = L + U0
     qi = 1.0 / s0
-    for p in range(6):
-        vec[_GS0, p] = vec[_GL, p]
-    vec[_GS0, 0] += 1.0
-    for p in range(6):
-        vec[_GQ, p] = -qi * qi * vec[_GS0, p]
     g = K0 * qi
-    for p in range(6):
-        vec[_GG, p] = qi * gK[0, p] + K0 * vec[_GQ, p]
-    # a = K1 - U1 g,  b = K2 - U2 g
     a = K1 - U1 * g
     b = K2 - U2 * g
-    for p in range(6):
-        vec[_GA, p] = gK[1, p] - U1 * vec[_GG, p]
-        vec[_GB, p] = gK[2, p] - U2 * vec[_GG, p]
-    vec[_GA, 1] -= g
-    vec[_GB, 2] -= g
-
     c = np.cos(phi)
     s = np.sin(phi)
     k2 = c * a + s * b
@@ -149,51 +123,54 @@ def strain_jet(X, e, G, H, ws, hessian):
     e[1] = psi - L * g
     e[2] = k2
     e[3] = k3
-    for k in range(4):
-        G[k, 6] = 0.0
-        G[k, 7] = 0.0
     for p in range(6):
-        G[0, p] = vec[_GL, p]
-        G[1, p] = -L * vec[_GG, p] - g * vec[_GL, p]
-        G[2, p] = c * vec[_GA, p] + s * vec[_GB, p]
-        G[3, p] = -s * vec[_GA, p] + c * vec[_GB, p]
+        gL, _, _, _, _, gK0, gK1, gK2, _, gg = _partials(p, X, L, lam, qi, C0, C1, C2, K0)
+        ga = gK1 - U1 * gg - (g if p == 1 else 0.0)
+        gb = gK2 - U2 * gg - (g if p == 2 else 0.0)
+        G[0, p] = gL
+        G[1, p] = -L * gg - g * gL
+        G[2, p] = c * ga + s * gb
+        G[3, p] = -s * ga + c * gb
+    G[0, PHI] = G[0, PSI] = 0.0
+    G[1, PHI] = 0.0
     G[1, PSI] = 1.0
     G[2, PHI] = k3
     G[3, PHI] = -k2
+    G[2, PSI] = G[3, PSI] = 0.0
     if not hessian:
         return s0
 
-    for p in range(6):
-        for q in range(6):
-            mat[_HL, p, q] = 0.0
-            mat[_HQ, p, q] = 2.0 * qi * qi * qi * vec[_GS0, p] * vec[_GS0, q]
-    for p in range(3):
-        for q in range(3):
-            mat[_HL, p, q] = ((1.0 if p == q else 0.0) - vec[_GL, p] * vec[_GL, q]) / L
-            mat[_HQ, p, q] -= qi * qi * mat[_HL, p, q]
-    for p in range(6):
-        for q in range(6):
-            mat[_HG, p, q] = qi * HK[0, p, q] + K0 * mat[_HQ, p, q] + vec[_GQ, p] * gK[0, q] + gK[0, p] * vec[_GQ, q]
-    for p in range(6):
-        for q in range(6):
-            mat[_HA, p, q] = HK[1, p, q] - U1 * mat[_HG, p, q]
-            mat[_HB, p, q] = HK[2, p, q] - U2 * mat[_HG, p, q]
-    for p in range(6):
-        mat[_HA, 1, p] -= vec[_GG, p]
-        mat[_HA, p, 1] -= vec[_GG, p]
-        mat[_HB, 2, p] -= vec[_GG, p]
-        mat[_HB, p, 2] -= vec[_GG, p]
     for k in range(4):
         for p in range(8):
-            for q in range(6, 8):
+            for q in range(8):
                 H[k, p, q] = 0.0
-                H[k, q, p] = 0.0
-    for p in range(6):
-        for q in range(6):
-            H[0, p, q] = mat[_HL, p, q]
-            H[1, p, q] = -L * mat[_HG, p, q] - g * mat[_HL, p, q] - vec[_GL, p] * vec[_GG, q] - vec[_GG, p] * vec[_GL, q]
-            H[2, p, q] = c * mat[_HA, p, q] + s * mat[_HB, p, q]
-            H[3, p, q] = -s * mat[_HA, p, q] + c * mat[_HB, p, q]
+    for p in range(3):
+        gLp, glamp, gC0p, gC1p, gC2p, gK0p, _, _, gqp, ggp = _partials(p, X, L, lam, qi, C0, C1, C2, K0)
+        for q in range(p, 6):
+            gLq, glamq, gC0q, gC1q, gC2q, gK0q, _, _, gqq, ggq = _partials(q, X, L, lam, qi, C0, C1, C2, K0)
+            if q < 3:
+                dpq = 1.0 if p == q else 0.0
+                HL = (dpq - gLp * gLq) / L
+                Hlam = 8.0 * lam * lam * lam * X[p] * X[q] - 2.0 * lam * lam * dpq
+                Hq = 2.0 * qi * qi * qi * (gLp + (1.0 if p == 0 else 0.0)) * (gLq + (1.0 if q == 0 else 0.0)) \
+                    - qi * qi * HL
+            else:
+                HL = Hlam = Hq = 0.0
+            # K_i = lam C_i; d2 C_i / dU_p dV_l = eps_{i p l}
+            HK0 = glamp * gC0q + gC0p * glamq + C0 * Hlam
+            HK1 = glamp * gC1q + gC1p * glamq + C1 * Hlam
+            HK2 = glamp * gC2q + gC2p * glamq + C2 * Hlam
+            if q >= 3:
+                HK0 += lam * _levi_civita(0, p, q - 3)
+                HK1 += lam * _levi_civita(1, p, q - 3)
+                HK2 += lam * _levi_civita(2, p, q - 3)
+            Hg = qi * HK0 + K0 * Hq + gqp * gK0q + gK0p * gqq
+            Ha = HK1 - U1 * Hg - ((ggq if p == 1 else 0.0) + (ggp if q == 1 else 0.0))
+            Hb = HK2 - U2 * Hg - ((ggq if p == 2 else 0.0) + (ggp if q == 2 else 0.0))
+            H[0, p, q] = H[0, q, p] = HL
+            H[1, p, q] = H[1, q, p] = -L * Hg - g * HL - gLp * ggq - ggp * gLq
+            H[2, p, q] = H[2, q, p] = c * Ha + s * Hb
+            H[3, p, q] = H[3, q, p] = -s * Ha + c * Hb
     # the rotation by theta: d/dtheta of (k2, k3) is (k3, -k2)
     for p in range(6):
         H[2, PHI, p] = H[2, p, PHI] = G[3, p]
