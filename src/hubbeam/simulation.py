@@ -93,7 +93,7 @@ class PythonSteps:
     def __init__(self, system: HubSystem, params, newton, dt, state: ga.AlphaState) -> None:
         self.system, self.params, self.newton, self.dt = system, params, newton, dt
         self.work = {"dissipated": 0.0, "drive": 0.0}
-        self.matrix = None
+        self.kept = None  # the iteration matrix kept between steps
         self.power = self._power(state)
         self.factorisations = None  # counted by the compiled steps only
 
@@ -110,7 +110,7 @@ class PythonSteps:
         records = []
         for k in range(n_steps):
             try:
-                state, its, self.matrix = ga.step(self.system, state, self.dt, self.params, self.newton, self.matrix)
+                state, its, self.kept = ga.step(self.system, state, self.dt, self.params, self.newton, self.kept)
             except (ConvergenceError, ChartSingularityError) as exc:
                 return state, k, iterations, False, exc, records
             iterations += its
@@ -126,7 +126,7 @@ class PythonSteps:
         return state, n_steps, iterations, False, None, records
 
     def chart_changed(self):
-        self.matrix = None
+        self.kept = None
 
 
 class CompiledSteps(PythonSteps):
@@ -147,7 +147,7 @@ class CompiledSteps(PythonSteps):
         bw = self.model.bandwidth
         self.lu = np.zeros((3 * bw + 1, n), order="F")
         self.ipiv = np.zeros(n, dtype=np.int32)
-        self.lu_valid = np.zeros(1, dtype=np.int64)
+        self.reuse = ga.reuse_state()
         self.factorisations = 0
         self.work_done = np.zeros(2)
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
@@ -164,7 +164,7 @@ class CompiledSteps(PythonSteps):
         chart = np.ascontiguousarray(state.chart)
         status, size = compiled_alpha.advance(
             self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
-            self.system.mass_scale, CHART_LIMIT, self.lu, self.ipiv, self.lu_valid, self.work_done, power,
+            self.system.mass_scale, CHART_LIMIT, self.lu, self.ipiv, self.reuse, self.work_done, power,
             counters, (step0, every, total), records)
         steps, its, factorisations, n_rec = (int(c) for c in counters)
         self.power = (power[0], power[1])
@@ -182,7 +182,7 @@ class CompiledSteps(PythonSteps):
         return new, steps, its, status == compiled_alpha.CHART_LIMIT_REACHED, error, out
 
     def chart_changed(self):
-        self.lu_valid[0] = 0
+        self.reuse[ga.REUSE_VALID] = 0
 
 
 #: a run reports progress (and takes a chunk of compiled steps) about this many times

@@ -17,7 +17,9 @@ import numpy as np
 from numba import njit
 
 from hubbeam.solvers.banded import band_factor, band_solve
-from hubbeam.solvers.generalized_alpha import algorithmic_acceleration, apply_increment, newton_error, predict
+from hubbeam.solvers.generalized_alpha import (REUSE_VALID, algorithmic_acceleration, apply_increment,
+                                               kept_matrix_failed, kept_matrix_worked, newton_error, predict,
+                                               use_kept_matrix)
 from hubbeam.system.ancf_equations import CHART_SINGULAR, dissipated_power, equations_of_motion, n_constraints
 
 #: what :func:`advance` returns as its status
@@ -35,15 +37,16 @@ def drive_power(model, lam, v):
 
 @njit(cache=True)
 def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scale, chart_limit,
-            lu, ipiv, lu_valid, work, power, counters, schedule, records):
+            lu, ipiv, reuse, work, power, counters, schedule, records):
     """Take up to ``n_steps`` steps of length h from (t, x, v, xdd, a, lam) in chart F.
 
     The state arrays are updated in place after every converged step, so on any failure
     they hold the last good state. ``alpha`` = (alpha_m, alpha_f, beta, gamma); ``newton``
     = (tolerance on |dx| (m), max iterations, NewtonOptions.update_code, refresh rate,
     refresh iterations).
-    ``lu`` (band storage, Fortran order), ``ipiv`` and ``lu_valid[0]`` (1 when ``lu`` holds
-    the factors for this h and chart) carry the factorisation between calls. ``work`` (2)
+    ``lu`` (band storage, Fortran order), ``ipiv`` and ``reuse`` (the reuse state of
+    :func:`hubbeam.solvers.generalized_alpha.reuse_state`; valid means ``lu`` holds factors
+    for this h and chart) carry the factorisation between calls. ``work`` (2)
     accumulates the dissipated and the drive work (J) by the trapezoidal rule from the
     powers in ``power`` (2, at the current state; updated).
     ``counters`` (int, 4) accumulates steps, Newton iterations, LU factorisations and
@@ -78,8 +81,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         t1 = t + h
         predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
         lam1[:] = lam
-        fresh = update != 2 or lu_valid[0] == 0
-        stale = not fresh  # the matrix is from earlier steps
+        stale = update == 2 and use_kept_matrix(reuse)  # the matrix is from earlier steps
+        fresh = not stale
         margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale,
                                         fresh, res, lu if fresh else empty)
         previous = np.inf
@@ -88,26 +91,30 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             if not margin > CHART_SINGULAR:
                 return CHART_SINGULARITY, size
             if fresh:
-                lu_valid[0] = 0
+                reuse[REUSE_VALID] = 0
                 counters[2] += 1
                 if band_factor(lu, bw, bw, ipiv) != 0:
                     return SINGULAR_MATRIX, size
-                lu_valid[0] = 1
+                reuse[REUSE_VALID] = 1
             for i in range(n):
                 res[i] = -res[i]
             band_solve(lu, bw, bw, ipiv, res)
             counters[1] += 1
             if not np.all(np.isfinite(res)):
-                lu_valid[0] = 0
+                reuse[REUSE_VALID] = 0
                 return NOT_FINITE, size
             size = apply_increment(res, gprime, bprime, mass_scale / ck, x1, v1, xdd1, lam1)
             error, rate = newton_error(size, previous, reused)
             if error <= tol:
                 converged = True
+                if stale:
+                    kept_matrix_worked(reuse)
                 if update != 2 or it > refresh_iterations:
-                    lu_valid[0] = 0
+                    reuse[REUSE_VALID] = 0
                 break
             fresh = not reused or rate > refresh_rate
+            if stale and fresh:
+                kept_matrix_failed(reuse)
             if reused and fresh and rate >= 1.0:  # the increment grew: not the place for the matrix
                 if stale:  # a matrix from earlier steps: restart from the predictor
                     predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
@@ -122,7 +129,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                                             fresh, res, lu if fresh else empty)
             previous = np.inf if fresh else size
         if not converged:
-            lu_valid[0] = 0
+            reuse[REUSE_VALID] = 0
             return NOT_CONVERGED, size
         for i in range(x.shape[0]):
             a[i] = algorithmic_acceleration(xdd1[i], xdd[i], a[i], am, af)
