@@ -220,7 +220,9 @@ class AncfHubSystem(HubSystem):
         n = 1 + lam.shape[0] + self.beam.ndof
         res = np.empty(n)
         bw = model.bandwidth
-        ab = np.zeros((3 * bw + 1, n) if want_matrix else (0, 0), order="F")
+        # always a full Fortran-ordered array (a 0 x 0 one would be typed C-ordered and load
+        # a second compiled version of the equations)
+        ab = np.zeros((3 * bw + 1, n), order="F")
         margin, _ = equations_of_motion(model, np.ascontiguousarray(F), *(np.asarray(a, dtype=float) for a in (x, v, acc, lam)),
                                         float(t), *map(float, coefs), want_matrix, res, ab)
         if not margin > CHART_SINGULAR:
