@@ -49,8 +49,8 @@ def run_hubbeam(elements: int, t_end: float, dt: float) -> dict:
 
 
 def run_exudyn_cable(elements: int, t_end: float, dt: float) -> dict:
+    """Case A with Exudyn's ObjectANCFCable (3D ANCF, no torsion), weak-axis bending stiffness."""
     import exudyn as exu
-    import numpy as np
     from exudyn.beams import GenerateBeamElementsAlongLine
     from exudyn.itemInterface import ObjectANCFCable, SensorNode
 

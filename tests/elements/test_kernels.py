@@ -124,7 +124,7 @@ def _dense(beam, blocks):
 
 
 def test_quadratic_velocity_force_follows_from_lagrange_with_the_mass_matrix():
-    """Q_v = -(dM/dt qdot - d(1/2 qdot^T M qdot)/dq), M from mass_kernel (checked above against
+    """Q_v = -(dM/dt qdot - d(1/2 qdot^T M qdot)/dq), M from AncfBeam.mass_blocks (checked above against
     the sampled kinetic energy), both derivatives by finite differences."""
     fat = AncfBeam(1.45, 2, plate(width=0.3, thickness=0.2), gauss_points=6)
     q, F = bent_state(fat, seed=4, amplitude=0.1)

@@ -27,7 +27,7 @@ def test_newton_matrix_is_the_derivative_of_the_residual(motion):
     x0[1:] += 0.02 * rng.normal(size=x0.size - 1)
     m = system.n_constraints(motion != "free")
     lam0 = rng.normal(size=m)
-    h, ck, gp, bp, s = 1e-3, 0.3e-6, 1.1e3, 3.3e6, system.mass_scale
+    ck, gp, bp, s = 0.3e-6, 1.1e3, 3.3e6, system.mass_scale  # beta h^2, gamma', beta' at h = 1 ms
     coefs = (ck * bp, ck * gp, ck, s)
     zero = np.zeros_like(x0)
 
