@@ -146,6 +146,7 @@ def _cmd_run(args, scenario) -> dict:
     final = {name: values[-1] for name, values in traj.records.items()}
     summary = {"steps": traj.steps, "newton_iterations": traj.newton_iterations,
                "newton_iterations_per_step": traj.newton_iterations / max(traj.steps, 1),
+               "lu_factorisations": traj.factorisations,
                "wall_time_s": traj.wall_time_s, "chart_switches": traj.chart_switches, "final": final}
     if not args.json:
         print(f"{traj.steps} steps, {summary['newton_iterations_per_step']:.2f} Newton iterations per step, "
