@@ -25,3 +25,17 @@ def test_trajectory_netcdf_reads_back_as_the_dataset(tmp_path):
         assert ds.time.attrs["units"] == "s"
         assert {k: ds.attrs[k] for k in ("name", "scenario")} == {k: expected.attrs[k] for k in ("name", "scenario")}
         assert int(ds.attrs["steps"]) == traj.steps == 4
+
+
+def test_benchmark_scenarios_load_and_run(tmp_path):
+    """benchmarks/case_a.toml and case_b.toml (issue 6) are valid scenarios that run."""
+    from pathlib import Path
+
+    from hubbeam.io.scenario import load_scenario
+
+    here = Path(__file__).resolve().parents[2] / "benchmarks"
+    for name, part in (("case_a.toml", "vertical"), ("case_b.toml", "tangential")):
+        scenario = load_scenario(here / name, ["analysis.t_end=0.005"])
+        traj, failure = api.run(scenario)
+        assert failure is None and traj.steps == 5
+        assert np.isfinite(traj.records["tip"][-1][part])

@@ -80,7 +80,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     for k in range(n_steps):
         t1 = t + h
         predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
-        lam1[:] = lam
+        _copy(lam1, lam)
         stale = update == 2 and use_kept_matrix(reuse)  # the matrix is from earlier steps
         fresh = not stale
         margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale,
@@ -118,7 +118,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             if reused and fresh and rate >= 1.0:  # the increment grew: not the place for the matrix
                 if stale:  # a matrix from earlier steps: restart from the predictor
                     predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
-                    lam1[:] = lam
+                    _copy(lam1, lam)
                 else:  # take the increment back
                     for i in range(n):
                         res[i] = -res[i]
@@ -133,10 +133,10 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             return NOT_CONVERGED, size
         for i in range(x.shape[0]):
             a[i] = algorithmic_acceleration(xdd1[i], xdd[i], a[i], am, af)
-        x[:] = x1
-        v[:] = v1
-        xdd[:] = xdd1
-        lam[:] = lam1
+        _copy(x, x1)
+        _copy(v, v1)
+        _copy(xdd, xdd1)
+        _copy(lam, lam1)
         t = t1
         p_d = dissipated_power(model, v)
         p_h = drive_power(model, lam, v)
@@ -155,12 +155,22 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
 
 
 @njit(cache=True)
+def _copy(dst, src):
+    """dst[:] = src as a plain loop (slice assignment compiles to much more code)."""
+    for i in range(src.shape[0]):
+        dst[i] = src[i]
+
+
+@njit(cache=True)
 def _record(records, row, t, x, v, xdd, a, lam, work):
     rt, rx, rv, rxdd, ra, rlam, rwork = records
     rt[row] = t
-    rx[row, :] = x
-    rv[row, :] = v
-    rxdd[row, :] = xdd
-    ra[row, :] = a
-    rlam[row, :] = lam
-    rwork[row, :] = work
+    for i in range(x.shape[0]):
+        rx[row, i] = x[i]
+        rv[row, i] = v[i]
+        rxdd[row, i] = xdd[i]
+        ra[row, i] = a[i]
+    for i in range(lam.shape[0]):
+        rlam[row, i] = lam[i]
+    rwork[row, 0] = work[0]
+    rwork[row, 1] = work[1]

@@ -98,11 +98,12 @@ def equations_of_motion(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, sca
         return margin, 0.0
     term = np.empty(nq)
     kernels.rotary_inertia_kernel(q, qd, acc[1:], F, le, S, dS, w, model.inertia, coef_m, term, blocks)
-    fq -= term  # -(Q_v - M_rot acc)
+    for j in range(nq):
+        fq[j] -= term[j] + model.gravity_load[j]  # -(Q_v - M_rot acc) - Q_g
     power = kernels.drag_kernel(qd, le, S, w, model.width, model.drag_linear, model.drag_quadratic, coef_c,
                                 term, blocks)
-    fq -= term
-    fq -= model.gravity_load
+    for j in range(nq):
+        fq[j] -= term[j]
     tip = nq - NODE_DOFS
     for k in range(3):
         fq[tip + k] -= model.tip_force[k]
@@ -112,7 +113,7 @@ def equations_of_motion(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, sca
     tQ = np.zeros(4)
     tJ = np.zeros((4, 3))
     if has_moment:
-        tip_moment_terms(q[tip + 3 : tip + 6].copy(), moment, F, tQ, tJ)
+        tip_moment_terms(q[tip + 3 : tip + 6], moment, F, tQ, tJ)
         for k in range(4):
             fq[tip + 3 + k] -= tQ[k]
     phi = np.empty(m)

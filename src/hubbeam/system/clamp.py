@@ -41,10 +41,13 @@ def clamp_twist_angle(theta: float, twist: float, F: np.ndarray, near: float = m
     for i in range(3):
         tau[i] = F[0, i] * C[0, 0] + F[1, i] * C[1, 0] + F[2, i] * C[2, 0]
     _, m0, n0 = section_frame(tau, 0.0)
-    m0g = F @ m0
-    n0g = F @ n0
-    delta = math.atan2(C[0, 1] * n0g[0] + C[1, 1] * n0g[1] + C[2, 1] * n0g[2],
-                       C[0, 1] * m0g[0] + C[1, 1] * m0g[1] + C[2, 1] * m0g[2])
+    # m_clamp . (F m0) and m_clamp . (F n0), with m_clamp = C[:, 1]
+    cm = cn = 0.0
+    for i in range(3):
+        for k in range(3):
+            cm += C[i, 1] * F[i, k] * m0[k]
+            cn += C[i, 1] * F[i, k] * n0[k]
+    delta = math.atan2(cn, cm)
     if not math.isnan(near):
         delta += 2.0 * math.pi * math.floor((near - delta) / (2.0 * math.pi) + 0.5)
     return delta
