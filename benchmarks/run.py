@@ -110,7 +110,8 @@ def main() -> None:
     if "P" in cases:
         times = [cli_run(a.t_end) for _ in range(a.reps)]
         print(f"\nCase P: `hubbeam run benchmarks/case_a.toml -o OUT.nc` ({a.t_end:g} s simulated), whole process: "
-              f"median {statistics.median(times):.2f} s of {a.reps} (warm numba cache)")
+              f"median {statistics.median(times):.2f} s of {a.reps}, range {min(times):.2f}-{max(times):.2f} s "
+              f"(warm numba cache)")
 
 
 if __name__ == "__main__":
