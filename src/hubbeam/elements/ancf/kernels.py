@@ -124,7 +124,7 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, scale, force, blocks)
     HW = np.empty((8, 8))
     HY = np.empty((8, 8))
     tmp = np.empty((8, 8))
-    R = np.empty((ELEMENT_DOFS, 8))
+    R = np.empty((8, ELEMENT_DOFS))
     Ke = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
     w1 = np.empty(ELEMENT_DOFS)
     w2 = np.empty(ELEMENT_DOFS)
@@ -167,28 +167,29 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, scale, force, blocks)
 
 @njit(cache=True, error_model="numpy")
 def _add_sandwich(Ke, HY, w1, w2, factor, R):
-    """Upper triangle of Ke += factor B^T HY B for the two-entry columns of B
-    (:func:`dof_weights`); R (16 x 8): scratch for the rows of B^T HY."""
+    """Lower triangle of Ke += factor B^T HY B (Ke[j, i], i <= j) for the two-entry columns
+    of B (:func:`dof_weights`); R (8 x 16): scratch for (B^T HY)^T, so that the inner loops
+    run along contiguous memory."""
     for i in range(ELEMENT_DOFS):
         a1, a2 = DOF_FIRST[i], DOF_SECOND[i]
         u1, u2 = factor * w1[i], factor * w2[i]
         for c in range(8):
-            R[i, c] = u1 * HY[a1, c] + u2 * HY[a2, c]
+            R[c, i] = u1 * HY[a1, c] + u2 * HY[a2, c]
     for j in range(ELEMENT_DOFS):
         b1, b2 = DOF_FIRST[j], DOF_SECOND[j]
         v1, v2 = w1[j], w2[j]
         for i in range(j + 1):
-            Ke[i, j] += v1 * R[i, b1] + v2 * R[i, b2]
+            Ke[j, i] += v1 * R[b1, i] + v2 * R[b2, i]
 
 
 @njit(cache=True, error_model="numpy")
 def _add_symmetric(blocks, el, Ke):
-    """blocks[el] += Ke from its upper triangle."""
-    for i in range(ELEMENT_DOFS):
-        blocks[el, i, i] += Ke[i, i]
-        for j in range(i + 1, ELEMENT_DOFS):
-            blocks[el, i, j] += Ke[i, j]
-            blocks[el, j, i] += Ke[i, j]
+    """blocks[el] += the symmetric matrix whose lower triangle is stored in Ke."""
+    for j in range(ELEMENT_DOFS):
+        blocks[el, j, j] += Ke[j, j]
+        for i in range(j):
+            blocks[el, i, j] += Ke[j, i]
+            blocks[el, j, i] += Ke[j, i]
 
 
 @njit(cache=True, error_model="numpy")
@@ -331,7 +332,7 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
                     cj = ROTARY_COLUMN[j]
                     wj = scale * jw * w1[j]
                     for i in range(j + 1):
-                        Ke[i, j] += wj * w1[i] * Mg[ROTARY_COLUMN[i], cj]
+                        Ke[j, i] += wj * w1[i] * Mg[ROTARY_COLUMN[i], cj]
         if want_matrix:
             _add_symmetric(blocks, el, Ke)
     return energy
