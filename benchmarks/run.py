@@ -64,14 +64,14 @@ def compare(title: str, engines: list[str], elements: int, reps: int, t_end: flo
         for e in engines:
             runs[e].append(one_run(e, elements, t_end, dt))
     print(f"\n{title}: {elements} elements, {t_end:g} s at dt = {dt:g} s; median of {reps}, {os.cpu_count()} cores")
-    print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'Newton/step':>11s} {'LU/step':>8s} "
-          f"{'tip min (m)':>12s} {'tip end (m)':>12s}   ({tip})")
+    print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'steps':>6s} {'Newton/step':>11s} "
+          f"{'LU/step':>8s} {'tip min (m)':>12s} {'tip end (m)':>12s}   ({tip})")
     for e in engines:
         first = runs[e][0]
         nps, fps = first.get("newton_per_step"), first.get("factorisations_per_step")
         print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {median(runs[e], 'process_s'):10.3f} "
-              f"{'-' if nps is None else f'{nps:.2f}':>11s} {'-' if fps is None else f'{fps:.2f}':>8s} "
-              f"{first['tip_min']:12.5f} {first['tip_end']:12.5f}")
+              f"{int(first['steps']):6d} {'-' if nps is None else f'{nps:.2f}':>11s} "
+              f"{'-' if fps is None else f'{fps:.2f}':>8s} {first['tip_min']:12.5f} {first['tip_end']:12.5f}")
     ours = runs[engines[0]]
     for e in engines[1:]:
         peer = runs[e][0]
