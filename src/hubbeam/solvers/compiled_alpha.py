@@ -17,7 +17,8 @@ import numpy as np
 from numba import njit
 
 from hubbeam.solvers.banded import band_factor, band_solve
-from hubbeam.solvers.generalized_alpha import (REUSE_VALID, algorithmic_acceleration, apply_increment,
+from hubbeam.solvers.generalized_alpha import (REUSE_VALID, UPDATE_ADAPTIVE, UPDATE_ITERATION,
+                                               algorithmic_acceleration, apply_increment,
                                                kept_matrix_failed, kept_matrix_worked, newton_error, predict,
                                                use_kept_matrix)
 from hubbeam.system.ancf_equations import CHART_SINGULAR, dissipated_power, equations_of_motion, n_constraints
@@ -62,7 +63,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     """
     am, af, beta, gamma = alpha
     tol, max_iterations, update, refresh_rate, refresh_iterations = newton
-    reused = update != 0  # 0 "iteration", 1 "step", 2 "adaptive" (NewtonOptions.update_code)
+    reused = update != UPDATE_ITERATION  # the matrix serves several iterations
     step0, every, total = schedule
     bw = model.bandwidth
     n = lu.shape[1]
@@ -81,7 +82,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         t1 = t + h
         predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
         _copy(lam1, lam)
-        stale = update == 2 and use_kept_matrix(reuse)  # the matrix is from earlier steps
+        stale = update == UPDATE_ADAPTIVE and use_kept_matrix(reuse)  # the matrix is from earlier steps
         fresh = not stale
         margin, _ = equations_of_motion(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale,
                                         fresh, res, lu if fresh else empty)
@@ -109,7 +110,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 converged = True
                 if stale:
                     kept_matrix_worked(reuse)
-                if update != 2 or it > refresh_iterations:
+                if update != UPDATE_ADAPTIVE or it > refresh_iterations:
                     reuse[REUSE_VALID] = 0
                 break
             fresh = not reused or rate > refresh_rate

@@ -59,8 +59,10 @@ class AlphaState:
     chart: np.ndarray
 
 
-#: when the iteration matrix is rebuilt and factorised (NewtonOptions.update)
+#: when the iteration matrix is rebuilt and factorised (NewtonOptions.update), and their
+#: codes in compiled code
 UPDATES = ("iteration", "step", "adaptive")
+UPDATE_ITERATION, UPDATE_STEP, UPDATE_ADAPTIVE = 0, 1, 2
 
 
 @dataclass(frozen=True)
