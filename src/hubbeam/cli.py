@@ -367,6 +367,10 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("hubbeam: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # the reader went away (`hubbeam run ... | head`): stop quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())  # so that Python's final flush does not fail again
+        return 0
     except Exception as exc:  # the last line of defence: never a traceback for users
         if os.environ.get("HUBBEAM_DEBUG"):
             raise
