@@ -163,7 +163,7 @@ class CompiledSteps(PythonSteps):
         power = np.array(self.power, dtype=float)
         counters = np.zeros(4, dtype=np.int64)
         chart = np.ascontiguousarray(state.chart)
-        status, size = compiled_alpha.advance(
+        status, size, t = compiled_alpha.advance(
             self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
             self.system.mass_scale, CHART_LIMIT, self.lu, self.ipiv, self.reuse, self.work_done, power,
             counters, (step0, every, total), records)
@@ -174,7 +174,7 @@ class CompiledSteps(PythonSteps):
         rt, rx, rv, rxdd, ra, rlam, rwork = records
         out = [(ga.AlphaState(rt[i], rx[i], rv[i], rxdd[i], ra[i], rlam[i], state.chart),
                 {"dissipated": rwork[i, 0], "drive": rwork[i, 1]}) for i in range(n_rec)]
-        new = ga.AlphaState(state.t + steps * self.dt, x, v, xdd, a, lam, state.chart)
+        new = ga.AlphaState(t, x, v, xdd, a, lam, state.chart)
         message = self.ERRORS.get(status)
         error = None
         if message is not None:

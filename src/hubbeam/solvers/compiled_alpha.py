@@ -2,7 +2,7 @@
 
 :func:`advance` runs many steps without returning to Python: predictor, Newton iterations
 on the compiled equations of motion (:func:`hubbeam.system.ancf_equations.equations_of_motion`),
-band LU from LAPACK (:mod:`.banded`), optional reuse of the factorisation (modified
+band LU from LAPACK (:func:`hubbeam.system.assembly.band_factor`), optional reuse of the factorisation (modified
 Newton), and the work integrals of the energy balance. It uses the same predictor,
 correction and convergence test as :func:`.generalized_alpha.step` (the functions are
 shared), so the two give the same steps; tests compare them.
@@ -16,12 +16,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from hubbeam.solvers.banded import band_factor, band_solve
 from hubbeam.solvers.generalized_alpha import (REUSE_VALID, UPDATE_ADAPTIVE, UPDATE_ITERATION,
                                                algorithmic_acceleration, apply_increment,
                                                kept_matrix_failed, kept_matrix_worked, newton_error, predict,
                                                use_kept_matrix)
 from hubbeam.system.ancf_equations import CHART_SINGULAR, dissipated_power, equations_of_motion, n_constraints
+from hubbeam.system.assembly import band_factor, band_solve
 
 #: what :func:`advance` returns as its status
 DONE, CHART_LIMIT_REACHED, NOT_CONVERGED, NOT_FINITE, SINGULAR_MATRIX, CHART_SINGULARITY = 0, 1, 2, 3, 4, 5
@@ -56,7 +56,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     ``records`` = (t, x, v, xdd, a, lambda, work) when k is a multiple of the interval or
     the last step.
 
-    Returns (status, last |dx|): status DONE, or CHART_LIMIT_REACHED after a step that
+    Returns (status, last |dx|, time of the state arrays): status DONE, or CHART_LIMIT_REACHED after a step that
     brought a tangent within ``chart_limit`` of the chart's singular direction
     (1 + d.tau < chart_limit; the caller changes the chart), or a failure (NOT_CONVERGED,
     NOT_FINITE, SINGULAR_MATRIX, CHART_SINGULARITY).
@@ -90,12 +90,12 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         converged = False
         for it in range(1, max_iterations + 1):
             if not margin > CHART_SINGULAR:
-                return CHART_SINGULARITY, size
+                return CHART_SINGULARITY, size, t
             if fresh:
                 reuse[REUSE_VALID] = 0
                 counters[2] += 1
                 if band_factor(lu, bw, bw, ipiv) != 0:
-                    return SINGULAR_MATRIX, size
+                    return SINGULAR_MATRIX, size, t
                 reuse[REUSE_VALID] = 1
             for i in range(n):
                 res[i] = -res[i]
@@ -103,7 +103,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             counters[1] += 1
             if not np.all(np.isfinite(res)):
                 reuse[REUSE_VALID] = 0
-                return NOT_FINITE, size
+                return NOT_FINITE, size, t
             size = apply_increment(res, gprime, bprime, mass_scale / ck, x1, v1, xdd1, lam1)
             error, rate = newton_error(size, previous, reused)
             if error <= tol:
@@ -131,7 +131,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             previous = np.inf if fresh else size
         if not converged:
             reuse[REUSE_VALID] = 0
-            return NOT_CONVERGED, size
+            return NOT_CONVERGED, size, t
         for i in range(x.shape[0]):
             a[i] = algorithmic_acceleration(xdd1[i], xdd[i], a[i], am, af)
         _copy(x, x1)
@@ -151,8 +151,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             _record(records, counters[3], t, x, v, xdd, a, lam, work)
             counters[3] += 1
         if margin < chart_limit:
-            return CHART_LIMIT_REACHED, size
-    return DONE, size
+            return CHART_LIMIT_REACHED, size, t
+    return DONE, size, t
 
 
 @njit(cache=True)

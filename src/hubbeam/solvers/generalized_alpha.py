@@ -163,11 +163,17 @@ def _constraint_acceleration_terms(system: HubSystem, x, v, F, t):
 
 
 @njit(cache=True)
+def algorithmic_acceleration(xdd, xdd_n, a_n, am, af):
+    """a_{n+1} from (1 - alpha_m) a_{n+1} + alpha_m a_n = (1 - alpha_f) xdd_{n+1} + alpha_f xdd_n."""
+    return ((1.0 - af) * xdd + af * xdd_n - am * a_n) / (1.0 - am)
+
+
+@njit(cache=True)
 def predict(x_n, v_n, xdd_n, a_n, h, am, af, beta, gamma, x, v, xdd):
     """Predictor: xdd_{n+1} = xdd_n, and x_{n+1}, v_{n+1} consistent with it (written into x, v, xdd)."""
     for i in range(x_n.shape[0]):
         xdd[i] = xdd_n[i]
-        a = ((1.0 - af) * xdd_n[i] + af * xdd_n[i] - am * a_n[i]) / (1.0 - am)
+        a = algorithmic_acceleration(xdd_n[i], xdd_n[i], a_n[i], am, af)
         v[i] = v_n[i] + h * (1.0 - gamma) * a_n[i] + h * gamma * a
         x[i] = x_n[i] + h * v_n[i] + h * h * (0.5 - beta) * a_n[i] + h * h * beta * a
 
@@ -187,12 +193,6 @@ def apply_increment(dz, gprime, bprime, lam_factor, x, v, xdd, lam):
     for i in range(m):
         lam[i] += lam_factor * dz[1 + i]
     return size
-
-
-@njit(cache=True)
-def algorithmic_acceleration(xdd, xdd_n, a_n, am, af):
-    """a_{n+1} from (1 - alpha_m) a_{n+1} + alpha_m a_n = (1 - alpha_f) xdd_{n+1} + alpha_f xdd_n."""
-    return ((1.0 - af) * xdd + af * xdd_n - am * a_n) / (1.0 - am)
 
 
 #: the rate-based error estimate must be below KAPPA * tolerance (Hairer and Wanner, IV.8,

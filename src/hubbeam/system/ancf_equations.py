@@ -99,23 +99,17 @@ def equations_of_motion(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, sca
     term = np.empty(nq)
     kernels.rotary_inertia_kernel(q, qd, acc[1:], F, le, S, dS, w, model.inertia, coef_m, term, blocks)
     for j in range(nq):
-        fq[j] -= term[j] + model.gravity_load[j]  # -(Q_v - M_rot acc) - Q_g
+        fq[j] -= term[j]  # -(Q_v - M_rot acc)
     power = kernels.drag_kernel(qd, le, S, w, model.width, model.drag_linear, model.drag_quadratic, coef_c,
                                 term, blocks)
     for j in range(nq):
         fq[j] -= term[j]
-    tip = nq - NODE_DOFS
-    for k in range(3):
-        fq[tip + k] -= model.tip_force[k]
     kernels.translational_mass_product(model.trans_mass, acc[1:], fq)
-    moment = model.tip_moment
-    has_moment = moment[0] != 0.0 or moment[1] != 0.0 or moment[2] != 0.0
-    tQ = np.zeros(4)
-    tJ = np.zeros((4, 3))
-    if has_moment:
-        tip_moment_terms(q[tip + 3 : tip + 6], moment, F, tQ, tJ)
-        for k in range(4):
-            fq[tip + 3 + k] -= tQ[k]
+    load = np.empty(nq)
+    tip_jacobian = np.empty((4, 3))
+    applied_load(model, q, F, 1.0, load, tip_jacobian)
+    for j in range(nq):
+        fq[j] -= load[j]
     phi = np.empty(m)
     jac = np.empty((m, 8))
     hess = np.empty((8, 8))
@@ -137,17 +131,54 @@ def equations_of_motion(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, sca
         return margin, power
 
     kernels.add_translational_mass(model.trans_mass, n_el, coef_m, blocks)
-    bw = model.bandwidth
-    ku = 2 * bw
+    assemble_newton_matrix(ab, blocks, kq, 2 * model.bandwidth, tip_jacobian, jac, scale, hess, coef_k,
+                           coef_m * model.hub_inertia)
+    return margin, power
+
+
+@njit(cache=True)
+def applied_load(model, q, F, factor, Q, tip_jacobian):
+    """Q = ``factor`` times the applied generalized force on q: gravity (Eq. 32), the tip force
+    and the tip moment (:func:`hubbeam.system.loads.tip_moment_terms`), and tip_jacobian
+    (4 x 3) = ``factor`` d Q / d r0'(L) of the moment on the tip's (r0', theta_1) rows (zero
+    without a moment)."""
+    nq = q.shape[0]
+    tip = nq - NODE_DOFS
+    for j in range(nq):
+        Q[j] = factor * model.gravity_load[j]
+    for k in range(3):
+        Q[tip + k] += factor * model.tip_force[k]
+    tip_jacobian[:, :] = 0.0
+    moment = model.tip_moment
+    if moment[0] == 0.0 and moment[1] == 0.0 and moment[2] == 0.0:
+        return
+    tQ = np.empty(4)
+    tip_moment_terms(q[tip + 3 : tip + 6], moment, F, tQ, tip_jacobian)
+    for k in range(4):
+        Q[tip + 3 + k] += factor * tQ[k]
+        for j in range(3):
+            tip_jacobian[k, j] *= factor
+
+
+@njit(cache=True)
+def assemble_newton_matrix(ab, blocks, kq, ku, tip_jacobian, jac, scale, hess, coef_k, theta_diag):
+    """The band-stored Newton matrix on z = [theta, mu, q] (q from z-index kq), written into
+    ``ab`` (LAPACK gbtrf layout, A[i, j] at ab[ku + i - j, j]): the element blocks (n_el,
+    16, 16), minus coef_k ``tip_jacobian`` (4 x 3) on the tip's (r0', theta_1) rows and r0'
+    columns, ``scale`` times the constraint Jacobian ``jac`` (m x 8 on the clamp coordinates
+    [theta, q_root[0:7]]) in the multiplier rows 1 .. m and, transposed, in their columns,
+    coef_k ``hess`` (lambda . d2 Phi, 8 x 8) on the clamp coordinates and ``theta_diag`` on
+    theta-theta. Used by the dynamics and the statics alike."""
     ab[:, :] = 0.0
     add_element_blocks_banded(ab, blocks, kq, ku, 1.0)
-    if has_moment:
-        for i in range(4):
-            for j in range(3):
-                r = kq + tip + 3 + i
-                c = kq + tip + 3 + j
-                ab[ku + r - c, c] -= coef_k * tJ[i, j]
+    tip = ab.shape[1] - NODE_DOFS  # z-index of the tip node
+    for i in range(4):
+        for j in range(3):
+            r = tip + 3 + i
+            c = tip + 3 + j
+            ab[ku + r - c, c] -= coef_k * tip_jacobian[i, j]
     # clamp coordinates c = [theta, q_root[0:7]] sit at z-indices 0 and kq .. kq + 6
+    m = jac.shape[0]
     for a in range(8):
         ca = 0 if a == 0 else kq + a - 1
         for i in range(m):
@@ -156,8 +187,7 @@ def equations_of_motion(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, sca
         for b in range(8):
             cb = 0 if b == 0 else kq + b - 1
             ab[ku + ca - cb, cb] += coef_k * hess[a, b]
-    ab[ku, 0] += coef_m * model.hub_inertia
-    return margin, power
+    ab[ku, 0] += theta_diag
 
 
 @njit(cache=True)

@@ -14,12 +14,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
-from hubbeam.system.ancf_equations import CHART_SINGULAR, FIXED, FREE, PRESCRIBED, AncfModel, equations_of_motion
-from hubbeam.system.assembly import BandMatrix, add_block_banded, add_element_blocks_banded, add_element_blocks_dense
+from hubbeam.system.ancf_equations import (CHART_SINGULAR, FIXED, FREE, PRESCRIBED, AncfModel, applied_load,
+                                           assemble_newton_matrix, equations_of_motion)
+from hubbeam.system.assembly import BandMatrix, add_element_blocks_dense
 from hubbeam.system.beam import NODE_DOFS, ChartSingularityError
 from hubbeam.system.clamp import clamp_constraints
 from hubbeam.system.hub import clamp_frame, hub_frame
-from hubbeam.system.loads import tip_moment_load
 from hubbeam.system.model import AXIS, HubSystem
 
 
@@ -115,15 +115,11 @@ class AncfHubSystem(HubSystem):
     # ------------------------------------------------------------ loads
     def external_load(self, q: np.ndarray, F: np.ndarray, factor: float = 1.0):
         """Applied generalized force on q (gravity, tip force and moment) scaled by ``factor``,
-        and the tip-moment load Jacobian (8 x 8 on the tip node coordinates)."""
-        Q = factor * self.gravity_load.copy()
-        tip = self.beam.node_slice(-1)
-        Q[tip][0:3] += factor * self.tip_force
-        J = np.zeros((8, 8))
-        if np.any(self.tip_moment):
-            Qm, Jm = tip_moment_load(q[tip][3:6], self.tip_moment, F)
-            Q[tip][3:7] += factor * Qm
-            J[3:7, 3:6] = factor * Jm
+        and the tip-moment load Jacobian (4 x 3: the tip's (r0', theta_1) rows, r0' columns);
+        :func:`~hubbeam.system.ancf_equations.applied_load`, as in the dynamics."""
+        Q, J = np.empty(self.beam.ndof), np.empty((4, 3))
+        applied_load(self.equations_model(), np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(F),
+                     float(factor), Q, J)
         return Q, J
 
     # ------------------------------------------------------------ constraints
@@ -162,36 +158,10 @@ class AncfHubSystem(HubSystem):
             Qc, Kc = self.steady_rotation_load(q, F, spin)
             res[kq:] -= factor * Qc
             blocks = blocks + factor * Kc
-        ab, bw = self.newton_matrix(blocks, Jload, jac, hess(lam), 0.0)
-        return res, BandMatrix(ab, bw)
-
-    def newton_matrix(self, blocks, tip_jacobian, jac, hess_lam, theta_diag, scale=None):
-        """Band-stored Newton matrix on z = [theta, mu, q] (LAPACK gbtrf layout: kl extra rows on top).
-
-        ``blocks``: element blocks of the q-q part; ``tip_jacobian``: applied-load Jacobian on
-        the tip node (subtracted); ``jac``: constraint Jacobian on [theta, q_root[0:7]];
-        ``hess_lam``: lambda . d2 Phi on the same; ``theta_diag``: extra theta-theta entry;
-        ``scale``: the constraint row scale (default: EA / l, for statics).
-        Returns (ab, bandwidth); the band matrix itself starts at row ``bandwidth``.
-        """
-        beam = self.beam
-        s = self.constraint_scale if scale is None else scale
-        m = jac.shape[0]
-        n = 1 + m + beam.ndof
-        kq = 1 + m
         bw = self.bandwidth(m)
-        ab = np.zeros((3 * bw + 1, n))
-        add_element_blocks_banded(ab, blocks, kq, 2 * bw, 1.0)
-        tip = beam.node_slice(-1)
-        tip_idx = np.arange(kq + tip.start, kq + tip.stop)
-        add_block_banded(ab, tip_idx, tip_idx, -tip_jacobian, 2 * bw)
-        cidx = np.concatenate([[0], np.arange(kq, kq + 7)])
-        midx = np.arange(1, 1 + m)
-        add_block_banded(ab, midx, cidx, s * jac, 2 * bw)
-        add_block_banded(ab, cidx, midx, s * jac.T, 2 * bw)
-        add_block_banded(ab, cidx, cidx, hess_lam, 2 * bw)
-        ab[2 * bw, 0] += theta_diag
-        return ab, bw
+        ab = np.zeros((3 * bw + 1, n), order="F")
+        assemble_newton_matrix(ab, blocks, kq, 2 * bw, Jload, jac, s, hess(lam), 1.0, 0.0)
+        return res, BandMatrix(ab, bw)
 
     # ------------------------------------------------------------ dynamics
     def compiled_model(self) -> AncfModel:
@@ -257,8 +227,8 @@ class AncfHubSystem(HubSystem):
         K = np.zeros((nx, nx))
         add_element_blocks_dense(K, blocks, 1, 1.0)
         _, Jload = self.external_load(q, F, factor)
-        tip = beam.node_slice(-1)
-        K[1 + tip.start : 1 + tip.stop, 1 + tip.start : 1 + tip.stop] -= Jload
+        t = 1 + beam.node_slice(-1).start  # the tip node in x
+        K[t + 3 : t + 7, t + 3 : t + 6] -= Jload
         phi, jac, hess = self.constraints(x, F, theta_p if held else None)
         lam = lam[: jac.shape[0]]
         K[0:8, 0:8] += hess(lam)

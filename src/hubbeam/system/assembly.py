@@ -1,14 +1,53 @@
-"""Assembly of element blocks into LAPACK band storage or dense matrices.
+"""Assembly of element blocks into LAPACK band storage or dense matrices, and their LU.
 
 Band storage (as scipy.linalg.solve_banded takes it): ab[ku + i - j, j] = A[i, j].
 Element e of a beam couples the 16 coordinates starting at offset + 8 e.
+The band LU (:func:`band_factor`, :func:`band_solve`) is LAPACK's dgbtrf/dgbtrs from scipy's
+bundled LAPACK, callable from compiled code and used by :class:`BandMatrix` too. Its
+storage is gbtrf's: a Fortran-ordered array of shape (2 kl + ku + 1, n) with A[i, j] at
+ab[kl + ku + i - j, j] and kl spare rows on top for the fill-in of pivoting. Measured on
+this machine for n = 80, kl = ku = 15: factorisation about 21 us, solve about 3.5 us (a
+numba port of dgbtf2 took as long).
 """
 
 from __future__ import annotations
 
+import llvmlite.binding as llvm
 import numpy as np
-from numba import njit
-from scipy.linalg.lapack import dgbtrf, dgbtrs, dgetrf, dgetrs
+from numba import njit, types
+from numba.extending import get_cython_function_address
+from scipy.linalg.lapack import dgetrf, dgetrs
+
+# The LAPACK routines are registered under names of their own and called as external
+# functions, so compiled callers refer to them by name and stay cacheable (a ctypes
+# function pointer would bake this process's address into the cached code).
+llvm.add_symbol("hubbeam_dgbtrf", get_cython_function_address("scipy.linalg.cython_lapack", "dgbtrf"))
+llvm.add_symbol("hubbeam_dgbtrs", get_cython_function_address("scipy.linalg.cython_lapack", "dgbtrs"))
+_p = types.intp  # every argument is a pointer (Fortran calling convention)
+_dgbtrf = types.ExternalFunction("hubbeam_dgbtrf", types.void(_p, _p, _p, _p, _p, _p, _p, _p))
+_dgbtrs = types.ExternalFunction("hubbeam_dgbtrs", types.void(_p, _p, _p, _p, _p, _p, _p, _p, _p, _p, _p))
+
+
+@njit(cache=True)
+def band_factor(ab, kl, ku, ipiv):
+    """LU of the band matrix in ``ab`` (overwritten), pivots in ``ipiv`` (int32, n).
+    Returns LAPACK's info: 0, or j > 0 when U[j-1, j-1] is exactly zero."""
+    n = ab.shape[1]
+    a = np.array([n, n, kl, ku, ab.shape[0], 0], dtype=np.int32)
+    p = a.ctypes.data
+    _dgbtrf(p, p + 4, p + 8, p + 12, ab.ctypes.data, p + 16, ipiv.ctypes.data, p + 20)
+    return a[5]  # the array stays alive through the call
+
+
+@njit(cache=True)
+def band_solve(lu, kl, ku, ipiv, b):
+    """Solve A x = b in place (b overwritten with x) with the factors of :func:`band_factor`."""
+    n = lu.shape[1]
+    # the last entry holds the character 'N' (no transpose) in its first byte (little-endian)
+    a = np.array([n, kl, ku, 1, lu.shape[0], n, 0, ord("N")], dtype=np.int32)
+    p = a.ctypes.data
+    _dgbtrs(p + 28, p, p + 4, p + 8, p + 12, lu.ctypes.data, p + 16, ipiv.ctypes.data, b.ctypes.data, p + 20, p + 24)
+    return a[6]
 
 
 @njit(cache=True)
@@ -31,15 +70,6 @@ def add_element_blocks_dense(A, blocks, offset, scale):
                 A[o + i, o + j] += scale * blocks[e, i, j]
 
 
-@njit(cache=True)
-def add_block_banded(ab: np.ndarray, rows: np.ndarray, cols: np.ndarray, block: np.ndarray, ku: int) -> None:
-    """ab += block placed at the given global rows and columns (entries must lie in the band)."""
-    for a, i in enumerate(rows):
-        for b, j in enumerate(cols):
-            if block[a, b] != 0.0:
-                ab[ku + i - j, j] += block[a, b]
-
-
 def banded_to_dense(ab: np.ndarray, kl: int, ku: int) -> np.ndarray:
     """Dense copy of a band-stored matrix (for tests and small problems)."""
     n = ab.shape[1]
@@ -58,11 +88,19 @@ class BandMatrix:
         self.ab, self.bandwidth = ab, bandwidth
 
     def factorise(self) -> "Factorisation":
-        lu, piv, info = dgbtrf(self.ab, self.bandwidth, self.bandwidth)
+        bw = self.bandwidth
+        lu = np.array(self.ab, dtype=float, order="F")
+        piv = np.zeros(lu.shape[1], dtype=np.int32)
+        info = band_factor(lu, bw, bw, piv)
         if info != 0:
             raise np.linalg.LinAlgError(f"singular matrix (zero pivot in column {info})")
-        bw = self.bandwidth
-        return Factorisation(lambda rhs: dgbtrs(lu, bw, bw, rhs, piv)[0])
+
+        def solve(rhs):
+            x = np.array(rhs, dtype=float)
+            band_solve(lu, bw, bw, piv, x)
+            return x
+
+        return Factorisation(solve)
 
     def to_dense(self) -> np.ndarray:
         return banded_to_dense(self.ab[self.bandwidth :], self.bandwidth, self.bandwidth)

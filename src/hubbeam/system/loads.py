@@ -22,6 +22,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from hubbeam.elements.ancf.frame import block_to_global
+
 
 @njit(cache=True)
 def tip_moment_terms(u, moment, F, Q, J):
@@ -63,12 +65,7 @@ def tip_moment_terms(u, moment, F, Q, J):
     for i in range(3):
         Q[i] = F[i, 0] * QU[0] + F[i, 1] * QU[1] + F[i, 2] * QU[2]
         J[3, i] = F[i, 0] * dQphi[0] + F[i, 1] * dQphi[1] + F[i, 2] * dQphi[2]
-        for j in range(3):
-            acc = 0.0
-            for a in range(3):
-                for b in range(3):
-                    acc += F[i, a] * dQU[a, b] * F[j, b]
-            J[i, j] = acc
+    block_to_global(F, dQU, J)
     Q[3] = s / L
 
 

@@ -54,6 +54,19 @@ def section_frame(U, phi):
     return T, c * m0 + s * n0, -s * m0 + c * n0
 
 
+@njit(cache=True)
+def block_to_global(F, A, out):
+    """out[0:3, 0:3] = F A[0:3, 0:3] F^T: a 3 x 3 block of chart components (a Jacobian or
+    a mass block on r0') in global components."""
+    for i in range(3):
+        for j in range(3):
+            acc = 0.0
+            for a in range(3):
+                for b in range(3):
+                    acc += F[i, a] * A[a, b] * F[j, b]
+            out[i, j] = acc
+
+
 def frame_global(F: np.ndarray, r_prime: np.ndarray, theta: float) -> np.ndarray:
     """R = [tau m n] (3x3, global components) for one r0' (global) and theta_1."""
     T, m, n = section_frame(F.T @ np.asarray(r_prime, dtype=float), float(theta))

@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from hubbeam.elements.ancf.frame import block_to_global
 from hubbeam.elements.ancf.strain import PHI, PSI, strain_jet
 
 NODE_DOFS = 8
@@ -340,18 +341,13 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
 
 @njit(cache=True, error_model="numpy")
 def _mass_to_global(F, Mx, Mg):
-    """Mg = T Mx T^T on (r0', theta_1), T = blockdiag(F, 1)."""
-    for r in range(4):
-        for c in range(4):
-            acc = 0.0
-            for a in range(4):
-                Fra = (F[r, a] if a < 3 else 0.0) if r < 3 else (1.0 if a == 3 else 0.0)
-                if Fra == 0.0:
-                    continue
-                for b in range(4):
-                    Fcb = (F[c, b] if b < 3 else 0.0) if c < 3 else (1.0 if b == 3 else 0.0)
-                    acc += Fra * Mx[a, b] * Fcb
-            Mg[r, c] = acc
+    """Mg = T Mx T^T on (r0', theta_1), T = blockdiag(F, 1): chart to global components."""
+    block_to_global(F, Mx, Mg)
+    for r in range(3):
+        side = F[r, 0] * Mx[0, 3] + F[r, 1] * Mx[1, 3] + F[r, 2] * Mx[2, 3]
+        Mg[r, 3] = side
+        Mg[3, r] = side  # Mx is symmetric
+    Mg[3, 3] = Mx[3, 3]
 
 
 @njit(cache=True, error_model="numpy")

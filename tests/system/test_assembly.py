@@ -1,9 +1,8 @@
-"""LAPACK band LU called from compiled code, against a dense solve."""
+"""Band storage and its LAPACK LU (called from compiled code and by BandMatrix), against dense solves."""
 
 import numpy as np
 
-from hubbeam.solvers.banded import band_factor, band_solve
-from hubbeam.system.assembly import banded_to_dense
+from hubbeam.system.assembly import BandMatrix, band_factor, band_solve, banded_to_dense
 
 
 def random_band(n, bw, seed):
@@ -32,3 +31,14 @@ def test_band_lu_reports_a_singular_matrix():
     ab = random_band(n, bw, 2)
     ab[:, 4] = 0.0  # a zero column
     assert band_factor(ab, bw, bw, np.zeros(n, dtype=np.int32)) == 5
+
+
+def test_band_matrix_factorisation_solves_and_keeps_its_matrix():
+    n, bw = 30, 4
+    ab = random_band(n, bw, 3)
+    before = ab.copy()
+    A = banded_to_dense(ab[bw:], bw, bw)
+    b = np.random.default_rng(4).normal(size=n)
+    x = BandMatrix(ab, bw).factorise().solve(b)
+    assert np.allclose(A @ x, b, rtol=0, atol=1e-10)
+    assert np.array_equal(ab, before)
