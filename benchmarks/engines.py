@@ -15,8 +15,8 @@ accuracy can be checked. Exudyn's Newton tolerances are set as issue 6 prescribe
 
 from __future__ import annotations
 
+import argparse
 import json
-import sys
 import time
 
 L, B, H, E, RHO = 1.45, 0.05, 0.0025, 70e9, 2700.0
@@ -192,5 +192,10 @@ ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge"
            "hubbeam-kane": run_hubbeam_kane, "exudyn-cable-kane": run_exudyn_cable_kane}
 
 if __name__ == "__main__":
-    engine, elements, t_end, dt = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])
-    print(json.dumps(ENGINES[engine](elements, t_end, dt)))
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("engine", choices=sorted(ENGINES))
+    p.add_argument("elements", type=int)
+    p.add_argument("t_end", type=float)
+    p.add_argument("dt", type=float)
+    a = p.parse_args()
+    print(json.dumps(ENGINES[a.engine](a.elements, a.t_end, a.dt)))

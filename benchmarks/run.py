@@ -24,6 +24,7 @@ Case P: the whole ``hubbeam run benchmarks/case_a.toml -o OUT.nc`` (wall clock).
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import os
 import statistics
@@ -38,7 +39,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 def one_run(engine: str, elements: int, t_end: float, dt: float) -> dict:
     start = time.perf_counter()
     out = subprocess.run([sys.executable, os.path.join(HERE, "engines.py"), engine, str(elements), str(t_end), str(dt)],
-                         capture_output=True, text=True, check=True)
+                         capture_output=True, text=True)
+    if out.returncode != 0:
+        last = (out.stderr.strip().splitlines() or ["no message"])[-1]
+        sys.exit(f"benchmarks/run.py: {engine} with {elements} elements failed: {last}")
     result = json.loads(out.stdout.strip().splitlines()[-1])
     result["process_s"] = time.perf_counter() - start
     return result
@@ -89,6 +93,8 @@ def main() -> None:
     p.add_argument("--cases", default="A,B,C,P", help="comma-separated subset of A, B, C, P")
     p.add_argument("--quick", action="store_true", help="1 s simulated, one repetition")
     a = p.parse_args()
+    if importlib.util.find_spec("exudyn") is None:
+        sys.exit("benchmarks/run.py: the peer is missing; install it with: pip install \".[peer]\"")
     if a.quick:
         a.reps, a.t_end = 1, 1.0
     cases = {c.strip().upper() for c in a.cases.split(",")}
