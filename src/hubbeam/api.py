@@ -6,57 +6,80 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubbeam.elements.section import Section, saint_venant_torsion_constant
+from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.io.scenario import Scenario
 from hubbeam.solvers.modal import Modes, modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import StaticSolution, solve_static
+from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
-from hubbeam.elements.ffr.body import FfrBeam
-from hubbeam.system.ancf_system import AncfHubSystem
+from hubbeam.elements.section import Section
+from hubbeam.system.ffr_part import FfrPart
+from hubbeam.system.hub_system import Hub, HubSystem
+from hubbeam.system.laws import DriveProfile, TorqueLaw
+from hubbeam.system.mount import Mount
+from hubbeam.system.tip_body import TipBody
 
 #: analysis.newton of a scenario -> NewtonOptions.update (when the iteration matrix is rebuilt)
 NEWTON_UPDATES = {"full": "iteration", "step": "step", "modified": "adaptive"}
-from hubbeam.system.ffr_system import FfrHubSystem
-from hubbeam.system.hub import DriveProfile
-from hubbeam.system.model import HubSystem
 
 
-def section_of(scenario: Scenario) -> Section:
-    b = scenario.beam
-    jt = b.torsion_constant if b.torsion_constant is not None else saint_venant_torsion_constant(b.width, b.thickness)
-    return Section(b.width, b.thickness, b.density, b.youngs_modulus, scenario.shear_modulus, jt)
+def beam_part(spec):
+    """The system part of one resolved beam of a scenario (:class:`hubbeam.io.scenario.ResolvedBeam`)."""
+    section = Section(spec.width, spec.thickness, spec.density, spec.youngs_modulus, spec.shear_modulus,
+                      spec.torsion_constant)
+    mount = Mount(spec.radius, spec.twist, spec.azimuth, spec.precone)
+    tip = None
+    if spec.tip_body is not None:
+        tb = spec.tip_body
+        tip = TipBody(float(tb.mass), tuple(map(float, tb.inertia)), tuple(map(float, tb.offset)))
+    loads = {"tip_force": np.array(spec.tip_force, dtype=float), "tip_moment": np.array(spec.tip_moment, dtype=float)}
+    if spec.formulation == "ancf":
+        beam = AncfBeam(spec.length, spec.elements, section, spec.gauss_points or DEFAULT_GAUSS_POINTS)
+        return AncfPart(beam, mount, tip_body=tip, name=spec.name, **loads)
+    beam = FfrBeam(spec.length, spec.elements, section, geometric_stiffening=spec.geometric_stiffening, tip_body=tip)
+    return FfrPart(beam, mount, name=spec.name, **loads)
 
 
-def build_system(scenario: Scenario) -> HubSystem:
-    """The hub-beam system a scenario describes."""
-    b = scenario.beam
-    if b.formulation == "ancf":
-        beam, system_class = AncfBeam(b.length, b.elements, section_of(scenario), b.gauss_points or DEFAULT_GAUSS_POINTS), AncfHubSystem
-    else:
-        beam = FfrBeam(b.length, b.elements, section_of(scenario), geometric_stiffening=bool(b.geometric_stiffening))
-        system_class = FfrHubSystem
+def drive_profile(drive, key: str) -> DriveProfile:
+    """The drive profile of a scenario's drive table (``key`` names it in errors)."""
+    if drive.profile == "table":
+        from hubbeam.io.tables import read_drive_table
+
+        return read_drive_table(drive.file, f"{key}.file")
+    if drive.profile == "slew":
+        return DriveProfile.slew(drive.angle, drive.T)
+    return DriveProfile(drive.profile, drive.omega_s, drive.T, drive.t1)
+
+
+def torque_law(law) -> TorqueLaw:
+    """The torque law of a scenario's [hub.torque] (None: no torque)."""
+    if law is None:
+        return TorqueLaw()
+    if law.law == "constant":
+        return TorqueLaw.constant(law.value)
+    if law.law == "table":
+        from hubbeam.io.tables import read_torque_table
+
+        return read_torque_table(law.file, "hub.torque.file")
+    return TorqueLaw.pd(law.kp, law.kd, drive_profile(law.reference, "hub.torque.reference"))
+
+
+def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> HubSystem:
+    """The hub system a scenario describes. ``torque``: a torque law that replaces the
+    scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function torque(t, theta, omega),
+    which integrates step by step in Python)."""
     hub = scenario.hub
-    drive = DriveProfile("rest")
-    if hub.drive is not None:
-        drive = DriveProfile(hub.drive.profile, hub.drive.omega_s, hub.drive.T, hub.drive.t1)
-    return system_class(
-        beam,
-        radius=hub.radius,
-        twist=scenario.twist_rad,
-        motion=hub.motion,
-        hub_inertia=hub.inertia,
-        hub_torque=hub.torque,
-        drive=drive,
-        gravity=np.array(scenario.environment.gravity),
-        tip_force=np.array(scenario.loads.tip_force),
-        tip_moment=np.array(scenario.loads.tip_moment),
-        damping=(scenario.damping.linear, scenario.damping.quadratic),
-    )
+    drive = drive_profile(hub.drive, "hub.drive") if hub.drive is not None else DriveProfile("rest")
+    law = torque if torque is not None else torque_law(hub.torque_law)
+    return HubSystem([beam_part(spec) for spec in scenario.resolved_beams()],
+                     Hub(hub.motion, hub.inertia, law, drive),
+                     gravity=np.array(scenario.environment.gravity), damping=(scenario.damping.linear,
+                                                                              scenario.damping.quadratic))
 
 
-def tip_displacement(system: HubSystem, x: np.ndarray) -> dict[str, float]:
-    """Tip centroid displacement from its undeformed place, in the hub frame (m)."""
-    return system.tip_displacement(x)
+def tip_displacement(system: HubSystem, x: np.ndarray, beam: int = 0) -> dict[str, float]:
+    """Tip centroid displacement of a beam from its undeformed place, in its hub frame (m)."""
+    return system.tip_displacement(x, beam)
 
 
 @dataclass
@@ -69,15 +92,23 @@ class StaticResult:
     def to_dict(self) -> dict:
         sol = self.solution
         lam = sol.multipliers
-        return {
-            "tip_displacement": tip_displacement(self.system, sol.x),
-            "tip_position": [float(v) for v in self.system.tip_position(sol.x)],
-            "root_reaction_force": [float(v) for v in -lam[0:3]],
-            "hub_holding_torque": self.system.drive_torque(lam),
+        system = self.system
+        layout = system.layout_for(True)
+        out = {
+            "tip_displacement": tip_displacement(system, sol.x),
+            "tip_position": [float(v) for v in system.tip_position(sol.x)],
+            "root_reaction_force": [float(v) for v in -lam[layout.clamp_lambda(0)][0:3]],
+            "hub_holding_torque": float(-lam[layout.drive_lambda]),
             "newton_iterations": sol.newton_iterations,
             "load_steps": sol.load_steps,
             "chart_switches": sol.chart_switches,
         }
+        if len(system.beams) > 1:
+            out["beams"] = {b.name: {"tip_displacement": tip_displacement(system, sol.x, k),
+                                     "tip_position": [float(v) for v in system.tip_position(sol.x, k)],
+                                     "root_reaction_force": [float(v) for v in -lam[layout.clamp_lambda(k)][0:3]]}
+                            for k, b in enumerate(system.beams)}
+        return out
 
 
 @dataclass
@@ -126,18 +157,20 @@ def modes(scenario: Scenario) -> ModalResult:
                        about=about)
 
 
-def run(scenario: Scenario, progress=None):
+def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None):
     """Time integration of a scenario's dynamic analysis with all its settings (step,
-    spectral radius, output step, Newton options). Returns (trajectory, failure): on a
-    ComputationError, failure is that error and the trajectory holds the results up to it."""
+    spectral radius, output step, Newton options). ``torque`` replaces the scenario's torque
+    law (e.g. ``TorqueLaw.callable(f)``: the slower Python step path); ``sensors`` its
+    sensors. Returns (trajectory, failure): on a ComputationError, failure is that error and
+    the trajectory holds the results up to it."""
     from hubbeam.simulation import simulate
-    from hubbeam.solvers.errors import ComputationError
+    from hubbeam.errors import ComputationError
     from hubbeam.solvers.generalized_alpha import NewtonOptions
 
     a = scenario.analysis
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
-        return simulate(build_system(scenario), scenario.sensors, a.t_end, a.dt, a.spectral_radius,
+        return simulate(build_system(scenario, torque), scenario.sensors if sensors is None else sensors, a.t_end, a.dt, a.spectral_radius,
                         scenario.output_dt, progress, newton), None
     except ComputationError as exc:
         return exc.partial, exc

@@ -15,7 +15,7 @@ import sys
 import numpy as np
 
 from hubbeam.io.scenario import EXAMPLES, ScenarioError, example_text, load_scenario
-from hubbeam.solvers.errors import ComputationError
+from hubbeam.errors import ComputationError
 
 
 class _Parser(argparse.ArgumentParser):

@@ -10,15 +10,17 @@ import numpy as np  # noqa: E402
 
 
 def plot_deformed(system, x_ref, F_ref, x, F, path, title: str = "") -> None:
-    """Three views of the undeformed and deformed centre line, with the section's n at the tip."""
-    ref = system.centre_line(x_ref, F_ref, 12)
-    cur = system.centre_line(x, F, 12)
+    """Three views of every beam's undeformed and deformed centre line, the tips marked."""
     fig, axes = plt.subplots(1, 3, figsize=(12, 4))
     views = [(0, 1, "x (m)", "y (m), vertical"), (0, 2, "x (m)", "z (m)"), (2, 1, "z (m)", "y (m), vertical")]
+    for k in range(len(system.beams)):
+        ref = system.centre_line(x_ref, F_ref, k, 12)
+        cur = system.centre_line(x, F, k, 12)
+        for ax, (i, j, xl, yl) in zip(axes, views):
+            ax.plot(ref[:, i], ref[:, j], "k--", lw=1, label="undeformed" if k == 0 else None)
+            ax.plot(cur[:, i], cur[:, j], "C0-", lw=2, label="deformed" if k == 0 else None)
+            ax.plot(cur[-1, i], cur[-1, j], "C3o", ms=4)
     for ax, (i, j, xl, yl) in zip(axes, views):
-        ax.plot(ref[:, i], ref[:, j], "k--", lw=1, label="undeformed")
-        ax.plot(cur[:, i], cur[:, j], "C0-", lw=2, label="deformed")
-        ax.plot(cur[-1, i], cur[-1, j], "C3o", ms=4)
         ax.set_xlabel(xl)
         ax.set_ylabel(yl)
         ax.set_aspect("equal", adjustable="datalim")

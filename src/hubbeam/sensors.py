@@ -1,18 +1,27 @@
-"""Measured quantities of a hub-beam state (conventions.md, "Measured quantities")."""
+"""Measured quantities of a hub-beam state (the sensors of a scenario).
+
+Sensors that belong to a beam (``surface_strain``, ``tip_deflection``, and ``energy`` when
+it names one) measure the beam their ``beam`` key names (default: the first).
+"""
 
 from __future__ import annotations
 
-from hubbeam.system.model import HubSystem
+from hubbeam.system.hub_system import HubSystem
 
 UNITS = {
     "surface_strain": "1", "hub_angle": "rad", "hub_angular_velocity": "rad/s", "hub_torque": "N m",
-    "tip_deflection": "m", "energy": "J", "angular_momentum": "N m s", "constraint_violation": "m",
+    "applied_torque": "N m", "tip_deflection": "m", "energy": "J", "angular_momentum": "N m s",
+    "constraint_violation": "m",
 }
+
+
+def _beam(sensor, system: HubSystem) -> int:
+    return system.beam_index(getattr(sensor, "beam", None))
 
 
 def section_point(sensor, system: HubSystem) -> tuple[float, float]:
     """(y, z) of a strain gauge: 'upper' is z = +h/2 (the face whose normal is +n)."""
-    h = system.beam.section.thickness
+    h = system.beams[_beam(sensor, system)].section.thickness
     if sensor.surface == "upper":
         return 0.0, h / 2
     if sensor.surface == "lower":
@@ -21,20 +30,18 @@ def section_point(sensor, system: HubSystem) -> tuple[float, float]:
 
 
 def _energy(sensor, system, state, work):
-    e = system.energies(state.x, state.v, state.chart)
+    beam = getattr(sensor, "beam", None)
+    e = system.energies(state.x, state.v, state.chart, None if beam is None else system.beam_index(beam))
     e["total"] = e["kinetic"] + e["strain"] + e["gravity"]
-    e["dissipated"] = work["dissipated"]
-    e["drive"] = work["drive"]
+    if beam is None:
+        e["dissipated"] = work["dissipated"]
+        e["drive"] = work["drive"]
     return e
 
 
 def _surface_strain(sensor, system, state, work):
     y, z = section_point(sensor, system)
-    return system.surface_strain(state.x, state.chart, sensor.x, y, z)
-
-
-def _constraint_violation(sensor, system, state, work):
-    return system.constraint_violation(state.x, state.chart, state.t)
+    return system.surface_strain(state.x, state.chart, sensor.x, y, z, _beam(sensor, system))
 
 
 #: sensor kind -> function(sensor, system, state, work) giving a float or a dict of parts
@@ -43,10 +50,12 @@ MEASURES = {
     "hub_angle": lambda sensor, system, state, work: float(state.x[0]),
     "hub_angular_velocity": lambda sensor, system, state, work: float(state.v[0]),
     "hub_torque": lambda sensor, system, state, work: system.drive_torque(state.lam),
-    "tip_deflection": lambda sensor, system, state, work: system.tip_displacement(state.x),
+    "applied_torque": lambda sensor, system, state, work: system.applied_torque(state.t, state.x, state.v),
+    "tip_deflection": lambda sensor, system, state, work: system.tip_displacement(state.x, _beam(sensor, system)),
     "energy": _energy,
     "angular_momentum": lambda sensor, system, state, work: system.angular_momentum(state.x, state.v, state.chart),
-    "constraint_violation": _constraint_violation,
+    "constraint_violation": lambda sensor, system, state, work: system.constraint_violation(state.x, state.chart,
+                                                                                             state.t),
 }
 
 

@@ -10,10 +10,10 @@ import numpy as np
 from hubbeam.sensors import measure
 from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers import generalized_alpha as ga
-from hubbeam.solvers.errors import ComputationError, ConvergenceError
+from hubbeam.errors import ChartSingularityError, ComputationError, ConvergenceError
 from hubbeam.solvers.static import solve_static
-from hubbeam.system.beam import ChartSingularityError
-from hubbeam.system.model import HubSystem
+from hubbeam.system.assembly import BorderedBandMatrix
+from hubbeam.system.hub_system import HubSystem
 
 #: below this chart margin (1 + d.tau) the chart is replaced: a tangent within 60 deg of its singular direction
 CHART_LIMIT = 0.5
@@ -99,8 +99,7 @@ class PythonSteps:
 
     def _power(self, st):
         system = self.system
-        torque = system.drive_torque(st.lam) + system.hub_torque
-        return system.dissipated_power(st.x, st.v, st.chart), torque * st.v[0]
+        return system.dissipated_power(st.x, st.v, st.chart), system.hub_power(st.t, st.x, st.v, st.lam)
 
     def advance(self, state, n_steps, step0, every, total):
         """Up to n_steps steps after step0 of total; states after steps that are multiples of
@@ -131,22 +130,16 @@ class PythonSteps:
 
 class CompiledSteps(PythonSteps):
     """The same steps in compiled code (:func:`hubbeam.solvers.compiled_alpha.advance`) for
-    systems that provide a compiled model (the ANCF system): a chunk of steps is one call."""
-
-    ERRORS = {
-        compiled_alpha.NOT_CONVERGED: "Newton did not converge in {its} iterations (last |dx| = {size:.2e})",
-        compiled_alpha.NOT_FINITE: "non-finite Newton increment",
-        compiled_alpha.SINGULAR_MATRIX: "singular iteration matrix (a constraint lost rank or a mass vanished)",
-        compiled_alpha.CHART_SINGULARITY: "a beam tangent is at the singular direction of the rotation chart",
-    }
+    systems whose every term compiles (every beam ANCF): a chunk of steps is one call."""
 
     def __init__(self, system, params, newton, dt, state) -> None:
         super().__init__(system, params, newton, dt, state)
-        self.model = system.compiled_model()
-        n = 1 + state.lam.shape[0] + (state.x.shape[0] - 1)
-        bw = self.model.bandwidth
-        self.lu = np.zeros((3 * bw + 1, n), order="F")
-        self.ipiv = np.zeros(n, dtype=np.int32)
+        self.model = system.model()
+        layout = system.layout
+        storage = BorderedBandMatrix.empty(layout.nz, layout.border, system.bandwidth)
+        m = storage.ab.shape[1]
+        self.matrix = (storage.ab, np.zeros(m, dtype=np.int32), storage.brow, storage.bcol, storage.bb,
+                       np.zeros((layout.border, m)), np.zeros((layout.border, layout.border)))
         self.reuse = ga.reuse_state()
         self.factorisations = 0
         self.work_done = np.zeros(2)
@@ -165,7 +158,7 @@ class CompiledSteps(PythonSteps):
         chart = np.ascontiguousarray(state.chart)
         status, size, t = compiled_alpha.advance(
             self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
-            self.system.mass_scale, CHART_LIMIT, self.lu, self.ipiv, self.reuse, self.work_done, power,
+            self.system.mass_scale, CHART_LIMIT, self.matrix, self.reuse, self.work_done, power,
             counters, (step0, every, total), records)
         steps, its, factorisations, n_rec = (int(c) for c in counters)
         self.power = (power[0], power[1])
@@ -175,12 +168,12 @@ class CompiledSteps(PythonSteps):
         out = [(ga.AlphaState(rt[i], rx[i], rv[i], rxdd[i], ra[i], rlam[i], state.chart),
                 {"dissipated": rwork[i, 0], "drive": rwork[i, 1]}) for i in range(n_rec)]
         new = ga.AlphaState(t, x, v, xdd, a, lam, state.chart)
-        message = self.ERRORS.get(status)
+        message = ga.OUTCOME_MESSAGES.get(ga.Outcome(status))
         error = None
         if message is not None:
             text = message.format(its=self.newton.max_iterations, size=size)
-            error = (ChartSingularityError if status == compiled_alpha.CHART_SINGULARITY else ConvergenceError)(text)
-        return new, steps, its, status == compiled_alpha.CHART_LIMIT_REACHED, error, out
+            error = (ChartSingularityError if status == ga.Outcome.CHART_SINGULARITY else ConvergenceError)(text)
+        return new, steps, its, status == ga.Outcome.CHART_LIMIT_REACHED, error, out
 
     def chart_changed(self):
         self.reuse[ga.REUSE_VALID] = 0
@@ -214,7 +207,7 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
         traj.append(st.t, {s.name: measure(s, system, st, work) for s in sensors})
 
     record(state, {"dissipated": 0.0, "drive": 0.0})
-    steps_class = CompiledSteps if system.compiled_model() is not None else PythonSteps
+    steps_class = CompiledSteps if system.compiled else PythonSteps
     stepper = steps_class(system, params, newton, dt, state)
     chunk_size = max(1, -(-n_steps // PROGRESS_UPDATES))
     start = time.perf_counter()
@@ -235,7 +228,7 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
                 partial=traj,
             ) from error
         if chart_limit:
-            state = change_chart(system, state, system.better_chart(state.x))
+            state = change_chart(system, state, system.better_chart(state.x, state.chart, CHART_LIMIT))
             stepper.chart_changed()
             traj.chart_switches += 1
         if progress is not None:

@@ -5,12 +5,12 @@ import pytest
 
 from hubbeam.elements.ancf.frame import frame_global
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub import clamp_frame
+from hubbeam.system.mount import Mount
 from tests.conftest import central_difference, plate, rotation
 
 
 def bent_state(beam, seed=0, amplitude=0.05):
-    q, F = beam.straight_state(np.zeros(3), clamp_frame(0.0, 0.3))
+    q, F = beam.straight_state(np.zeros(3), Mount(0.0, 0.3).frame(0.0))
     rng = np.random.default_rng(seed)
     return q + amplitude * rng.normal(size=q.size), F
 
@@ -47,7 +47,7 @@ def test_tangent_is_derivative_of_internal_force_and_symmetric(beam):
 def test_rigid_motion_has_no_strain_energy_and_no_force(axis, angle):
     beam = AncfBeam(1.45, 4, plate())
     Q = rotation(axis, np.radians(angle))
-    frame = Q @ clamp_frame(0.0, np.radians(45))
+    frame = Q @ Mount(0.0, np.radians(45)).frame(0.0)
     q, F = beam.straight_state(np.array([0.3, -2.0, 5.0]), frame)
     U, f, _ = beam.elastic(q, F)
     assert abs(U) < 1e-18

@@ -6,7 +6,7 @@ import pytest
 from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.ancf_system import AncfHubSystem
+from hubbeam.system.hub_system import single_beam_system
 from tests.conftest import L, RHO, plate
 
 BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382])  # clamped-free roots of cos cosh = -1
@@ -14,7 +14,7 @@ BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382])  # clamped-free ro
 
 def clamped(elements, count=40, **kw):
     sec = plate()
-    system = AncfHubSystem(AncfBeam(L, elements, sec), radius=0.35, motion="fixed", **kw)
+    system = single_beam_system(AncfBeam(L, elements, sec), radius=0.35, motion="fixed", **kw)
     return sec, system, modal_analysis(system, solve_static(system, load_steps=1), count=count)
 
 
@@ -63,7 +63,7 @@ def test_frequency_error_converges_at_high_order():
 
 def test_free_hub_leaves_out_one_rigid_mode():
     sec = plate()
-    system = AncfHubSystem(AncfBeam(L, 6, sec), radius=0.35, motion="free", hub_inertia=9.557)
+    system = single_beam_system(AncfBeam(L, 6, sec), radius=0.35, motion="free", hub_inertia=9.557)
     modes = modal_analysis(system, solve_static(system, load_steps=1), count=4)
     assert modes.rigid_modes == 1
     assert abs(modes.rigid_frequencies_hz[0]) < 1e-3
@@ -76,7 +76,7 @@ def test_rigid_mode_frequency_about_a_bent_state_vanishes_with_refinement():
     sec = plate()
     out = []
     for n in (4, 8):
-        system = AncfHubSystem(AncfBeam(L, n, sec), radius=0.35, twist=np.pi / 2, motion="free", hub_inertia=9.557,
+        system = single_beam_system(AncfBeam(L, n, sec), radius=0.35, twist=np.pi / 2, motion="free", hub_inertia=9.557,
                                gravity=np.array([0, -9.81, 0]))
         out.append(abs(modal_analysis(system, solve_static(system, load_steps=5), count=1).rigid_frequencies_hz[0]))
     assert out[1] < out[0] / 2 and out[0] < 5e-3
@@ -84,7 +84,7 @@ def test_rigid_mode_frequency_about_a_bent_state_vanishes_with_refinement():
 
 def _rotating_frequencies(system_class, beam, speed):
     from hubbeam.solvers.modal import rotating_modal_analysis
-    from hubbeam.system.hub import DriveProfile
+    from hubbeam.system.laws import DriveProfile
 
     system = system_class(beam, radius=0.0, twist=np.pi / 2, motion="prescribed",
                           drive=DriveProfile("constant", max(speed, 1e-12)))
@@ -99,7 +99,7 @@ def test_rotating_cantilever_flapwise_frequencies_match_the_classic_values(lam, 
     Rutkowski 1981): 3.6816 / 22.1810 at lam = 1, 4.7973 / 23.3203 at lam = 3; 3.5160 at rest."""
     sec = plate()
     unit = np.sqrt(sec.stiffness[2] / (sec.mass_per_length * L**4))
-    f = _rotating_frequencies(AncfHubSystem, AncfBeam(L, 8, sec), lam * unit) * 2 * np.pi / unit
+    f = _rotating_frequencies(single_beam_system, AncfBeam(L, 8, sec), lam * unit) * 2 * np.pi / unit
     assert f[0] == pytest.approx(first, rel=2e-4)
     assert f[1] == pytest.approx(second, rel=1e-3)
 
@@ -109,15 +109,14 @@ def test_rotating_ffr_plain_does_not_stiffen_stiffened_follows_ancf():
     softens exactly as w^2 = w0^2 - Omega^2 (linear rotating-frame model); with geometric
     stiffening FFR follows ANCF."""
     from hubbeam.elements.ffr.body import FfrBeam
-    from hubbeam.system.ffr_system import FfrHubSystem
-
+    
     sec = plate()
     unit = np.sqrt(sec.stiffness[2] / (sec.mass_per_length * L**4))
     speed = 3.0 * unit
-    rest = _rotating_frequencies(FfrHubSystem, FfrBeam(L, 8, sec), 0.0)
-    plain = _rotating_frequencies(FfrHubSystem, FfrBeam(L, 8, sec), speed)
-    stiff = _rotating_frequencies(FfrHubSystem, FfrBeam(L, 8, sec, geometric_stiffening=True), speed)
-    ancf = _rotating_frequencies(AncfHubSystem, AncfBeam(L, 8, sec), speed)
+    rest = _rotating_frequencies(single_beam_system, FfrBeam(L, 8, sec), 0.0)
+    plain = _rotating_frequencies(single_beam_system, FfrBeam(L, 8, sec), speed)
+    stiff = _rotating_frequencies(single_beam_system, FfrBeam(L, 8, sec, geometric_stiffening=True), speed)
+    ancf = _rotating_frequencies(single_beam_system, AncfBeam(L, 8, sec), speed)
     assert plain[0] == pytest.approx(rest[0], rel=1e-6)  # flapwise: no centrifugal term in linear FFR
     chord = np.argmin(np.abs(rest - 70.3 * unit / (2 * np.pi)))  # the first chordwise (strong-axis) mode
     w0, w = 2 * np.pi * rest[chord], 2 * np.pi * plain[chord]

@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_bvp
 
-from hubbeam.solvers.errors import ConvergenceError
+from hubbeam.errors import ConvergenceError
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.ancf_system import AncfHubSystem
+from hubbeam.system.hub_system import single_beam_system
 from tests.conftest import L, central_difference, plate
 
 
@@ -39,9 +39,9 @@ def test_tip_force_follows_the_elastica(k):
     x_ref, y_ref = elastica_tip(k)
     errors = []
     for n in (12, 24):
-        system = AncfHubSystem(AncfBeam(L, n, sec), radius=0.0, twist=np.pi / 2, motion="fixed",
+        system = single_beam_system(AncfBeam(L, n, sec), radius=0.0, twist=np.pi / 2, motion="fixed",
                                tip_force=np.array([0.0, -k * EIy / L**2, 0.0]))
-        tip = solve_static(system, load_steps=10).q[system.beam.node_slice(-1)][0:3] / L
+        tip = solve_static(system, load_steps=10).x[1:][system.beam.node_slice(-1)][0:3] / L
         errors.append(np.hypot(tip[0] - x_ref, tip[1] - y_ref))
         assert abs(tip[2]) < 1e-9
     # 24 elements: within 2e-4 L of the elastica (measured 1.3e-4 L at k = 10), and converging
@@ -63,26 +63,26 @@ def circle_case(fraction, case, elements=16):
         EI = sec.stiffness[2]
         twist, axis = (0.0, np.array([0, 1.0, 0])) if case == "plate-j" else (np.pi / 2, np.array([0, 0, 1.0]))
     M = 2 * np.pi * fraction * EI / L
-    system = AncfHubSystem(AncfBeam(L, elements, sec), radius=0.0, twist=twist, motion="fixed", tip_moment=M * axis)
+    system = single_beam_system(AncfBeam(L, elements, sec), radius=0.0, twist=twist, motion="fixed", tip_moment=M * axis)
     return system, axis, solve_static(system, load_steps=int(40 * fraction))
 
 
 @pytest.mark.parametrize("case", ["plate-j", "plate-k", "square-k"])
 def test_end_moment_rolls_the_beam_into_half_and_full_circle(case):
     system, axis, half = circle_case(0.5, case)
-    tip = half.q[system.beam.node_slice(-1)]
+    tip = half.x[1:][system.beam.node_slice(-1)]
     # half circle: tip at 2 L / pi across the axis, tangent reversed
     side = np.cross(axis, [1.0, 0, 0])  # direction the beam curls towards
     assert np.allclose(tip[0:3], 2 * L / np.pi * side, atol=2e-4)
     assert np.allclose(tip[3:6] / np.linalg.norm(tip[3:6]), [-1, 0, 0], atol=2e-3)
     system, axis, full = circle_case(1.0, case)
-    tip = full.q[system.beam.node_slice(-1)]
+    tip = full.x[1:][system.beam.node_slice(-1)]
     assert np.linalg.norm(tip[0:3]) < 5e-4
     assert np.allclose(tip[3:6] / np.linalg.norm(tip[3:6]), [1, 0, 0], atol=2e-3)
     assert full.chart_switches >= 1  # the tangent swept through the first chart's singular direction
     # every point lies on the circle of radius L / (2 pi)
     centre = L / (2 * np.pi) * side
-    pts = np.array([system.beam.interpolate(full.q, s)[0] for s in np.linspace(0, L, 50)])
+    pts = np.array([system.beam.interpolate(full.x[1:], s)[0] for s in np.linspace(0, L, 50)])
     assert np.allclose(np.linalg.norm(pts - centre, axis=1), L / (2 * np.pi), atol=5e-4)
 
 
@@ -90,26 +90,26 @@ def test_full_circle_tip_error_converges():
     errors = []
     for n in (8, 16, 32):  # measured: 2.7e-2, 2.6e-4, 9.4e-6 m
         system, _, full = circle_case(1.0, "plate-k", elements=n)
-        errors.append(np.linalg.norm(full.q[system.beam.node_slice(-1)][0:3]))
+        errors.append(np.linalg.norm(full.x[1:][system.beam.node_slice(-1)][0:3]))
     rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all(rates > 3.0), (errors, rates)
 
 
 def test_newton_matrix_is_the_derivative_of_the_residual_and_symmetric_at_equilibrium():
     sec = plate()
-    system = AncfHubSystem(AncfBeam(L, 3, sec), radius=0.35, twist=0.7, motion="fixed",
+    system = single_beam_system(AncfBeam(L, 3, sec), radius=0.35, twist=0.7, motion="fixed",
                            gravity=np.array([0, -9.81, 0]), tip_force=np.array([0.3, -1.0, 0.5]))
     sol = solve_static(system, load_steps=4)
     mu = sol.multipliers / system.constraint_scale
     res, matrix = system.static_equations(sol.x, mu, sol.chart, 1.0)
     A = matrix.to_dense()
-    m = mu.size
+    layout = system.layout_for(True)
 
     def residual(z):
-        x = np.concatenate([[z[0]], z[1 + m:]])
-        return system.static_equations(x, z[1:1 + m], sol.chart, 1.0)[0]
+        x, mu = layout.split_z(z)
+        return system.static_equations(x, mu, sol.chart, 1.0)[0]
 
-    z = np.concatenate([[sol.x[0]], mu, sol.x[1:]])
+    z = layout.to_z(sol.x, mu)
     A_fd = central_difference(residual, z, 1e-7)
     assert np.max(np.abs(A - A_fd)) < 1e-5 * np.max(np.abs(A))
     assert np.max(np.abs(A - A.T)) < 1e-8 * np.max(np.abs(A))
@@ -119,7 +119,7 @@ def test_newton_matrix_is_the_derivative_of_the_residual_and_symmetric_at_equili
 def test_failure_names_the_load_step_and_keeps_the_last_equilibrium():
     sec = plate()
     EIy = sec.stiffness[2]
-    system = AncfHubSystem(AncfBeam(L, 4, sec), twist=np.pi / 2, motion="fixed",
+    system = single_beam_system(AncfBeam(L, 4, sec), twist=np.pi / 2, motion="fixed",
                            tip_moment=np.array([0, 0, 6 * np.pi * EIy / L]))
     with pytest.raises(ConvergenceError) as info:
         solve_static(system, load_steps=1, max_cuts=0, max_iterations=5)

@@ -9,13 +9,13 @@ from hubbeam.elements.section import Section
 from hubbeam.solvers.generalized_alpha import init
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub import DriveProfile
-from hubbeam.system.ancf_system import AncfHubSystem
+from hubbeam.system.laws import DriveProfile
+from hubbeam.system.hub_system import single_beam_system
 from tests.conftest import L, plate, rotation
 
 
 def spinning(section, omega, twist=np.pi / 4, radius=0.35, gravity=(0, -9.81, 0), elements=4):
-    return AncfHubSystem(AncfBeam(L, elements, section), radius=radius, twist=twist, motion="prescribed",
+    return single_beam_system(AncfBeam(L, elements, section), radius=radius, twist=twist, motion="prescribed",
                          drive=DriveProfile("constant", omega), gravity=np.array(gravity))
 
 
@@ -29,8 +29,8 @@ def test_steady_rotation_rates_turn_the_section_frames_rigidly():
     v, _ = system.steady_rotation_rates(x, F, 1.0)
     R = rotation([0, -1, 0], eps)
     for station in (0.0, 0.4, 1.1, L):
-        turned = system.beam.frame_at(x[1:] + eps * v[1:], F, station)
-        assert np.max(np.abs(turned - R @ system.beam.frame_at(x[1:], F, station))) < 1e-11
+        turned = system.beam.frame_at(x[1:] + eps * v[1:], F[0], station)
+        assert np.max(np.abs(turned - R @ system.beam.frame_at(x[1:], F[0], station))) < 1e-11
 
 
 def test_rates_refuse_a_chart_not_on_the_axis():

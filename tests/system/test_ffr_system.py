@@ -10,10 +10,10 @@ from hubbeam.io.scenario import Sensor
 from hubbeam.simulation import simulate
 from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.static import solve_static
-from hubbeam.system.ancf_system import AncfHubSystem
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.ffr_system import FfrHubSystem
-from hubbeam.system.hub import DriveProfile, clamp_frame
+from hubbeam.system.laws import DriveProfile
+from hubbeam.system.mount import Mount
+from hubbeam.system.hub_system import single_beam_system
 from tests.conftest import L, central_difference, plate
 
 THICK = plate(thickness=0.01)
@@ -21,22 +21,27 @@ THICK = plate(thickness=0.01)
 
 def pair(section=THICK, elements=8, stiffening=False, **kw):
     """The same model with both formulations."""
-    return (AncfHubSystem(AncfBeam(L, elements, section), **kw),
-            FfrHubSystem(FfrBeam(L, elements, section, geometric_stiffening=stiffening), **kw))
+    return (single_beam_system(AncfBeam(L, elements, section), **kw),
+            single_beam_system(FfrBeam(L, elements, section, geometric_stiffening=stiffening), **kw))
 
 
-@pytest.mark.parametrize("theta, beta", [(0.0, 0.0), (0.7, np.pi / 4), (-2.5, np.pi / 2), (3.0, -0.3)])
-def test_clamped_body_frame_is_the_clamp_frame(theta, beta):
-    system = FfrHubSystem(FfrBeam(L, 2, THICK), radius=0.35, twist=beta)
+@pytest.mark.parametrize("theta, beta, azimuth, precone",
+                         [(0.0, 0.0, 0.0, 0.0), (0.7, np.pi / 4, 0.0, 0.0), (-2.5, np.pi / 2, 2.0, 0.2),
+                          (3.0, -0.3, -1.0, -0.4)])
+def test_clamped_body_frame_is_the_mount_frame(theta, beta, azimuth, precone):
+    system = single_beam_system(FfrBeam(L, 2, THICK), radius=0.35, twist=beta, azimuth=azimuth, precone=precone)
+    part = system.beams[0]
     x, F = system.initial_state(theta)
-    assert np.allclose(rotation_matrix(x[4:7]), clamp_frame(theta, beta), atol=1e-14)
-    phi, jac, hess = system.constraints(x, F, None)
+    assert np.allclose(rotation_matrix(x[4:7]), Mount(0.35, beta, azimuth, precone).frame(theta), atol=1e-14)
+
+    def clamp(c):  # c = [theta, r_C, Theta]
+        return part.clamp(np.concatenate([c[1:], x[7:]]), F[0], c[0])
+
+    phi, jac, hess = clamp(x[0:7])
     assert np.max(np.abs(phi)) < 1e-15
-    J_fd = central_difference(lambda c: system.constraints(np.concatenate([c, x[7:]]), F, None)[0], x[0:7], 1e-7)
-    assert np.allclose(jac, J_fd, atol=1e-8)
+    assert np.allclose(jac, central_difference(lambda c: clamp(c)[0], x[0:7], 1e-7), atol=1e-8)
     lam = np.array([0.3, -1.2, 2.0, 0.1, 0.4, -0.5])
-    H_fd = central_difference(lambda c: system.constraints(np.concatenate([c, x[7:]]), F, None)[1].T @ lam,
-                              x[0:7], 1e-6)
+    H_fd = central_difference(lambda c: clamp(c)[1].T @ lam, x[0:7], 1e-6)
     assert np.allclose(hess(lam), H_fd, atol=1e-7)
 
 
@@ -79,7 +84,7 @@ SENSORS = [Sensor(name="energy", kind="energy"), Sensor(name="H", kind="angular_
 
 
 def test_ffr_free_hub_keeps_energy_and_angular_momentum():
-    system = FfrHubSystem(FfrBeam(L, 4, plate()), radius=0.35, twist=np.pi / 4, motion="free", hub_inertia=9.557,
+    system = single_beam_system(FfrBeam(L, 4, plate()), radius=0.35, twist=np.pi / 4, motion="free", hub_inertia=9.557,
                           gravity=np.array([0, -9.81, 0]))
     traj = simulate(system, SENSORS, t_end=0.6, dt=2e-3, spectral_radius=1.0, output_dt=0.02)
     e = traj.records["energy"]
@@ -110,16 +115,16 @@ def test_kane_spin_up_at_10_rad_s_plain_ffr_diverges_stiffened_ffr_follows_ancf(
     """Kane et al. (1987): at omega_s = 10 rad/s (above the first clamped frequency, 3.8
     rad/s) the linear FFR loses its lateral stiffness and the tip runs away; with geometric
     stiffening FFR stays bounded and follows ANCF (8 elements each)."""
-    from hubbeam.solvers.errors import ComputationError
+    from hubbeam.errors import ComputationError
     from tests.test_simulation import kane_beam
 
     drive = DriveProfile("spin_up", 10.0, 15.0)
     tip = [Sensor(name="tip", kind="tip_deflection")]
     runs = {}
-    for name, system in (("ancf", AncfHubSystem(AncfBeam(10.0, 8, kane_beam()), motion="prescribed", drive=drive)),
-                         ("ffr+", FfrHubSystem(FfrBeam(10.0, 8, kane_beam(), geometric_stiffening=True),
+    for name, system in (("ancf", single_beam_system(AncfBeam(10.0, 8, kane_beam()), motion="prescribed", drive=drive)),
+                         ("ffr+", single_beam_system(FfrBeam(10.0, 8, kane_beam(), geometric_stiffening=True),
                                                motion="prescribed", drive=drive)),
-                         ("ffr", FfrHubSystem(FfrBeam(10.0, 8, kane_beam()), motion="prescribed", drive=drive))):
+                         ("ffr", single_beam_system(FfrBeam(10.0, 8, kane_beam()), motion="prescribed", drive=drive))):
         try:
             traj = simulate(system, tip, t_end=20.0, dt=0.01, output_dt=0.5)
         except ComputationError as exc:

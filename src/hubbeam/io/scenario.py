@@ -1,19 +1,43 @@
-"""Scenario files (TOML) per ../shared/interface.md, validated with pydantic.
+"""Scenario files (TOML), validated with pydantic; docs/scenario.md is the reference.
 
 Every problem with a scenario becomes a :class:`ScenarioError` whose message is one
-line naming the key (dotted path, e.g. ``beam.thickness`` or ``sensors[1].x``) and the
-reason. Units are SI; angles in the file are in degrees.
+line naming the key (dotted path, e.g. ``beam.thickness``, ``beams[1].tip_body.mass`` or
+``sensors[1].x``) and the reason. Units are SI; angles in the file are in degrees (the
+slew ``angle`` and table angles, which are hub angles in rad, excepted).
+
+A hub carries one beam (a ``[beam]`` table) or several (``[[beams]]`` tables). Code that
+builds a model reads :meth:`Scenario.resolved_beams`: every beam with its defaults filled in,
+SI units and angles in radians. ``scenario.beam`` is kept for single-beam scenarios.
+
+Room is left for span-wise sections (``[[beams.sections]]``), per-beam structural damping
+(``[beams.damping]``) and FFR modal reduction (``modes``): they will be fields of
+:class:`Beam`, resolved into :class:`ResolvedBeam`.
 """
 
 from __future__ import annotations
 
+import copy
 import math
+import re
 import tomllib
+import unicodedata
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Discriminator,
+    Field,
+    Tag,
+    ValidationError,
+    ValidationInfo,
+    field_validator,
+    model_serializer,
+    model_validator,
+)
 
 
 class ScenarioError(ValueError):
@@ -27,9 +51,72 @@ class _Strict(BaseModel):
 Positive = Annotated[float, Field(gt=0.0)]
 NonNegative = Annotated[float, Field(ge=0.0)]
 Vector3 = Annotated[list[float], Field(min_length=3, max_length=3)]
+NonNegativeVector3 = Annotated[list[NonNegative], Field(min_length=3, max_length=3)]
+Identifier = Annotated[str, Field(min_length=1, max_length=64, pattern=r"^[A-Za-z_][A-Za-z0-9_]*$")]
+
+#: precone limit (deg): the FFR reference frame's Cardan angles become singular at 90 deg
+MAX_PRECONE_DEG = 80.0
+#: relative tolerance of "a whole multiple of analysis.dt"
+STEP_TOLERANCE = 1e-9
+
+
+def _given(model: BaseModel, own: tuple[str, ...], required: tuple[str, ...], what: str) -> None:
+    """Only ``own`` keys (besides the selector) may be given and every ``required`` one must be."""
+    given = model.model_fields_set
+    for key in type(model).model_fields:
+        if key in given and key not in own and key not in ("profile", "law"):
+            raise ValueError(f"{key}: not a key of {what} (its keys: {', '.join(own)})")
+    for key in required:
+        if key not in given:
+            raise ValueError(f"{key}: required for {what}")
+
+
+def _absolute(value: str | None, info: ValidationInfo) -> str | None:
+    """A table's path made absolute: relative to ``context['base_dir']`` (the scenario file's
+    folder), else to the current directory."""
+    if value is None:
+        return None
+    path = Path(value).expanduser()
+    if not path.is_absolute():
+        base = (info.context or {}).get("base_dir")
+        path = Path(base if base is not None else Path.cwd()) / path
+    return str(path.absolute())
+
+
+def _check_file(path: str) -> None:
+    p = Path(path)
+    if not p.exists():
+        raise ValueError(f"file: no such file {path}")
+    if not p.is_file():
+        raise ValueError(f"file: not a file {path}")
+
+
+# ------------------------------------------------------------------------- beams
+class TipBody(_Strict):
+    """A rigid body at a beam's tip: mass (kg), principal inertia [J_tau, J_m, J_n] (kg m^2)
+    about the tip section's axes through its centre of mass, and the offset [c_tau, c_m, c_n]
+    (m) of that centre from the tip centroid, in the tip section frame."""
+
+    mass: NonNegative
+    inertia: NonNegativeVector3 = [0.0, 0.0, 0.0]
+    offset: Vector3 = [0.0, 0.0, 0.0]
+
+    @model_validator(mode="after")
+    def _triangle(self):
+        j = self.inertia
+        for a in range(3):
+            b, c = (a + 1) % 3, (a + 2) % 3
+            if j[a] > (j[b] + j[c]) * (1 + 1e-9) + 1e-300:
+                raise ValueError(
+                    f"inertia: the principal moments {list(j)} kg m^2 are not those of a rigid body "
+                    f"(each must be <= the sum of the other two; J[{a}] = {j[a]} > {j[b]} + {j[c]})")
+        return self
 
 
 class Beam(_Strict):
+    """One beam: a ``[beam]`` table or one of the ``[[beams]]`` tables."""
+
+    name: Identifier | None = None  # default "beam1", "beam2", ... by position
     formulation: Literal["ancf", "ffr"] = "ancf"
     elements: Annotated[int, Field(gt=0, le=2000)]
     length: Positive
@@ -42,22 +129,192 @@ class Beam(_Strict):
     torsion_constant: Positive | None = None
     geometric_stiffening: bool = False
     gauss_points: Annotated[int, Field(ge=2, le=10)] | None = None
+    # where the beam sits on the hub
+    azimuth: float = 0.0  # deg
+    radius: NonNegative | None = None  # m, default hub.radius
+    twist: float | None = None  # deg, default hub.twist
+    precone: float = 0.0  # deg
+    tip_body: TipBody | None = None
+
+    @model_validator(mode="after")
+    def _keys(self):
+        if self.poisson_ratio is not None and self.shear_modulus is not None:
+            raise ValueError("shear_modulus: give poisson_ratio or shear_modulus, not both")
+        if self.formulation == "ancf" and self.geometric_stiffening:
+            raise ValueError("geometric_stiffening: only applies to formulation = 'ffr'")
+        if self.formulation == "ffr" and self.gauss_points is not None:
+            raise ValueError("gauss_points: only applies to formulation = 'ancf'")
+        if not abs(self.precone) < MAX_PRECONE_DEG:
+            raise ValueError(
+                f"precone: must be between -{MAX_PRECONE_DEG:g} and {MAX_PRECONE_DEG:g} deg (got {self.precone}): "
+                "the FFR reference frame's Cardan angles become singular as the beam axis nears the hub axis (90 deg)")
+        return self
+
+
+@dataclass(frozen=True)
+class ResolvedTipBody:
+    """A tip body in SI units: mass (kg), principal inertia (J_tau, J_m, J_n) (kg m^2) about the
+    tip section axes through its centre of mass, offset (c_tau, c_m, c_n) (m) from the tip centroid."""
+
+    mass: float
+    inertia: tuple[float, float, float]
+    offset: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class ResolvedBeam:
+    """Beam ``index`` of a scenario with every default filled in: SI units, angles in radians.
+
+    Placement: its own hub frame is A_h(theta + azimuth); the root is at radius * i_k; the axis
+    is i_k turned by precone towards +j0; the section is turned about the axis by -twist
+    (conventions.md). tip_force (N) and tip_moment (N m) are the ``[loads]`` on this beam, in
+    global directions (zeros when [loads] applies to another beam)."""
+
+    name: str
+    index: int
+    formulation: str  # "ancf" | "ffr"
+    elements: int
+    length: float  # m
+    width: float  # m, local y
+    thickness: float  # m, local z
+    density: float  # kg/m^3
+    youngs_modulus: float  # Pa
+    shear_modulus: float  # Pa
+    torsion_constant: float  # m^4
+    gauss_points: int | None  # ANCF only; None: the element's default
+    geometric_stiffening: bool  # FFR only
+    azimuth: float  # rad
+    radius: float  # m
+    twist: float  # rad
+    precone: float  # rad
+    tip_body: ResolvedTipBody | None
+    tip_force: tuple[float, float, float]  # N, global
+    tip_moment: tuple[float, float, float]  # N m, global
+
+
+# ------------------------------------------------------------------------- hub
+#: drive profile -> (its keys besides `profile`, the required ones)
+DRIVE_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
+    "constant": (("omega_s",), ("omega_s",)),
+    "exponential": (("omega_s", "T", "t1"), ("omega_s", "T")),
+    "spin_up": (("omega_s", "T"), ("omega_s", "T")),
+    "slew": (("angle", "T"), ("angle", "T")),
+    "table": (("file",), ("file",)),
+}
+
+#: torque law -> (its keys besides `law`, the required ones)
+TORQUE_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
+    "constant": (("value",), ("value",)),
+    "table": (("file",), ("file",)),
+    "pd": (("kp", "kd", "reference"), ("reference",)),
+}
 
 
 class Drive(_Strict):
-    profile: Literal["exponential", "constant", "spin_up"] = "exponential"
-    omega_s: float
-    T: Positive = 1.0
-    t1: Positive = 1.0e300
+    """A drive profile theta(t): ``[hub.drive]`` or ``[hub.torque.reference]``. Each profile
+    takes only its own keys (:data:`DRIVE_KEYS`); the others keep their neutral defaults and
+    are left out of :meth:`Scenario.to_dict`. ``file`` is stored as an absolute path."""
+
+    profile: Literal["exponential", "constant", "spin_up", "slew", "table"] = "exponential"
+    omega_s: float = 0.0  # rad/s
+    T: Positive = 1.0  # s
+    t1: Positive = math.inf  # s (exponential: omega_s from t1 on; default never)
+    angle: float = 0.0  # rad (slew)
+    file: Annotated[str, Field(min_length=1)] | None = None  # CSV: time, omega (rad/s) or theta (rad)
+
+    @field_validator("file")
+    @classmethod
+    def _absolute_file(cls, value, info: ValidationInfo):
+        return _absolute(value, info)
+
+    @model_validator(mode="after")
+    def _own_keys(self):
+        own, required = DRIVE_KEYS[self.profile]
+        _given(self, own, required, f"profile {self.profile!r}")
+        if self.file is not None:
+            _check_file(self.file)
+        return self
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler):
+        return {k: v for k, v in handler(self).items() if k == "profile" or k in self.model_fields_set}
+
+
+class HubTorque(_Strict):
+    """A free hub's torque law ``[hub.torque]`` (:data:`TORQUE_KEYS`): constant ``value`` (N m);
+    ``table`` ``file`` (CSV: time (s), torque (N m)); ``pd``: kp (N m/rad), kd (N m s/rad) and a
+    ``reference`` drive profile, torque = kp (theta_ref - theta) + kd (omega_ref - omega)."""
+
+    law: Literal["constant", "table", "pd"]
+    value: float = 0.0
+    file: Annotated[str, Field(min_length=1)] | None = None
+    kp: NonNegative = 0.0
+    kd: NonNegative = 0.0
+    reference: Drive | None = None
+
+    @field_validator("file")
+    @classmethod
+    def _absolute_file(cls, value, info: ValidationInfo):
+        return _absolute(value, info)
+
+    @model_validator(mode="after")
+    def _own_keys(self):
+        own, required = TORQUE_KEYS[self.law]
+        _given(self, own, required, f"law {self.law!r}")
+        if self.law == "pd" and self.kp == 0.0 and self.kd == 0.0:
+            raise ValueError("kp: kp and kd are both 0, so the law applies no torque (give kp > 0 or kd > 0)")
+        if self.file is not None:
+            _check_file(self.file)
+        return self
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler):
+        return {k: v for k, v in handler(self).items() if k == "law" or k in self.model_fields_set}
+
+
+def _torque_tag(value: Any) -> str | None:
+    if isinstance(value, HubTorque) or isinstance(value, dict):
+        return "<table>"
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return "<number>"
+    return None
+
+
+TorqueSpec = Annotated[
+    Union[Annotated[float, Tag("<number>")], Annotated[HubTorque, Tag("<table>")]],
+    Discriminator(_torque_tag, custom_error_type="torque_type",
+                  custom_error_message="must be a number (N m) or a table with law = 'constant' | 'table' | 'pd'"),
+]
 
 
 class Hub(_Strict):
+    """The hub. ``radius`` and ``twist`` are the defaults of every beam. ``inertia`` is required
+    for a free hub (elsewhere it only enters a prescribed hub's drive torque; default 1 kg m^2);
+    ``torque`` applies to a free hub only; ``drive`` to a prescribed one only."""
+
     motion: Literal["free", "prescribed", "fixed"] = "fixed"
-    radius: NonNegative = 0.0
-    twist: float = 0.0
-    inertia: Positive = 1.0
-    torque: float = 0.0
+    radius: NonNegative = 0.0  # m
+    twist: float = 0.0  # deg
+    inertia: Positive = 1.0  # kg m^2
+    torque: TorqueSpec = 0.0  # N m, or a law
     drive: Drive | None = None
+
+    @property
+    def torque_law(self) -> HubTorque | None:
+        """The free hub's torque law (a number becomes law = 'constant'); None for other motions."""
+        if self.motion != "free":
+            return None
+        if isinstance(self.torque, HubTorque):
+            return self.torque
+        return HubTorque(law="constant", value=float(self.torque))
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler):
+        out = handler(self)
+        for key in ("inertia", "torque"):
+            if key not in self.model_fields_set:
+                out.pop(key, None)
+        return out
 
 
 class Environment(_Strict):
@@ -72,6 +329,7 @@ class Damping(_Strict):
 class Loads(_Strict):
     tip_force: Vector3 = [0.0, 0.0, 0.0]
     tip_moment: Vector3 = [0.0, 0.0, 0.0]
+    beam: Identifier | None = None  # default: the first beam
 
 
 class Analysis(_Strict):
@@ -86,15 +344,29 @@ class Analysis(_Strict):
     tolerance: Annotated[float, Field(gt=0.0, lt=1e-3)] = 1e-9
 
 
+# ------------------------------------------------------------------------- sensors
 SensorKind = Literal[
     "surface_strain", "hub_angle", "hub_angular_velocity", "hub_torque", "tip_deflection", "energy",
-    "angular_momentum", "constraint_violation",
+    "angular_momentum", "constraint_violation", "applied_torque",
 ]
+
+#: sensors that belong to one beam (``beam``: a beam name, default the first beam)
+BEAM_SENSORS = frozenset({"surface_strain", "tip_deflection"})
+#: sensors with an optional ``beam`` (without it, the whole system)
+OPTIONAL_BEAM_SENSORS = frozenset({"energy"})
+#: multi-part sensors -> their parts; the columns are NAME_PART
+SENSOR_PARTS: dict[str, tuple[str, ...]] = {
+    "tip_deflection": ("radial", "vertical", "tangential"),
+    "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive"),
+}
+#: the parts of an energy sensor that names a beam (the work terms belong to the whole system)
+BEAM_ENERGY_PARTS = ("kinetic", "strain", "gravity", "total")
 
 
 class Sensor(_Strict):
-    name: Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z_][A-Za-z0-9_]*$")]
+    name: Identifier
     kind: SensorKind
+    beam: Identifier | None = None
     x: NonNegative | None = None
     surface: Literal["upper", "lower"] | None = None
     y: float | None = None
@@ -102,6 +374,8 @@ class Sensor(_Strict):
 
     @model_validator(mode="after")
     def _station(self):
+        if self.beam is not None and self.kind not in BEAM_SENSORS | OPTIONAL_BEAM_SENSORS:
+            raise ValueError(f"beam: a {self.kind} sensor measures the hub or the whole system, not one beam")
         if self.kind == "surface_strain":
             if self.x is None:
                 raise ValueError("x: required for a surface_strain sensor")
@@ -113,10 +387,25 @@ class Sensor(_Strict):
             raise ValueError(f"x: station keys only apply to surface_strain sensors, not {self.kind}")
         return self
 
+    @property
+    def parts(self) -> tuple[str, ...] | None:
+        """The parts of a multi-part sensor (None for a single value)."""
+        if self.kind == "energy" and self.beam is not None:
+            return BEAM_ENERGY_PARTS
+        return SENSOR_PARTS.get(self.kind)
 
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """The result columns of this sensor: NAME, or NAME_PART for a multi-part sensor."""
+        parts = self.parts
+        return (self.name,) if parts is None else tuple(f"{self.name}_{p}" for p in parts)
+
+
+# ------------------------------------------------------------------------- the scenario
 class Scenario(_Strict):
-    name: Annotated[str, Field(min_length=1)] = "scenario"
-    beam: Beam
+    name: Annotated[str, Field(min_length=1, max_length=200)] = "scenario"
+    single_beam: Beam | None = Field(default=None, alias="beam")  # a [beam] table
+    beams: Annotated[list[Beam], Field(min_length=1, max_length=100)] | None = None  # [[beams]] tables
     hub: Hub = Hub()
     environment: Environment = Environment()
     damping: Damping = Damping()
@@ -124,59 +413,188 @@ class Scenario(_Strict):
     analysis: Analysis = Analysis()
     sensors: list[Sensor] = []
 
-    # ----------------------------------------------------------- derived values
+    # ----------------------------------------------------------- beams
+    @property
+    def beam_tables(self) -> list[Beam]:
+        """The beams as written ([beam] or [[beams]]), in order."""
+        if self.single_beam is not None:
+            return [self.single_beam]
+        return list(self.beams or [])
+
+    @property
+    def beam_names(self) -> tuple[str, ...]:
+        return tuple(b.name or f"beam{i + 1}" for i, b in enumerate(self.beam_tables))
+
+    @property
+    def beam(self) -> Beam:
+        """The one beam of a single-beam scenario (its table as written; the placement keys
+        may be None: :meth:`resolved_beams` has them resolved)."""
+        tables = self.beam_tables
+        if len(tables) != 1:
+            raise ScenarioError(
+                f"beams: this scenario has {len(tables)} beams ({', '.join(self.beam_names)}) where one is expected")
+        return tables[0]
+
+    def beam_index(self, name: str | None = None) -> int:
+        """0-based index of the beam called ``name``; None means the first beam (0)."""
+        if name is None:
+            return 0
+        names = self.beam_names
+        if name not in names:
+            raise ScenarioError(f"beam: no beam named {name!r} (beams: {', '.join(names)})")
+        return names.index(name)
+
+    def resolved_beams(self) -> list[ResolvedBeam]:
+        """Every beam with its defaults filled in (SI units, radians)."""
+        loaded = self.beam_index(self.loads.beam)
+        out = []
+        for i, (b, name) in enumerate(zip(self.beam_tables, self.beam_names)):
+            if b.shear_modulus is not None:
+                g = b.shear_modulus
+            else:
+                nu = 0.33 if b.poisson_ratio is None else b.poisson_ratio
+                g = b.youngs_modulus / (2.0 * (1.0 + nu))
+            if b.torsion_constant is not None:
+                jt = b.torsion_constant
+            else:
+                from hubbeam.elements.section import saint_venant_torsion_constant
+
+                jt = saint_venant_torsion_constant(b.width, b.thickness)
+            tb = b.tip_body
+            tip = None if tb is None else ResolvedTipBody(
+                float(tb.mass), tuple(float(v) for v in tb.inertia), tuple(float(v) for v in tb.offset))
+            zero = (0.0, 0.0, 0.0)
+            out.append(ResolvedBeam(
+                name=name, index=i, formulation=b.formulation, elements=b.elements, length=b.length, width=b.width,
+                thickness=b.thickness, density=b.density, youngs_modulus=b.youngs_modulus, shear_modulus=g,
+                torsion_constant=jt, gauss_points=b.gauss_points, geometric_stiffening=bool(b.geometric_stiffening),
+                azimuth=math.radians(b.azimuth),
+                radius=float(self.hub.radius if b.radius is None else b.radius),
+                twist=math.radians(self.hub.twist if b.twist is None else b.twist),
+                precone=math.radians(b.precone), tip_body=tip,
+                tip_force=tuple(float(v) for v in self.loads.tip_force) if i == loaded else zero,
+                tip_moment=tuple(float(v) for v in self.loads.tip_moment) if i == loaded else zero,
+            ))
+        return out
+
+    # ----------------------------------------------------------- derived values (single beam)
     @property
     def shear_modulus(self) -> float:
-        b = self.beam
-        if b.shear_modulus is not None:
-            return b.shear_modulus
-        nu = 0.33 if b.poisson_ratio is None else b.poisson_ratio
-        return b.youngs_modulus / (2.0 * (1.0 + nu))
+        """Shear modulus (Pa) of the single beam."""
+        self.beam  # noqa: B018 - one beam expected
+        return self.resolved_beams()[0].shear_modulus
 
     @property
     def twist_rad(self) -> float:
-        return math.radians(self.hub.twist)
+        """Twist (rad) of the single beam."""
+        self.beam  # noqa: B018 - one beam expected
+        return self.resolved_beams()[0].twist
 
     @property
     def output_dt(self) -> float:
         return self.analysis.output_dt if self.analysis.output_dt is not None else self.analysis.dt
 
+    @property
+    def columns(self) -> list[str]:
+        """The result columns of the sensors, in order (without ``time``)."""
+        return [c for s in self.sensors for c in s.columns]
+
     def to_dict(self) -> dict:
-        return self.model_dump(exclude_none=True)
+        """The scenario as plain data ([beam] or [[beams]] as written; absolute table paths);
+        ``validate(scenario.to_dict())`` gives the scenario back."""
+        return self.model_dump(by_alias=True, exclude_none=True)
+
+
+def _nearest_multiples(value: float, step: float) -> str:
+    n = value / step
+    lo, hi = max(math.floor(n), 1), max(math.ceil(n), 1)
+    vals = sorted({float(f"{k * step:.12g}") for k in (lo, hi)})
+    return " or ".join(f"{v:.12g}" for v in vals)
+
+
+def _is_multiple(value: float, step: float) -> bool:
+    n = round(value / step)
+    return n >= 1 and abs(n * step - value) <= STEP_TOLERANCE * value
 
 
 def _cross_checks(s: Scenario) -> None:
     """Checks that involve several keys; each raises ScenarioError naming one key."""
-    b = s.beam
-    if b.poisson_ratio is not None and b.shear_modulus is not None:
-        raise ScenarioError("beam.shear_modulus: give poisson_ratio or shear_modulus, not both")
-    if b.formulation == "ancf" and b.geometric_stiffening:
-        raise ScenarioError("beam.geometric_stiffening: only applies to formulation = 'ffr'")
-    if b.formulation == "ffr" and b.gauss_points is not None:
-        raise ScenarioError("beam.gauss_points: only applies to formulation = 'ancf'")
-    if s.hub.motion == "prescribed" and s.hub.drive is None:
+    if any(unicodedata.category(c) == "Cc" for c in s.name):
+        raise ScenarioError("name: must not contain control characters (NUL, tab, line breaks, ...)")
+    if s.single_beam is not None and s.beams is not None:
+        raise ScenarioError("beams: give one [beam] table or [[beams]] tables, not both")
+    if s.single_beam is None and s.beams is None:
+        raise ScenarioError("beam: required key is missing (a [beam] table, or [[beams]] tables for several beams)")
+    tables, names = s.beam_tables, s.beam_names
+    where = "beam" if s.single_beam is not None else "beams"
+    seen: dict[str, int] = {}
+    for i, name in enumerate(names):
+        if name in seen:
+            how = "" if tables[i].name is not None else " by default"
+            raise ScenarioError(f"beams[{i}].name: duplicate beam name {name!r}{how} (also beams[{seen[name]}])")
+        seen[name] = i
+    listed = ", ".join(names)
+
+    hub = s.hub
+    if hub.motion == "prescribed" and hub.drive is None:
         raise ScenarioError("hub.drive: required when hub.motion = 'prescribed'")
-    if s.hub.motion != "prescribed" and s.hub.drive is not None:
-        raise ScenarioError(f"hub.drive: only with hub.motion = 'prescribed' (motion is {s.hub.motion!r})")
+    if hub.motion != "prescribed" and hub.drive is not None:
+        raise ScenarioError(f"hub.drive: only with hub.motion = 'prescribed' (motion is {hub.motion!r})")
+    if hub.motion != "free" and "torque" in hub.model_fields_set:
+        raise ScenarioError(f"hub.torque: only for hub.motion = 'free' (motion is {hub.motion!r}); remove it")
+    if hub.motion == "free" and "inertia" not in hub.model_fields_set:
+        raise ScenarioError("hub.inertia: required for motion = 'free' (kg m^2 about j0)")
+
+    if s.loads.beam is not None and s.loads.beam not in names:
+        raise ScenarioError(f"loads.beam: no beam named {s.loads.beam!r} (beams: {listed})")
+
     a = s.analysis
     if a.kind == "dynamic":
         if a.dt > a.t_end:
             raise ScenarioError(f"analysis.dt: larger than analysis.t_end ({a.dt} > {a.t_end})")
         if a.output_dt is not None and a.output_dt < a.dt:
             raise ScenarioError(f"analysis.output_dt: smaller than analysis.dt ({a.output_dt} < {a.dt})")
-    names = set()
+        if a.output_dt is not None and not _is_multiple(a.output_dt, a.dt):
+            raise ScenarioError(f"analysis.output_dt: {a.output_dt:.12g} s is not a whole multiple of analysis.dt = "
+                                f"{a.dt:.12g} s (nearest valid: {_nearest_multiples(a.output_dt, a.dt)})")
+        if not _is_multiple(a.t_end, a.dt):
+            raise ScenarioError(f"analysis.t_end: {a.t_end:.12g} s is not a whole number of steps of analysis.dt = "
+                                f"{a.dt:.12g} s (nearest valid: {_nearest_multiples(a.t_end, a.dt)})")
+
+    columns: dict[str, int] = {}
     for i, sen in enumerate(s.sensors):
-        if sen.name in names:
-            raise ScenarioError(f"sensors[{i}].name: duplicate sensor name {sen.name!r}")
-        names.add(sen.name)
+        if sen.kind == "applied_torque" and hub.motion != "free":
+            raise ScenarioError(f"sensors[{i}].kind: applied_torque needs hub.motion = 'free' "
+                                f"(motion is {hub.motion!r}; a prescribed hub's torque is hub_torque)")
+        for col in sen.columns:
+            if col == "time":
+                raise ScenarioError(f"sensors[{i}].name: {sen.name!r} makes the column 'time', the time coordinate")
+            if col in columns:
+                j = columns[col]
+                if s.sensors[j].name == sen.name:
+                    raise ScenarioError(f"sensors[{i}].name: duplicate sensor name {sen.name!r} (also sensors[{j}])")
+                raise ScenarioError(f"sensors[{i}].name: {sen.name!r} makes the column {col!r}, which sensors[{j}] "
+                                    f"({s.sensors[j].name!r}, {s.sensors[j].kind}) makes too")
+            columns[col] = i
+        if sen.beam is not None and sen.beam not in names:
+            raise ScenarioError(f"sensors[{i}].beam: no beam named {sen.beam!r} (beams: {listed})")
+        k = s.beam_index(sen.beam)
+        b = tables[k]
+        of = f"{where}[{k}]" if where == "beams" else "beam"
+        label = f"beam {names[k]!r}" if len(tables) > 1 else "the beam"
         if sen.x is not None and sen.x > b.length:
-            raise ScenarioError(f"sensors[{i}].x: station {sen.x} m is beyond the beam length {b.length} m")
+            raise ScenarioError(f"sensors[{i}].x: station {sen.x} m is beyond the length of {label} "
+                                f"({of}.length = {b.length} m)")
         if sen.y is not None and abs(sen.y) > b.width / 2 * (1 + 1e-12):
-            raise ScenarioError(f"sensors[{i}].y: {sen.y} m is outside the section (|y| <= width/2 = {b.width / 2})")
+            raise ScenarioError(f"sensors[{i}].y: {sen.y} m is outside the section of {label} "
+                                f"(|y| <= width/2 = {b.width / 2})")
         if sen.z is not None and abs(sen.z) > b.thickness / 2 * (1 + 1e-12):
             raise ScenarioError(
-                f"sensors[{i}].z: {sen.z} m is outside the section (|z| <= thickness/2 = {b.thickness / 2})"
-            )
+                f"sensors[{i}].z: {sen.z} m is outside the section of {label} (|z| <= thickness/2 = {b.thickness / 2})")
+
+
+_TYPE_PARTS = {"function-after", "function-before", "function-wrap", "list[float]", "float", "int", "str", "bool",
+               "constrained-float", "constrained-int", "constrained-str", "list[constrained-float]"}
 
 
 def _format_loc(loc: tuple) -> str:
@@ -184,7 +602,7 @@ def _format_loc(loc: tuple) -> str:
     for part in loc:
         if isinstance(part, int):
             out += f"[{part}]"
-        elif part in ("function-after", "list[float]", "float", "int", "constrained-float", "constrained-int"):
+        elif part in _TYPE_PARTS or str(part).startswith(("<", "function-")):
             continue
         else:
             out += ("." if out else "") + str(part)
@@ -208,21 +626,34 @@ def _explain(err: dict) -> str:
     if kind == "literal_error":
         return f"must be one of {ctx.get('expected')} (got {value!r})"
     if kind in ("too_short", "too_long"):
-        return f"must have {ctx.get('min_length', ctx.get('max_length'))} entries"
-    if kind in ("float_type", "int_type", "string_type", "bool_type", "list_type", "model_type", "dict_type"):
-        want = {"float_type": "a number", "int_type": "an integer", "string_type": "a string", "bool_type": "true or false",
-                "list_type": "a list", "model_type": "a table", "dict_type": "a table"}[kind]
+        n = ctx.get("min_length") if kind == "too_short" else ctx.get("max_length")
+        bound = "at least" if kind == "too_short" else "at most"
+        if ctx.get("min_length") == 3 or ctx.get("max_length") == 3:
+            bound = "exactly"  # a 3-vector
+        return f"must have {bound} {n} entr{'y' if n == 1 else 'ies'} (got {ctx.get('actual_length')})"
+    if kind == "string_too_short":
+        return "must not be empty"
+    if kind == "string_too_long":
+        return f"must be at most {ctx.get('max_length')} characters long"
+    if kind == "string_pattern_mismatch":
+        return f"must be an identifier: letters, digits and _, not starting with a digit (got {value!r})"
+    if kind in ("float_type", "int_type", "string_type", "bool_type", "list_type", "model_type", "dict_type",
+                "model_attributes_type"):
+        want = {"float_type": "a number", "int_type": "an integer", "string_type": "a string",
+                "bool_type": "true or false", "list_type": "a list", "model_type": "a table", "dict_type": "a table",
+                "model_attributes_type": "a table"}[kind]
         return f"must be {want} (got {type(value).__name__} {value!r})"
     msg = err["msg"]
     return msg.removeprefix("Value error, ")
 
 
-def validate(data: dict) -> Scenario:
-    """A validated Scenario from a plain dict (parsed TOML), or ScenarioError."""
+def validate(data: dict, base_dir: str | Path | None = None) -> Scenario:
+    """A validated Scenario from a plain dict (parsed TOML), or ScenarioError. Relative table
+    paths (``file`` keys) are taken relative to ``base_dir`` (default: the current directory)."""
     if not isinstance(data, dict):
         raise ScenarioError("scenario: must be a TOML table")
     try:
-        scenario = Scenario.model_validate(data)
+        scenario = Scenario.model_validate(data, context={"base_dir": base_dir})
     except ValidationError as exc:
         err = exc.errors()[0]
         key = _format_loc(err["loc"]) or "scenario"
@@ -233,7 +664,34 @@ def validate(data: dict) -> Scenario:
             key = f"{key}.{sub}" if key != "scenario" else sub
         raise ScenarioError(f"{key}: {reason}") from None
     _cross_checks(scenario)
+    _check_tables(scenario)
     return scenario
+
+
+def _check_tables(s: Scenario) -> None:
+    """The numbers of the CSV tables a scenario names (columns, rows, times)."""
+    hub = s.hub
+    tables = []
+    if hub.drive is not None and hub.drive.profile == "table":
+        tables.append(("drive", "hub.drive.file", hub.drive.file))
+    torque = hub.torque if isinstance(hub.torque, HubTorque) else None
+    if torque is not None and torque.law == "table":
+        tables.append(("torque", "hub.torque.file", torque.file))
+    if torque is not None and torque.reference is not None and torque.reference.profile == "table":
+        tables.append(("drive", "hub.torque.reference.file", torque.reference.file))
+    if not tables:
+        return
+    from hubbeam.io.tables import read_drive_table, read_torque_table
+
+    for what, key, path in tables:
+        (read_drive_table if what == "drive" else read_torque_table)(path, key)
+
+
+# ------------------------------------------------------------------------- --set
+_SEGMENT = re.compile(r"([^.\[\]]+)((?:\[(?:\d+|\*)\])*)")
+_INDEX = re.compile(r"\[(\d+|\*)\]")
+#: keys whose value selects which other keys of the same table apply
+_SWITCHES = {"formulation", "motion", "profile", "law"}
 
 
 def parse_override(text: str) -> tuple[list[str], object]:
@@ -251,25 +709,202 @@ def parse_override(text: str) -> tuple[list[str], object]:
     return key.split("."), value
 
 
-def apply_overrides(data: dict, overrides: list[str]) -> dict:
-    """Apply --set overrides to parsed TOML data (a new dict is returned)."""
-    import copy
+def _tokens(key: str, text: str) -> list:
+    """'beams[1].tip_body.mass' -> ['beams', 1, 'tip_body', 'mass'] ('*' for [*])."""
+    out: list = []
+    for seg in key.split("."):
+        m = _SEGMENT.fullmatch(seg)
+        if not m:
+            raise ScenarioError(f"--set {text}: malformed key {key!r}")
+        out.append(m.group(1))
+        out += [int(i) if i != "*" else "*" for i in _INDEX.findall(m.group(2))]
+    return out
 
+
+def _beam_name(table: Any, i: int) -> str:
+    if isinstance(table, dict) and isinstance(table.get("name"), str):
+        return table["name"]
+    return f"beam{i + 1}"
+
+
+def _addresses(data: dict, tokens: list, text: str) -> list[tuple]:
+    """The places a --set key addresses, with a beam named by index or name turned into its
+    table: ('beam', ...) for a single [beam], ('beams', i, ...) for [[beams]]."""
+    head, rest = tokens[0], tokens[1:]
+    single = data.get("beam")
+    many = data.get("beams")
+    if head == "beam":
+        if isinstance(many, list) and single is None:
+            if len(many) != 1:
+                raise ScenarioError(f"--set {text}: the scenario has {len(many)} beams; address one as "
+                                    f"beams[i].KEY (0-based) or beams.NAME.KEY")
+            return [("beams", 0, *rest)]
+        return [("beam", *rest)]
+    if head == "beams" and rest:
+        sel, rest = rest[0], rest[1:]
+        if isinstance(single, dict) and many is None:
+            tables, to = [single], (lambda i: ("beam",))
+        elif isinstance(many, list):
+            tables, to = many, (lambda i: ("beams", i))
+        else:
+            raise ScenarioError(f"--set {text}: the scenario has no beams to address")
+        names = [_beam_name(t, i) for i, t in enumerate(tables)]
+        if sel == "*":
+            picked = list(range(len(tables)))
+        elif isinstance(sel, int):
+            if sel >= len(tables):
+                raise ScenarioError(f"--set {text}: beam index {sel} is out of range (the scenario has "
+                                    f"{len(tables)} beam{'s' if len(tables) > 1 else ''}: 0..{len(tables) - 1})")
+            picked = [sel]
+        else:
+            if sel not in names:
+                raise ScenarioError(f"--set {text}: no beam named {sel!r} (beams: {', '.join(names)})")
+            picked = [names.index(sel)]
+        return [address for i in picked for address in _expand(data, (*to(i), *rest), text)]
+    return _expand(data, tuple(tokens), text)
+
+
+def _expand(data: dict, address: tuple, text: str) -> list[tuple]:
+    """``address`` with every ``[*]`` replaced by each index of that list."""
+    if "*" not in address:
+        return [address]
+    k = address.index("*")
+    node = _get(data, address[:k])
+    if not isinstance(node, list):
+        raise ScenarioError(f"--set {text}: {_show(address[:k])} is not a list")
+    return [a for i in range(len(node)) for a in _expand(data, (*address[:k], i, *address[k + 1:]), text)]
+
+
+def _canonical(address: tuple) -> tuple:
+    return ("beams", 0, *address[1:]) if address[:1] == ("beam",) else address
+
+
+def _set(data: dict, address: tuple, value, text: str) -> None:
+    node: Any = data
+    for k, part in enumerate(address[:-1]):
+        shown = _show(address[:k + 1])
+        if isinstance(part, int) or part == "*":
+            if not isinstance(node, list):
+                raise ScenarioError(f"--set {text}: {_show(address[:k])} is not a list")
+            if part == "*" or part >= len(node):
+                raise ScenarioError(f"--set {text}: index {part} of {_show(address[:k])} is out of range "
+                                    f"({len(node)} entries)")
+            node = node[part]
+        else:
+            if not isinstance(node, dict):
+                raise ScenarioError(f"--set {text}: {_show(address[:k])} is not a table")
+            node = node.setdefault(part, {})
+            if not isinstance(node, (dict, list)):
+                raise ScenarioError(f"--set {text}: {shown} is not a table (it is {node!r}; set the whole "
+                                    f"{shown} instead, e.g. {shown}={{...}})")
+        if not isinstance(node, (dict, list)):
+            raise ScenarioError(f"--set {text}: {shown} is not a table")
+    last = address[-1]
+    if isinstance(last, int):
+        if not isinstance(node, list) or last >= len(node):
+            raise ScenarioError(f"--set {text}: index {last} of {_show(address[:-1])} is out of range")
+        node[last] = value
+    else:
+        if not isinstance(node, dict):
+            raise ScenarioError(f"--set {text}: {_show(address[:-1])} is not a table")
+        node[last] = value
+
+
+def _show(address: tuple) -> str:
+    out = ""
+    for part in address:
+        out += f"[{part}]" if isinstance(part, int) else ("." if out else "") + str(part)
+    return out
+
+
+def _get(data: Any, address: tuple):
+    node = data
+    for part in address:
+        if isinstance(part, int):
+            if not isinstance(node, list) or part >= len(node):
+                return None
+            node = node[part]
+        else:
+            if not isinstance(node, dict) or part not in node:
+                return None
+            node = node[part]
+    return node
+
+
+def _prune(data: dict, switch: tuple, set_paths: set) -> None:
+    """After --set switched ``switch`` (a formulation, motion, profile or law), drop the keys of
+    the old choice that the new one does not take (unless they are set by --set as well)."""
+    table = _get(data, switch[:-1])
+    value = table.get(switch[-1]) if isinstance(table, dict) else None
+    if not isinstance(table, dict) or not isinstance(value, str):
+        return
+    key = switch[-1]
+
+    def drop(*names):
+        for name in names:
+            if _canonical(switch[:-1] + (name,)) not in set_paths:
+                table.pop(name, None)
+
+    if key == "formulation":
+        drop(*{"ancf": ("geometric_stiffening",), "ffr": ("gauss_points",)}.get(value, ()))
+    elif key == "motion" and switch[:-1] == ("hub",):
+        if value != "free":
+            drop("torque")
+        if value != "prescribed":
+            drop("drive")
+    elif key == "profile" and value in DRIVE_KEYS:
+        drop(*(k for k in ("omega_s", "T", "t1", "angle", "file") if k not in DRIVE_KEYS[value][0]))
+    elif key == "law" and value in TORQUE_KEYS:
+        drop(*(k for k in ("value", "file", "kp", "kd", "reference") if k not in TORQUE_KEYS[value][0]))
+
+
+def apply_overrides(data: dict, overrides: list[str]) -> dict:
+    """Apply --set overrides to parsed TOML data (a new dict is returned).
+
+    Keys are dotted paths; a list entry is addressed by a 0-based index (``sensors[1].x``);
+    a beam by index or name (``beams[1].twist``, ``beams.blade2.twist``, and ``beams[*].KEY``
+    for every beam); ``beam.KEY`` addresses the one beam of a single-beam scenario. A key may
+    be set once. A relative ``file`` value is taken relative to the current directory.
+    Switching a formulation, hub.motion, a drive profile or a torque law drops the keys of
+    the old choice that the new one does not take.
+    """
     data = copy.deepcopy(data)
+    set_paths: dict[tuple, str] = {}
+    switches = []
     for text in overrides or []:
-        path, value = parse_override(text)
-        node = data
-        for part in path[:-1]:
-            nxt = node.setdefault(part, {})
-            if not isinstance(nxt, dict):
-                raise ScenarioError(f"--set {text}: {part} is not a table")
-            node = nxt
-        node[path[-1]] = value
+        _, value = parse_override(text)  # checks the KEY=VALUE form
+        key = text.split("=", 1)[0].strip()
+        for address in _addresses(data, _tokens(key, text), text):
+            canon = _canonical(address)
+            for other, other_text in set_paths.items():
+                other_key = other_text.split("=", 1)[0].strip()
+                also = "" if other_key == key else f" (also as {other_key})"
+                if other == canon:
+                    raise ScenarioError(f"--set {key}: given more than once{also}")
+                n = min(len(other), len(canon))
+                if other[:n] == canon[:n]:
+                    raise ScenarioError(f"--set {key}: overlaps --set {other_key} (set a key or its table once)")
+            if address[-1] == "file" and isinstance(value, str) and value:
+                value = str(Path(value).expanduser().absolute())  # a path typed here: from the current directory
+            _set(data, address, value, text)
+            set_paths[canon] = text
+            if isinstance(address[-1], str) and address[-1] in _SWITCHES:
+                switches.append(address)
+    for address in switches:
+        _prune(data, address, set(set_paths))
     return data
 
 
+def value_at(data: dict, key: str):
+    """The value a --set key addresses in parsed scenario data (None if not set there)."""
+    addresses = _addresses(data, _tokens(key, key), key)
+    if len(addresses) != 1:
+        raise ScenarioError(f"{key}: addresses {len(addresses)} values; name one")
+    return _get(data, addresses[0])
+
+
 #: the bundled scenarios (package data in hubbeam/examples)
-EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2")
+EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2", "rotor3", "spacecraft", "arm")
 
 
 def example_text(name: str) -> str:
@@ -285,7 +920,7 @@ def load_example(name: str, overrides: list[str] | None = None) -> Scenario:
 
 
 def load_scenario(source: str | Path, overrides: list[str] | None = None) -> Scenario:
-    """Read, override and validate a scenario file."""
+    """Read, override and validate a scenario file (relative table paths: relative to the file)."""
     path = Path(source)
     try:
         text = path.read_text(encoding="utf-8")
@@ -299,4 +934,4 @@ def load_scenario(source: str | Path, overrides: list[str] | None = None) -> Sce
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{path}: malformed TOML ({exc})") from None
-    return validate(apply_overrides(data, overrides or []))
+    return validate(apply_overrides(data, overrides or []), base_dir=path.absolute().parent)

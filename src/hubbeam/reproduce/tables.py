@@ -38,9 +38,17 @@ def _final(ds, name: str, t_end: float):
     return float(ds[name].values[-1])
 
 
+def _beam(ds):
+    """The (single) beam of the run's scenario, resolved (SI units, radians)."""
+    from hubbeam.io.scenario import validate
+    from hubbeam.studies.variants import single_beam
+
+    return single_beam(validate(json.loads(ds.attrs["scenario"])), "the reproduction")
+
+
 def _deflection_along_kb(ds) -> np.ndarray:
     """Tip displacement along the clamp's k_b = sin(beta) j_h + cos(beta) k_h (the weak axis)."""
-    beta = np.radians(json.loads(ds.attrs["scenario"])["hub"]["twist"])
+    beta = _beam(ds).twist
     return np.sin(beta) * ds["tip_vertical"].values + np.cos(beta) * ds["tip_tangential"].values
 
 
@@ -66,11 +74,12 @@ def table3(plan: Plan, outcomes) -> dict:
         ds = {form: outcomes[plan.table3_cases()[example, form].key].dataset for form in ("ancf", "ffr")}
         if ds["ancf"] is None:
             continue
-        length = json.loads(ds["ancf"].attrs["scenario"])["beam"]["length"]
+        beam = _beam(ds["ancf"])
+        length = beam.length
         fa, ff = _frequency(ds["ancf"], "strain_P1"), _frequency(ds["ffr"], "strain_P1")
         wm = float(np.max(np.abs(_deflection_along_kb(ds["ancf"]))))
         rows.append({
-            "thickness_m": json.loads(ds["ancf"].attrs["scenario"])["beam"]["thickness"],
+            "thickness_m": beam.thickness,
             "ancf_frequency_hz": fa, "ffr_frequency_hz": ff, "ffr_vs_ancf_pct": _pct(ff, fa),
             "w_m": wm, "w_m_over_L": wm / length,
             "ffr_w_m": float(np.max(np.abs(_deflection_along_kb(ds["ffr"])))) if ds["ffr"] is not None else None,

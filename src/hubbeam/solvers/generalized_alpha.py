@@ -24,9 +24,11 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from hubbeam.solvers.errors import ConvergenceError
+import enum
+
+from hubbeam.errors import ConvergenceError
 from hubbeam.system.assembly import Factorisation
-from hubbeam.system.model import HubSystem
+from hubbeam.system.hub_system import HubSystem
 
 
 @dataclass(frozen=True)
@@ -131,35 +133,21 @@ def init(system: HubSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
          v0: np.ndarray | None = None) -> AlphaState:
     """Consistent accelerations and multipliers at (x0, v0): M xdd + Phi_x^T lam = Q - f,
     Phi_x xdd = -Phi_tt - (d/dt Phi_x) v (the drive's prescribed angular acceleration and the
-    velocity terms of the clamp, which are linear in the beam coordinates and so contribute
+    velocity terms of the clamps, which are linear in the beam coordinates and so contribute
     only through theta). ``v0`` defaults to rest and must satisfy Phi_x v0 + Phi_t = 0."""
     v0 = np.zeros_like(x0) if v0 is None else np.asarray(v0, dtype=float)
     s = system.mass_scale
+    layout = system.layout
     zero = np.zeros_like(x0)
-    m = system.n_constraints(system.motion != "free")
-    # force rows (unscaled) at xdd = 0, lambda = 0
-    rhs = -system.dynamic_residual(x0, v0, zero, np.zeros(m), F, t0, 1.0, s)
-    rhs[1 : 1 + m] = -s * _constraint_acceleration_terms(system, x0, v0, F, t0)
+    lam0 = np.zeros(layout.n_lambda)
+    # force rows (unscaled) at xdd = 0, lambda = 0; constraint rows: the acceleration terms
+    rhs = -system.dynamic_residual(x0, v0, zero, lam0, F, t0, 1.0, s)
+    rhs[layout.z_of_lambda] = -s * system.constraint_acceleration_terms(x0, v0, F, t0)
     # the matrix [[M, s Phi_x^T], [s Phi_x, 0]] (coef_k = 0 drops stiffness and the Hessian)
-    _, matrix = system.dynamic_equations(x0, v0, zero, np.zeros(m), F, t0, 1.0, 0.0, 0.0, s)
+    _, matrix = system.dynamic_equations(x0, v0, zero, lam0, F, t0, 1.0, 0.0, 0.0, s)
     z = factorise(matrix, 0.0, F).solve(rhs)
-    xdd = np.concatenate([[z[0]], z[1 + m :]])
-    lam = s * z[1 : 1 + m]
-    return AlphaState(t0, x0.copy(), v0.copy(), xdd, xdd.copy(), lam, F)
-
-
-def _constraint_acceleration_terms(system: HubSystem, x, v, F, t):
-    """v^T Phi_xx v + Phi_tt: what the constraint acceleration Phi_x xdd must cancel.
-
-    The clamp has no explicit time dependence and the drive equation theta - theta_p(t)
-    has Phi_tt = -theta_p''(t) and no mixed term, so this is exact."""
-    held = system.motion != "free"
-    _, jac, hess = system.constraints(x, F, system.drive_angle(t, held))
-    c = v[0 : jac.shape[1]]  # the constraints involve a leading block of x (the clamp coordinates)
-    terms = np.array([c @ hess(e) @ c for e in np.eye(jac.shape[0])])
-    if system.motion == "prescribed":
-        terms[6] -= system.drive(t)[2]
-    return terms
+    xdd, mu = layout.split_z(z)
+    return AlphaState(t0, x0.copy(), v0.copy(), xdd, xdd.copy(), s * mu, F)
 
 
 @njit(cache=True)
@@ -179,19 +167,18 @@ def predict(x_n, v_n, xdd_n, a_n, h, am, af, beta, gamma, x, v, xdd):
 
 
 @njit(cache=True)
-def apply_increment(dz, gprime, bprime, lam_factor, x, v, xdd, lam):
-    """Newton correction from dz = [dtheta, dmu, dq]: x += dx, v += gamma' dx, xdd += beta' dx,
-    lambda += lam_factor dmu. Returns max |dx|."""
-    m = lam.shape[0]
+def apply_increment(dz, z_of_x, z_of_lambda, gprime, bprime, lam_factor, x, v, xdd, lam):
+    """Newton correction from dz (placed by the layout maps ``z_of_x``, ``z_of_lambda``):
+    x += dx, v += gamma' dx, xdd += beta' dx, lambda += lam_factor dmu. Returns max |dx|."""
     size = 0.0
     for i in range(x.shape[0]):
-        d = dz[0] if i == 0 else dz[m + i]
+        d = dz[z_of_x[i]]
         x[i] += d
         v[i] += gprime * d
         xdd[i] += bprime * d
         size = max(size, abs(d))
-    for i in range(m):
-        lam[i] += lam_factor * dz[1 + i]
+    for i in range(lam.shape[0]):
+        lam[i] += lam_factor * dz[z_of_lambda[i]]
     return size
 
 
@@ -253,6 +240,64 @@ def kept_matrix_worked(reuse):
     reuse[REUSE_BACKOFF] = 1
 
 
+class Outcome(enum.IntEnum):
+    """How a run of steps ended (compiled and Python steps alike)."""
+
+    DONE = 0
+    CHART_LIMIT_REACHED = 1  # a tangent came near its chart's singular direction: change the chart
+    NOT_CONVERGED = 2
+    NOT_FINITE = 3
+    SINGULAR_MATRIX = 4
+    CHART_SINGULARITY = 5
+
+
+#: what a failed outcome means, for messages
+OUTCOME_MESSAGES = {
+    Outcome.NOT_CONVERGED: "Newton did not converge in {its} iterations (last |dx| = {size:.2e})",
+    Outcome.NOT_FINITE: "non-finite Newton increment",
+    Outcome.SINGULAR_MATRIX: "singular iteration matrix (a constraint lost rank or a mass vanished)",
+    Outcome.CHART_SINGULARITY: "a beam tangent is at the singular direction of the rotation chart",
+}
+
+
+class NewtonAction(enum.IntEnum):
+    """What the Newton controller asks for after an increment."""
+
+    CONVERGED = 0
+    KEEP = 1  # iterate with the same matrix
+    REFRESH = 2  # build and factorise a new matrix at the current iterate
+    TAKE_BACK = 3  # the increment grew: undo it, then refresh
+    RESTART = 4  # a matrix of earlier steps diverged: restart from the predictor, then refresh
+
+
+@njit(cache=True)
+def newton_start(update, reuse):
+    """Whether a step starts with the matrix kept from earlier steps (update "adaptive")."""
+    return update == UPDATE_ADAPTIVE and use_kept_matrix(reuse)
+
+
+@njit(cache=True)
+def newton_decide(size, previous, it, stale, update, refresh_rate, refresh_iterations, tol, reuse):
+    """The Newton controller, shared by every integration path: after an increment of max
+    size ``size`` (``previous``: the last one since the matrix was refreshed, inf right after
+    a refresh; ``stale``: the matrix is from earlier steps) decide what comes next
+    (:class:`NewtonAction`) and update the reuse state (see :class:`NewtonOptions`)."""
+    reused = update != UPDATE_ITERATION
+    error, rate = newton_error(size, previous, reused)
+    if error <= tol:
+        if stale:
+            kept_matrix_worked(reuse)
+        if update != UPDATE_ADAPTIVE or it > refresh_iterations:
+            reuse[REUSE_VALID] = 0
+        return NewtonAction.CONVERGED
+    fresh = not reused or rate > refresh_rate
+    if stale and fresh:
+        kept_matrix_failed(reuse)
+    if reused and fresh and rate >= 1.0:
+        return NewtonAction.RESTART if stale else NewtonAction.TAKE_BACK
+    return NewtonAction.REFRESH if fresh else NewtonAction.KEEP
+
+
 @dataclass
 class KeptMatrix:
     """The iteration matrix kept between steps (update "adaptive") and its reuse state."""
@@ -264,8 +309,8 @@ class KeptMatrix:
 def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
          options: NewtonOptions = NewtonOptions(), kept: KeptMatrix | None = None
          ) -> tuple[AlphaState, int, KeptMatrix]:
-    """One step of length h (any :class:`HubSystem`; the ANCF system also has the compiled
-    loop :func:`hubbeam.solvers.compiled_alpha.advance`, which runs the same algorithm).
+    """One step of length h in Python (any :class:`HubSystem`; systems that compile run the
+    same controller in :func:`hubbeam.solvers.compiled_alpha.advance`).
 
     Returns the new state, the Newton iterations it took and the matrix kept for the next
     step (pass it back in; it is only used with update "adaptive").
@@ -281,51 +326,44 @@ def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
     s = system.mass_scale
     tol = options.tolerance * max(system.length_scale, 1.0)
     coefs = (ck * bprime, ck * gprime, ck, s)
+    zx, zl = system.layout.z_of_x, system.layout.z_of_lambda
+    update = options.update_code
     kept = KeptMatrix() if kept is None else kept
     reuse = kept.reuse
     if kept.matrix is None or not kept.matrix.valid_for(h, state.chart):
         reuse[REUSE_VALID] = 0
 
-    def fresh_matrix():
-        res, matrix = system.dynamic_equations(x, v, xdd, lam, state.chart, t1, *coefs)
+    def evaluate(fresh, matrix):
+        if not fresh:
+            return system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s), matrix
+        res, new = system.dynamic_equations(x, v, xdd, lam, state.chart, t1, *coefs)
         reuse[REUSE_VALID] = 1
-        return res, factorise(matrix, h, state.chart)
+        return res, factorise(new, h, state.chart)
 
-    reused = options.update != "iteration"
-    stale = options.update == "adaptive" and use_kept_matrix(reuse)  # a matrix of earlier steps
-    if stale:
-        matrix = kept.matrix
-        res = system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s)
-    else:
-        res, matrix = fresh_matrix()
+    stale = bool(newton_start(update, reuse))
+    res, matrix = evaluate(not stale, kept.matrix)
     previous = np.inf
+    size = np.inf
     for it in range(1, options.max_iterations + 1):
         dz = matrix.solve(-res)
         if not np.all(np.isfinite(dz)):
-            raise ConvergenceError("non-finite Newton increment")
-        size = apply_increment(dz, gprime, bprime, s / ck, x, v, xdd, lam)
-        error, rate = newton_error(size, previous, reused)
-        if error <= tol:
+            reuse[REUSE_VALID] = 0
+            raise ConvergenceError(OUTCOME_MESSAGES[Outcome.NOT_FINITE])
+        size = apply_increment(dz, zx, zl, gprime, bprime, s / ck, x, v, xdd, lam)
+        action = newton_decide(size, previous, it, stale, update, options.refresh_rate, options.refresh_iterations,
+                               tol, reuse)
+        if action == NewtonAction.CONVERGED:
             a_new = algorithmic_acceleration(xdd, state.xdd, state.a, am, af)
-            if stale:
-                kept_matrix_worked(reuse)
-            if options.update != "adaptive" or it > options.refresh_iterations:
-                reuse[REUSE_VALID] = 0
             return AlphaState(t1, x, v, xdd, a_new, lam, state.chart), it, KeptMatrix(matrix, reuse)
-        if not reused or rate > options.refresh_rate:
-            if stale:
-                kept_matrix_failed(reuse)
-            if reused and rate >= 1.0:  # the increment grew: do not build the matrix where it led
-                if stale:  # a matrix from earlier steps: restart from the predictor
-                    predict(state.x, state.v, state.xdd, state.a, h, am, af, beta, gamma, x, v, xdd)
-                    lam[:] = state.lam
-                else:  # take the increment back
-                    apply_increment(-dz, gprime, bprime, s / ck, x, v, xdd, lam)
-            res, matrix = fresh_matrix()
+        if action == NewtonAction.RESTART:
+            predict(state.x, state.v, state.xdd, state.a, h, am, af, beta, gamma, x, v, xdd)
+            lam[:] = state.lam
+        elif action == NewtonAction.TAKE_BACK:
+            apply_increment(-dz, zx, zl, gprime, bprime, s / ck, x, v, xdd, lam)
+        fresh = action != NewtonAction.KEEP
+        if fresh:
             stale = False
-            previous = np.inf
-        else:
-            res = system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s)
-            previous = size
+        res, matrix = evaluate(fresh, matrix)
+        previous = np.inf if fresh else size
     reuse[REUSE_VALID] = 0
-    raise ConvergenceError(f"Newton did not converge in {options.max_iterations} iterations (last |dx| = {size:.2e})")
+    raise ConvergenceError(OUTCOME_MESSAGES[Outcome.NOT_CONVERGED].format(its=options.max_iterations, size=size))

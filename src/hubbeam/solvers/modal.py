@@ -15,14 +15,14 @@ relative to a fixed chart that a rigid rotation needs is not a cubic along a ben
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import eig, eigh, null_space
 
 from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.solvers.static import StaticSolution
-from hubbeam.system.model import HubSystem
+from hubbeam.system.hub_system import HubSystem
 
 
 @dataclass
@@ -88,14 +88,14 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     ``include_damping``: keep the drag's velocity terms (then the modes are damped).
     """
     x_s, F, lam = steady.x, steady.chart, steady.multipliers
-    m = lam.shape[0]
     nx = x_s.shape[0]
     if not include_damping:
-        system = replace(system, damping=(0.0, 0.0))
+        system = system.without_damping()
+    zx = system.layout_for(True).z_of_x
 
     def forces(x, v, a):
-        res = system.dynamic_residual(x, v, a, lam, F, 0.0, 1.0, 1.0)
-        return np.concatenate([res[0:1], res[1 + m :]])
+        res = system.equations(x, v, a, lam, F, 0.0, 0.0, 0.0, 1.0, 1.0, want_matrix=False, held=True)[0]
+        return res[zx]
 
     def generator(y):
         return system.steady_rotation_rates(y, F, 1.0)[0]
@@ -109,10 +109,7 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     G = central_difference_jacobian(
         lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), zero, unit)
     M = central_difference_jacobian(lambda e: forces(x_s, v_s, a_s + e), zero, unit)
-    _, jac, _ = system.constraints(x_s, F, system.drive_angle(0.0, held=True))
-    A = np.zeros((jac.shape[0], nx))
-    A[:, 0 : jac.shape[1]] = jac
-    N = null_space(A)
+    N = null_space(system.constraint_jacobian(x_s, F, held=True))
     Mr, Gr, Kr = (N.T @ X @ N for X in (M, G, K))
     n = Mr.shape[0]
     Minv = np.linalg.inv(0.5 * (Mr + Mr.T))

@@ -15,9 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.linalg import LinAlgError
 
-from hubbeam.solvers.errors import ConvergenceError
-from hubbeam.system.beam import ChartSingularityError
-from hubbeam.system.model import HubSystem
+from hubbeam.errors import ChartSingularityError, ConvergenceError
+from hubbeam.system.hub_system import HubSystem
 
 #: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
 CHART_SWITCH_MARGIN = 0.5
@@ -25,7 +24,7 @@ CHART_SWITCH_MARGIN = 0.5
 
 @dataclass
 class StaticSolution:
-    """Equilibrium: coordinates x = [theta, q], multipliers lambda (N, N m), chart F."""
+    """Equilibrium: coordinates x, multipliers lambda (N, N m) of the held layout, charts F."""
 
     x: np.ndarray
     multipliers: np.ndarray
@@ -35,22 +34,19 @@ class StaticSolution:
     load_steps: int
     chart_switches: int
 
-    @property
-    def q(self) -> np.ndarray:
-        return self.x[1:]
 
 
 def replace_chart_if_needed(system: HubSystem, x: np.ndarray, F: np.ndarray, force: bool = False):
     """(x, F, switched): x re-expressed in a better chart when the current one is near singular."""
     if not force and system.chart_margin(x, F) >= CHART_SWITCH_MARGIN:
         return x, F, False
-    F_new = system.better_chart(x)
+    F_new = system.better_chart(x, F, None if force else CHART_SWITCH_MARGIN)
     return system.remap(x, F, F_new), F_new, True
 
 
 def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
     """Newton iterations at one load factor; returns (x, mu, iterations) or raises."""
-    m = mu.shape[0]
+    layout = system.layout_for(True)
     scale_x = max(system.length_scale, 1e-12)
     norm = np.inf
     for it in range(1, max_iter + 1):
@@ -62,11 +58,10 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
             raise ConvergenceError(f"singular Newton matrix ({exc})") from exc
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("non-finite Newton increment")
-        x = x.copy()
-        x[0] += dz[0]
-        mu = mu + dz[1 : 1 + m]
-        x[1:] += dz[1 + m :]
-        step = np.max(np.abs(dz[1 + m :])) / scale_x
+        dx, dmu = layout.split_z(dz)
+        x = x + dx
+        mu = mu + dmu
+        step = np.max(np.abs(dx[1:])) / scale_x
         if norm <= tol_force or step <= tol_step:
             return x, mu, it, norm
     raise ConvergenceError(f"residual {norm:.3e} N after {max_iter} iterations")
@@ -97,12 +92,10 @@ def solve_static(
     if spin is not None:
         x, F = system.axis_chart(x, F)
     spin = spin or 0.0
-    m = system.n_constraints(held=True)
-    mu = np.zeros(m)
-    beam = system.beam
+    mu = np.zeros(system.n_constraints(held=True))
     # force and step tolerances: relative to the loads, above the round-off floor of EA
     f_ref = system.static_force_scale(x, F, spin)
-    tol_force = 1e-9 * f_ref + 1e-13 * beam.section.stiffness[0]
+    tol_force = 1e-9 * f_ref + 1e-13 * max(b.section.stiffness[0] for b in system.beams)
     tol_step = 1e-12
     factor = 0.0
     dfac = 1.0 / load_steps

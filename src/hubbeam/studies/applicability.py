@@ -29,20 +29,28 @@ from hubbeam.io.scenario import Scenario
 from hubbeam.studies.sweep import run_on_dask
 
 
+def _deflection_along_n(beam, tip: dict) -> float:
+    """The tip displacement along the root section's n (the weak-axis bending direction):
+    n = sin(beta) (cos(p) j0 - sin(p) i_k) + cos(beta) k_k for twist beta and precone p."""
+    sb, cb = np.sin(beam.twist), np.cos(beam.twist)
+    sp, cp = np.sin(beam.precone), np.cos(beam.precone)
+    return -sb * sp * tip["radial"] + sb * cp * tip["vertical"] + cb * tip["tangential"]
+
+
 def peak_deflection(data: dict, thickness: float, release_s: float) -> dict:
     """w_m / L after a release under gravity (ANCF, free hub, the scenario's drag)."""
     from hubbeam import api
     from hubbeam.io.scenario import Sensor, apply_overrides, validate
-    from hubbeam.simulation import simulate
-    from hubbeam.studies.variants import FORMULATIONS, variant
+    from hubbeam.studies.variants import single_beam, with_formulation
 
-    sc = variant(validate(apply_overrides(data, [f"beam.thickness={float(thickness)!r}"])),
-                 FORMULATIONS["ancf"] + ['hub.motion="free"', f"analysis.t_end={float(release_s)!r}"])
-    traj = simulate(api.build_system(sc), [Sensor(name="tip", kind="tip_deflection")], release_s, sc.analysis.dt,
-                    sc.analysis.spectral_radius, 0.01)
-    beta = np.radians(sc.hub.twist)
-    w = np.array([np.sin(beta) * r["vertical"] + np.cos(beta) * r["tangential"] for r in traj.records["tip"]])
-    return {"w_m_over_L": float(np.max(np.abs(w)) / sc.beam.length)}
+    sc = with_formulation(validate(apply_overrides(data, [f"beams[0].thickness={float(thickness)!r}"])), "ancf",
+                          ['hub.motion="free"', f"analysis.t_end={float(release_s)!r}"])
+    beam = single_beam(sc, "the applicability map")
+    traj, failure = api.run(sc, sensors=[Sensor(name="tip", kind="tip_deflection")])
+    if failure is not None:
+        raise failure
+    w = np.array([_deflection_along_n(beam, r) for r in traj.records["tip"]])
+    return {"w_m_over_L": float(np.max(np.abs(w)) / beam.length)}
 
 
 def model_errors(data: dict, thickness: float, ratio: float) -> dict:
@@ -51,15 +59,15 @@ def model_errors(data: dict, thickness: float, ratio: float) -> dict:
     from hubbeam.io.scenario import apply_overrides, validate
     from hubbeam.solvers.modal import modal_analysis, rotating_modal_analysis
     from hubbeam.solvers.static import solve_static
-    from hubbeam.studies.variants import FORMULATIONS, variant
+    from hubbeam.studies.variants import with_formulation
 
-    sc = validate(apply_overrides(data, [f"beam.thickness={float(thickness)!r}"]))
-    rest = api.build_system(variant(sc, FORMULATIONS["ancf"] + ['hub.motion="fixed"']))
+    sc = validate(apply_overrides(data, [f"beams[0].thickness={float(thickness)!r}"]))
+    rest = api.build_system(with_formulation(sc, "ancf", ['hub.motion="fixed"']))
     omega1 = 2 * np.pi * modal_analysis(rest, solve_static(rest), count=1).frequencies_hz[0]
     omega = ratio * omega1
     out = {"omega_1": float(omega1), "omega": float(omega)}
     for form in ("ancf", "ffr"):
-        system = api.build_system(variant(sc, FORMULATIONS[form] + [
+        system = api.build_system(with_formulation(sc, form, [
             'hub.motion="prescribed"', 'hub.drive.profile="constant"', f"hub.drive.omega_s={float(max(omega, 1e-12))!r}"]))
         steady = solve_static(system, spin=omega)
         out[f"{form}_deflection"] = float(np.linalg.norm(list(system.tip_displacement(steady.x).values())))
@@ -71,7 +79,10 @@ def model_errors(data: dict, thickness: float, ratio: float) -> dict:
 
 def applicability_map(scenario: Scenario, thicknesses, ratios, release_s: float = 1.5, scheduler=None,
                       workers=None, progress=None) -> xr.Dataset:
-    """The map over (thickness, ratio) as a Dataset (see the module doc)."""
+    """The map over (thickness, ratio) as a Dataset (see the module doc). One beam only."""
+    from hubbeam.studies.variants import single_beam
+
+    single_beam(scenario, "the applicability map")
     thicknesses, ratios = np.asarray(thicknesses, float), np.asarray(ratios, float)
     data = scenario.to_dict()
     peaks = [(peak_deflection, (data, h, release_s)) for h in thicknesses]

@@ -20,8 +20,7 @@ from scipy.optimize import least_squares
 
 from hubbeam import api
 from hubbeam.io.scenario import Scenario, ScenarioError
-from hubbeam.simulation import simulate
-from hubbeam.solvers.errors import ComputationError
+from hubbeam.errors import ComputationError
 from hubbeam.studies.variants import variant
 
 
@@ -59,9 +58,12 @@ def _lookup(data: dict, key: str) -> float:
 
 def model_signal(scenario: Scenario, names, values, signal: str, times: np.ndarray) -> np.ndarray:
     """The scenario's ``signal`` with the parameters set, at ``times`` (s)."""
-    sc = variant(scenario, [f"{n}={float(v)!r}" for n, v in zip(names, values)] + [f"analysis.t_end={float(times[-1])!r}"])
-    a = sc.analysis
-    traj = simulate(api.build_system(sc), sc.sensors, a.t_end, a.dt, a.spectral_radius, None)
+    dt = scenario.analysis.dt
+    t_end = dt * int(np.ceil(float(times[-1]) / dt - 1e-9))  # the measured span, in whole steps
+    sc = variant(scenario, [f"{n}={float(v)!r}" for n, v in zip(names, values)] + [f"analysis.t_end={t_end!r}"])
+    traj, failure = api.run(sc)
+    if failure is not None:
+        raise failure
     t = np.array(traj.times)
     name, _, part = signal.partition("_")
     if signal in traj.records:

@@ -38,7 +38,7 @@ def evaluate(scenario_data: dict, overrides: list[str]) -> dict:
     from hubbeam import api
     from hubbeam.io.results import to_dataset
     from hubbeam.io.scenario import apply_overrides, validate
-    from hubbeam.solvers.errors import ComputationError
+    from hubbeam.errors import ComputationError
 
     try:
         scenario = validate(apply_overrides(scenario_data, overrides))

@@ -4,23 +4,40 @@ from __future__ import annotations
 
 import numpy as np
 
-from hubbeam.io.scenario import Scenario, ScenarioError, apply_overrides, validate
+from hubbeam.io.scenario import ResolvedBeam, Scenario, ScenarioError, apply_overrides, validate
 
-#: formulation labels -> the overrides that select them
+#: formulation labels -> the overrides that select them, for every beam of a scenario
+#: (``beams[*]`` addresses each beam of a [beam] table or of [[beams]] tables)
 FORMULATIONS = {
-    "ancf": ['beam.formulation="ancf"'],
-    "ffr": ['beam.formulation="ffr"', "beam.geometric_stiffening=false"],
-    "ffr+": ['beam.formulation="ffr"', "beam.geometric_stiffening=true"],
+    "ancf": ['beams[*].formulation="ancf"'],
+    "ffr": ['beams[*].formulation="ffr"', "beams[*].geometric_stiffening=false"],
+    "ffr+": ['beams[*].formulation="ffr"', "beams[*].geometric_stiffening=true"],
 }
 
 
 def variant(scenario: Scenario, overrides: list[str]) -> Scenario:
-    """A copy of ``scenario`` with ``--set``-style overrides, validated again."""
-    data = scenario.to_dict()
-    if overrides and any(o.startswith("beam.formulation") for o in overrides):
-        data["beam"].pop("gauss_points", None)  # an ANCF-only key
-        data["beam"].pop("geometric_stiffening", None)
-    return validate(apply_overrides(data, overrides))
+    """A copy of ``scenario`` with ``--set``-style overrides, validated again. Switching a
+    formulation, hub.motion, a drive profile or a torque law drops the keys the new choice
+    does not take (:func:`hubbeam.io.scenario.apply_overrides`)."""
+    return validate(apply_overrides(scenario.to_dict(), list(overrides or [])))
+
+
+def with_formulation(scenario: Scenario, form: str, extra_overrides=()) -> Scenario:
+    """``scenario`` with every beam switched to formulation label ``form`` (a key of
+    :data:`FORMULATIONS`) and further ``--set``-style overrides."""
+    if form not in FORMULATIONS:
+        raise ScenarioError(f"formulation: unknown {form!r} (use {', '.join(FORMULATIONS)})")
+    return variant(scenario, FORMULATIONS[form] + list(extra_overrides))
+
+
+def single_beam(scenario: Scenario, study: str) -> ResolvedBeam:
+    """The one beam of a single-beam scenario, resolved; a clear ScenarioError for a study
+    (``study``, e.g. "the applicability map") that handles one beam only."""
+    beams = scenario.resolved_beams()
+    if len(beams) != 1:
+        raise ScenarioError(f"beams: {study} handles a scenario with one beam; this one has {len(beams)} "
+                            f"({', '.join(b.name for b in beams)})")
+    return beams[0]
 
 
 def parse_range(text: str, what: str) -> np.ndarray:

@@ -127,3 +127,113 @@ class Factorisation:
 
     def __init__(self, solve) -> None:
         self.solve = solve
+
+
+@njit(cache=True)
+def bordered_factor(ab, bw, ipiv, brow, bcol, bb, Y, schur):
+    """Factorise the bordered matrix [[bb, brow], [bcol, B]] (B banded in ``ab``, overwritten
+    by its LU): B^-1 bcol into the rows of ``Y`` (border x n), and the inverse of the Schur
+    complement bb - brow B^-1 bcol (border x border, 1 or 2) into ``schur``. Returns 0, or
+    j > 0 when B's pivot j is zero, or -1 when the Schur complement is singular."""
+    info = band_factor(ab, bw, bw, ipiv)
+    if info != 0:
+        return info
+    nb = bb.shape[0]
+    n = ab.shape[1]
+    for j in range(nb):
+        for i in range(n):
+            Y[j, i] = bcol[i, j]
+        band_solve(ab, bw, bw, ipiv, Y[j])
+    S = np.empty((nb, nb))
+    for a in range(nb):
+        for b in range(nb):
+            acc = bb[a, b]
+            for i in range(n):
+                acc -= brow[a, i] * Y[b, i]
+            S[a, b] = acc
+    if nb == 1:
+        if S[0, 0] == 0.0 or not np.isfinite(S[0, 0]):
+            return -1
+        schur[0, 0] = 1.0 / S[0, 0]
+        return 0
+    det = S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]
+    if det == 0.0 or not np.isfinite(det):
+        return -1
+    schur[0, 0] = S[1, 1] / det
+    schur[0, 1] = -S[0, 1] / det
+    schur[1, 0] = -S[1, 0] / det
+    schur[1, 1] = S[0, 0] / det
+    return 0
+
+
+@njit(cache=True)
+def bordered_solve(ab, bw, ipiv, brow, Y, schur, r):
+    """Solve the factorised bordered system in place (``r`` overwritten with the solution)."""
+    nb = schur.shape[0]
+    interior = r[nb:]
+    band_solve(ab, bw, bw, ipiv, interior)
+    rb = np.empty(nb)
+    for a in range(nb):
+        acc = r[a]
+        for i in range(interior.shape[0]):
+            acc -= brow[a, i] * interior[i]
+        rb[a] = acc
+    for a in range(nb):
+        acc = 0.0
+        for b in range(nb):
+            acc += schur[a, b] * rb[b]
+        r[a] = acc
+    for i in range(interior.shape[0]):
+        acc = 0.0
+        for a in range(nb):
+            acc += Y[a, i] * r[a]
+        interior[i] -= acc
+
+
+class BorderedBandMatrix:
+    """A square matrix [[bb, brow], [bcol, B]] whose leading ``border`` rows and columns are
+    dense (the hub angle and the drive multiplier, which couple to every beam) and whose rest
+    B is banded with kl = ku = ``bandwidth`` (LAPACK gbtrf storage in ``ab``: A[i, j] at
+    ab[2 bw + i - j, j]). Solved by band LU of B and the Schur complement on the border."""
+
+    def __init__(self, ab: np.ndarray, bandwidth: int, brow: np.ndarray, bcol: np.ndarray, bb: np.ndarray) -> None:
+        self.ab, self.bandwidth, self.brow, self.bcol, self.bb = ab, bandwidth, brow, bcol, bb
+
+    @classmethod
+    def empty(cls, n: int, border: int, bandwidth: int) -> "BorderedBandMatrix":
+        """Zero storage for an n x n matrix with the given border and bandwidth."""
+        m = n - border
+        return cls(np.zeros((3 * bandwidth + 1, m), order="F"), bandwidth, np.zeros((border, m)),
+                   np.zeros((m, border)), np.zeros((border, border)))
+
+    @property
+    def border(self) -> int:
+        return self.bb.shape[0]
+
+    def factorise(self) -> "Factorisation":
+        bw = self.bandwidth
+        lu = np.array(self.ab, dtype=float, order="F")
+        piv = np.zeros(lu.shape[1], dtype=np.int32)
+        Y = np.empty((self.border, lu.shape[1]))
+        schur = np.empty((self.border, self.border))
+        info = bordered_factor(lu, bw, piv, self.brow, self.bcol, self.bb, Y, schur)
+        if info != 0:
+            where = "the hub's border (Schur complement)" if info < 0 else f"column {info}"
+            raise np.linalg.LinAlgError(f"singular matrix (zero pivot in {where})")
+
+        def solve(rhs):
+            x = np.array(rhs, dtype=float)
+            bordered_solve(lu, bw, piv, self.brow, Y, schur, x)
+            return x
+
+        return Factorisation(solve)
+
+    def to_dense(self) -> np.ndarray:
+        nb = self.border
+        m = self.ab.shape[1]
+        A = np.zeros((nb + m, nb + m))
+        A[:nb, :nb] = self.bb
+        A[:nb, nb:] = self.brow
+        A[nb:, :nb] = self.bcol
+        A[nb:, nb:] = banded_to_dense(self.ab[self.bandwidth :], self.bandwidth, self.bandwidth)
+        return A

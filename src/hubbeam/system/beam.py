@@ -18,6 +18,7 @@ from hubbeam.elements.ancf.frame import section_frame
 from hubbeam.elements.ancf.strain import strain_measures
 from hubbeam.elements.hermite import gauss_legendre, hermite
 from hubbeam.elements.section import Section
+from hubbeam.errors import ChartSingularityError
 
 #: Names of the 8 coordinates of an ANCF node (Eq. 14).
 DOF_NAMES = ("r_x", "r_y", "r_z", "r'_x", "r'_y", "r'_z", "theta_1", "theta_1'")
@@ -27,10 +28,6 @@ NODE_DOFS = kernels.NODE_DOFS
 #: tests/elements/test_gauss_order.py (4 points give the energy of a strongly bent,
 #: twisted state to 1e-6 relative; 5 leave round-off).
 DEFAULT_GAUSS_POINTS = 5
-
-
-class ChartSingularityError(RuntimeError):
-    """A beam tangent reached the singular direction of the rotation chart."""
 
 
 @dataclass

@@ -3,19 +3,22 @@
 Eq. 73 as printed fixes five of the six freedoms of a rigid connection (the root
 position, k_h . i_b = 0 and j_h . j_b = cos beta), and its twist equation has a zero
 derivative at beta = 0 and two roots (+-beta). hubbeam clamps instead with six
-equations that are linear in the beam coordinates and have unit-size Jacobians:
+equations that are linear in the beam coordinates and have unit-size Jacobians. For a
+beam placed by a mount (:mod:`hubbeam.system.mount`: root at R i_k, axis a_1, normals a_2,
+a_3 of its tilted hub frame):
 
-    Phi_0..2 = r0(0) - R i_h(theta)                 root position
-    Phi_3    = j_h . r0'(0)                         root tangent along i_h ...
-    Phi_4    = k_h(theta) . r0'(0)                  ... (two equations)
-    Phi_5    = theta_1(0) - delta(theta)            twist: the root section is the hub
-                                                    frame turned by -beta about i_h
+    Phi_0..2 = r0(0) - R i_k(theta)                 root position
+    Phi_3    = a_2(theta) . r0'(0)                  root tangent along the axis a_1 ...
+    Phi_4    = a_3(theta) . r0'(0)                  ... (two equations)
+    Phi_5    = theta_1(0) - delta(theta)            twist: the root section is the mount
+                                                    frame turned by -beta about a_1
 
 while the root stretch |r0'(0)| and twist rate theta_1'(0) stay free. delta(theta) is
-the chart angle of the clamped section at tau = i_h(theta); its derivatives follow from
-the chart's twist rate, d delta / d theta = -d_y / (1 + d . i_h).
-A prescribed or fixed hub adds Phi_6 = theta - theta_p(t) (Eq. 82), whose multiplier is
-the drive torque.
+the chart angle of the clamped section at tau = a_1(theta); its derivatives follow from
+the chart's twist rate for a section turning with the hub (w = -j0):
+d delta / d theta = w.tau + d.(w - tau (tau.w)) / (1 + d.tau).
+The drive of a prescribed or fixed hub, theta - theta_p(t) = 0 (Eq. 82), is the hub's
+constraint (:mod:`hubbeam.system.hub`), not the clamp's.
 
 Coordinates of the constraint block: c = [theta, r0(3), r0'(3), theta_1] at the root.
 """
@@ -28,15 +31,15 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ancf.frame import section_frame
-from hubbeam.system.hub import clamp_frame, hub_frame
+from hubbeam.system.mount import axis_frame, beam_hub_frame, mount_frame
 
 
 
 @njit(cache=True)
-def clamp_twist_angle(theta: float, twist: float, F: np.ndarray, near: float = math.nan) -> float:
-    """delta(theta): theta_1 of the clamped section in chart F (the branch nearest ``near``;
-    the principal one for nan)."""
-    C = clamp_frame(theta, twist)
+def clamp_twist_angle(mount, theta: float, F: np.ndarray, near: float = math.nan) -> float:
+    """delta(theta): theta_1 of the clamped root section in chart F (the branch nearest
+    ``near``; the principal one for nan)."""
+    C = mount_frame(mount, theta)
     tau = np.empty(3)
     for i in range(3):
         tau[i] = F[0, i] * C[0, 0] + F[1, i] * C[1, 0] + F[2, i] * C[2, 0]
@@ -54,58 +57,67 @@ def clamp_twist_angle(theta: float, twist: float, F: np.ndarray, near: float = m
 
 
 @njit(cache=True)
-def clamp_equations(c, radius, twist, F, held, drive, lam, phi_val, jac, hess):
-    """Phi (m), dPhi/dc (m x 8) and sum_i lambda_i d2 Phi_i / dc2 (8 x 8), written into the
-    given arrays; m = 7 when ``held`` (the drive theta = ``drive``), else 6."""
+def clamp_equations(c, mount, F, lam, phi_val, jac, hess):
+    """Phi (6), dPhi/dc (6 x 8) and sum_i lambda_i d2 Phi_i / dc2 (8 x 8) of the clamp of
+    the root coordinates c = [theta, r0 (3), r0' (3), theta_1] to the hub, for a beam
+    placed by ``mount`` (:mod:`hubbeam.system.mount`), written into the given arrays."""
     theta = c[0]
-    A = hub_frame(theta)
-    u0, u1, u2 = c[4], c[5], c[6]
-    delta = clamp_twist_angle(theta, twist, F, c[7])
-    # d delta / d theta and d2 delta / d theta2 (the twist beta drops out)
-    den = 1.0 + F[0, 0] * A[0, 0] + F[1, 0] * A[1, 0] + F[2, 0] * A[2, 0]
-    d1 = -F[1, 0] / den
-    d2 = F[1, 0] * (F[0, 0] * A[0, 2] + F[1, 0] * A[1, 2] + F[2, 0] * A[2, 2]) / den**2
-    iu = A[0, 0] * u0 + A[1, 0] * u1 + A[2, 0] * u2
-    ku = A[0, 2] * u0 + A[1, 2] * u1 + A[2, 2] * u2
+    radius = mount[0]
+    A = beam_hub_frame(mount, theta)  # i_k, j0, k_k
+    a = axis_frame(mount, theta)  # beam axis a_1 and the normals a_2, a_3
+    u = c[4:7]
+    delta = clamp_twist_angle(mount, theta, F, c[7])
+    # d delta / d theta and d2 delta / d theta2 for the section turning with w = -j0:
+    # delta' = w.tau + d.(w - tau (tau.w)) / (1 + d.tau), tau = a_1, tau.w = -tau_y constant
+    tau_y = a[1, 0]
+    d_y = F[1, 0]
+    u0 = F[0, 0] * a[0, 0] + F[1, 0] * a[1, 0] + F[2, 0] * a[2, 0]  # d.tau
+    u1 = -F[0, 0] * a[2, 0] + F[2, 0] * a[0, 0]  # d.(tau x j0) = d (tau)/d theta . d
+    d1 = -tau_y + (-d_y + tau_y * u0) / (1.0 + u0)
+    d2 = u1 * (tau_y + d_y) / (1.0 + u0) ** 2
     jac[:, :] = 0.0
+    hess[:, :] = 0.0
+    # position: Phi = r0 - R i_k; d i_k / d theta = k_k, d2 i_k / d theta2 = -i_k
     for i in range(3):
         phi_val[i] = c[1 + i] - radius * A[i, 0]
         jac[i, 0] = -radius * A[i, 2]
         jac[i, 1 + i] = 1.0
-        jac[3, 4 + i] = A[i, 1]
-        jac[4, 4 + i] = A[i, 2]
-    phi_val[3] = A[0, 1] * u0 + A[1, 1] * u1 + A[2, 1] * u2
-    phi_val[4] = ku
+        hess[0, 0] += radius * lam[i] * A[i, 0]
+    # tangent: Phi_3 = a_2 . r0', Phi_4 = a_3 . r0'; d a / d theta = a x j0 = (-a_z, 0, a_x)
+    for r in range(2):
+        col = r + 1
+        ax, ay, az = a[0, col], a[1, col], a[2, col]
+        val = ax * u[0] + ay * u[1] + az * u[2]
+        dval = -az * u[0] + ax * u[2]  # (a x j0) . u
+        ddval = -ax * u[0] - az * u[2]  # ((a x j0) x j0) . u
+        phi_val[3 + r] = val
+        jac[3 + r, 0] = dval
+        jac[3 + r, 4] = ax
+        jac[3 + r, 5] = ay
+        jac[3 + r, 6] = az
+        hess[0, 0] += lam[3 + r] * ddval
+        hess[0, 4] += lam[3 + r] * -az
+        hess[0, 6] += lam[3 + r] * ax
+        hess[4, 0] += lam[3 + r] * -az
+        hess[6, 0] += lam[3 + r] * ax
+    # twist
     phi_val[5] = c[7] - delta
-    jac[4, 0] = -iu
     jac[5, 0] = -d1
     jac[5, 7] = 1.0
-    if held:
-        phi_val[6] = theta - drive
-        jac[6, 0] = 1.0
-    hess[:, :] = 0.0
-    hess[0, 0] = radius * (lam[0] * A[0, 0] + lam[1] * A[1, 0] + lam[2] * A[2, 0]) - lam[4] * ku - lam[5] * d2
-    for i in range(3):
-        hess[0, 4 + i] = -lam[4] * A[i, 0]
-        hess[4 + i, 0] = -lam[4] * A[i, 0]
+    hess[0, 0] -= lam[5] * d2
 
 
-def clamp_constraints(c: np.ndarray, radius: float, twist: float, F: np.ndarray, drive: float | None):
-    """Phi, its Jacobian dPhi/dc, and a function giving sum_i lambda_i d2 Phi_i / dc2.
-
-    ``drive`` is theta_p(t) for a prescribed or fixed hub, None for a free hub.
-    """
-    held = drive is not None
-    m = 7 if held else 6
+def clamp_constraints(c: np.ndarray, mount: np.ndarray, F: np.ndarray):
+    """Phi (6), its Jacobian dPhi/dc (6 x 8), and a function giving sum_i lambda_i d2 Phi_i / dc2."""
     c = np.ascontiguousarray(c, dtype=float)
     F = np.ascontiguousarray(F, dtype=float)
-    phi_val, jac = np.empty(m), np.empty((m, 8))
-    args = (c, float(radius), float(twist), F, held, float(drive) if held else 0.0)
-    clamp_equations(*args, np.zeros(m), phi_val, jac, np.empty((8, 8)))
+    mount = np.asarray(mount, dtype=float)
+    phi_val, jac = np.empty(6), np.empty((6, 8))
+    clamp_equations(c, mount, F, np.zeros(6), phi_val, jac, np.empty((8, 8)))
 
     def hessian(lam: np.ndarray) -> np.ndarray:
         Hc = np.empty((8, 8))
-        clamp_equations(*args, np.asarray(lam, dtype=float), np.empty(m), np.empty((m, 8)), Hc)
+        clamp_equations(c, mount, F, np.asarray(lam, dtype=float), np.empty(6), np.empty((6, 8)), Hc)
         return Hc
 
     return phi_val, jac, hessian

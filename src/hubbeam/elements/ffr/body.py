@@ -14,6 +14,15 @@ rectangle: the integrands are polynomials of degree <= 6 in x and <= 2 in y, z):
 
 With the generalized velocity v = [r_C', omega^b, p'] (Eq. 58), M_v (Eq. 66), Q_v (Eq. 67)
 and Q_g follow in closed form (see the methods). Units: SI.
+
+A rigid tip body (:class:`~hubbeam.system.tip_body.TipBody`, ``tip_body=``) is part of the
+invariants. It moves with the tip section under the FFR's linear kinematics: its point at
+body position rho0 = (L, 0, 0) + d is displaced by u = N(L) p + phi(L) x d, phi the
+section's small rotation (:meth:`FfrBeam.rotation_row`), so N_d = N(L) - [d]x Phi(L).
+Every invariant is linear in the mass distribution and at most quadratic in d, so the body
+is represented exactly by seven weighted points with its mass, centre of mass and second
+moments (:meth:`~hubbeam.system.tip_body.TipBody.point_masses`).
+M_v, Q_v, Q_g, the energies and the momentum of the FFR system then include it.
 """
 
 from __future__ import annotations
@@ -41,6 +50,8 @@ class FfrBeam:
     section: Section
     gauss_points: int = 4
     geometric_stiffening: bool = False
+    #: a rigid body on the tip section (:class:`~hubbeam.system.tip_body.TipBody`), or None
+    tip_body: object = None
     invariants: dict = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -91,6 +102,15 @@ class FfrBeam:
                         N_list.append(self._scatter(e, displacement_matrix(shapes, k, y, z)))
                         r0_list.append([(e + xi) * l, y, z])
                         w_list.append(sec.density * wk * l * wy * sec.width * wz * sec.thickness)
+        if self.tip_body is not None:
+            # seven weighted points carrying the tip body's mass, first and second moments,
+            # moving with the tip section: u = N(L) p + phi(L) x d
+            N_tip, Phi_tip = self.displacement_row(self.length), self.rotation_row(self.length)
+            weights, offsets = self.tip_body.point_masses()
+            for wk, d in zip(weights, offsets):
+                N_list.append(N_tip - skew(d) @ Phi_tip)
+                r0_list.append([self.length + d[0], d[1], d[2]])
+                w_list.append(wk)
         N, r0, w = np.array(N_list), np.array(r0_list), np.array(w_list)
         return {
             "m": w.sum(),

@@ -1,0 +1,177 @@
+"""Time series tables (CSV) for the hub: a measured drive speed or angle, an applied torque.
+
+A table is a text file of comma-separated values (``;`` or tab also accepted when the header has
+no comma) with a header row naming the columns; blank lines and lines starting with ``#`` are
+skipped. Column names are matched case-insensitively and may carry a unit in brackets,
+``time (s)`` or ``omega [rad/s]``; other columns are ignored. Every problem becomes one
+:class:`~hubbeam.io.scenario.ScenarioError` line ``"{key}: {path}: reason"``.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import re
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+from hubbeam.io.scenario import ScenarioError
+from hubbeam.system.laws import MIN_DRIVE_ROWS, MIN_TORQUE_ROWS, DriveProfile, TorqueLaw
+
+__all__ = ["MAX_TABLE_BYTES", "read_series", "read_drive_table", "read_torque_table"]
+
+#: largest table file read (bytes)
+MAX_TABLE_BYTES = 50 * 1024 * 1024
+
+_UNIT = re.compile(r"\s*[\(\[].*[\)\]]\s*$")
+
+
+def _column_name(cell: str) -> str:
+    return _UNIT.sub("", cell.strip()).strip().lower()
+
+
+def _resolve(path: str | Path, base_dir: str | Path | None) -> Path:
+    p = Path(path).expanduser()
+    if base_dir is not None and not p.is_absolute():
+        p = Path(base_dir).expanduser() / p
+    return p
+
+
+def read_series(
+    path: str | Path,
+    key: str,
+    columns: Sequence[str],
+    *,
+    base_dir: str | Path | None = None,
+    min_rows: int = 2,
+    start_at_zero: bool = False,
+    max_bytes: int = MAX_TABLE_BYTES,
+) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """(time, {column: values}) from a CSV table with a ``time`` column.
+
+    ``columns`` are alternatives: exactly one of them must be present, e.g. ``("omega", "theta")``
+    for a drive table or ``("torque",)`` for a torque table; the dict holds that one. A relative
+    ``path`` is taken relative to ``base_dir`` when given. Checks: the file exists and is at most
+    ``max_bytes``; it is text with a header; the ``time`` column and one alternative are present;
+    every cell of those columns is a finite number; times strictly increase; at least
+    ``min_rows`` rows; with ``start_at_zero`` the first time is 0. Rows are numbered from 1 (the
+    first data row) and the file line is given too. Arrays are float64, 1-D.
+    """
+    columns = tuple(c.lower() for c in columns)
+    if not columns:
+        raise ValueError("columns: give at least one column name")
+    p = _resolve(path, base_dir)
+
+    def fail(reason: str) -> ScenarioError:
+        return ScenarioError(f"{key}: {p}: {reason}")
+
+    # -- the file -----------------------------------------------------------------------------
+    try:
+        size = p.stat().st_size
+    except FileNotFoundError:
+        raise fail("file not found") from None
+    except OSError as exc:
+        raise fail(f"cannot read the file ({exc.strerror or exc})") from None
+    if not p.is_file():
+        raise fail("not a file")
+    if size > max_bytes:
+        raise fail(f"file is {size / 2**20:.1f} MB, larger than the {max_bytes / 2**20:g} MB limit for a table")
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise fail(f"cannot read the file ({exc.strerror or exc})") from None
+    if b"\x00" in raw:
+        raise fail("not a CSV text file (binary content)")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        try:
+            text = raw.decode("latin-1")
+        except UnicodeDecodeError:  # pragma: no cover - latin-1 decodes every byte
+            raise fail("not a CSV text file") from None
+
+    # -- the header ---------------------------------------------------------------------------
+    lines = text.splitlines()
+    numbered = [(n, line) for n, line in enumerate(lines, start=1)
+                if line.strip() and not line.lstrip().startswith("#")]
+    if not numbered:
+        raise fail("empty file: expected a header row (time, " + " or ".join(columns) + ")")
+    header_line = numbered[0][1]
+    delimiter = ","
+    if "," not in header_line:
+        delimiter = ";" if ";" in header_line else ("\t" if "\t" in header_line else ",")
+    try:
+        rows = list(csv.reader(io.StringIO("\n".join(line for _, line in numbered)), delimiter=delimiter))
+    except csv.Error as exc:
+        raise fail(f"not a CSV file ({exc})") from None
+    names = [_column_name(c) for c in rows[0]]
+    seen: set[str] = set()
+    for name in names:
+        if name and name in seen:
+            raise fail(f"column {name!r} appears twice in the header")
+        seen.add(name)
+    if "time" not in names:
+        shown = ", ".join(repr(n) for n in names[:8]) + (", ..." if len(names) > 8 else "")
+        raise fail(f"no 'time' column in the header (found {shown}); expected a header row such as 'time,{columns[0]}'")
+    present = [c for c in columns if c in names]
+    if not present:
+        want = " or ".join(repr(c) for c in columns)
+        raise fail(f"no {want} column in the header (found {', '.join(repr(n) for n in names)})")
+    if len(present) > 1:
+        raise fail(f"give one of the columns {' or '.join(repr(c) for c in present)}, not both")
+    name = present[0]
+    i_time, i_value = names.index("time"), names.index(name)
+
+    # -- the rows -----------------------------------------------------------------------------
+    data = rows[1:]
+    t = np.empty(len(data))
+    v = np.empty(len(data))
+    for r, cells in enumerate(data):
+        line_no = numbered[r + 1][0]
+        where = f"row {r + 1} (line {line_no})"
+        if len(cells) != len(names):
+            raise fail(f"{where} has {len(cells)} cells, the header has {len(names)}")
+        for col, idx, out in (("time", i_time, t), (name, i_value, v)):
+            cell = cells[idx].strip()
+            try:
+                x = float(cell)
+            except ValueError:
+                raise fail(f"{where}, column {col!r}: {cell!r} is not a number") from None
+            if not math.isfinite(x):
+                raise fail(f"{where}, column {col!r}: {cell!r} is not finite")
+            out[r] = x
+    if len(data) < min_rows:
+        raise fail(f"the table needs at least {min_rows} rows, found {len(data)}")
+    for r in range(1, len(data)):
+        if t[r] <= t[r - 1]:
+            what = "a duplicate time" if t[r] == t[r - 1] else "times are not increasing"
+            raise fail(f"row {r + 1} (line {numbered[r + 1][0]}): {what} ({t[r]!r} after {t[r - 1]!r})")
+    if start_at_zero and t[0] != 0.0:
+        raise fail(f"the first time must be 0 s (found {t[0]!r})")
+    return t, {name: v}
+
+
+def read_drive_table(path: str | Path, key: str, *, base_dir: str | Path | None = None) -> DriveProfile:
+    """A ``table`` drive profile from a CSV with columns ``time`` (s) and ``omega`` (rad/s) or ``theta`` (rad)."""
+    t, cols = read_series(path, key, ("omega", "theta"), base_dir=base_dir, min_rows=MIN_DRIVE_ROWS,
+                          start_at_zero=True)
+    (quantity, values), = cols.items()
+    p = _resolve(path, base_dir)
+    if quantity == "theta" and values[0] != 0.0:
+        raise ScenarioError(f"{key}: {p}: the first theta must be 0 rad, the initial configuration (found {values[0]!r})")
+    try:
+        return DriveProfile.table(t, values, quantity)
+    except ValueError as exc:  # pragma: no cover - read_series checks everything DriveProfile does
+        raise ScenarioError(f"{key}: {p}: {exc}") from None
+
+
+def read_torque_table(path: str | Path, key: str, *, base_dir: str | Path | None = None) -> TorqueLaw:
+    """A ``table`` torque law from a CSV with columns ``time`` (s) and ``torque`` (N m)."""
+    t, cols = read_series(path, key, ("torque",), base_dir=base_dir, min_rows=MIN_TORQUE_ROWS)
+    try:
+        return TorqueLaw.table(t, cols["torque"])
+    except ValueError as exc:  # pragma: no cover - read_series checks everything TorqueLaw does
+        raise ScenarioError(f"{key}: {_resolve(path, base_dir)}: {exc}") from None

@@ -1,0 +1,279 @@
+"""Compiled equations of motion of a hub and its ANCF beams (paper Eq. 77), residual and
+Newton matrix in one call, for any number of beams, tip bodies and hub laws.
+
+The unknowns are placed by :class:`hubbeam.system.layout.Layout`: z = [theta, mu_drive,
+(mu_clamp_k, q_k) for each beam]; lambda = scale mu / coef_k. The Newton matrix is
+stored bordered (:class:`hubbeam.system.assembly.BorderedBandMatrix`): the border (theta
+and the drive multiplier) as dense rows, columns and corner, the rest -- block-diagonal
+over the beams, each block banded -- in LAPACK band storage.
+
+The physical terms come from their own kernels and are only added up here: elastic forces,
+rotary inertia, translational mass, drag (:mod:`hubbeam.elements.ancf.kernels`), gravity and
+tip loads (:func:`applied_load`, :mod:`hubbeam.system.loads`), tip bodies
+(:mod:`hubbeam.system.tip_body`), the clamp of each root (:mod:`hubbeam.system.clamp`), the
+drive and the torque law of the hub (:mod:`hubbeam.system.laws`). Beams of other
+formulations (FFR) are skipped here and added by the system in Python
+(:mod:`hubbeam.system.hub_system`).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from hubbeam.elements.ancf import kernels
+from hubbeam.system.assembly import add_element_blocks_banded
+from hubbeam.system.clamp import clamp_equations
+from hubbeam.system.laws import drive_values, torque_values
+from hubbeam.system.loads import tip_moment_terms
+from hubbeam.system.tip_body import ancf_tip_body_terms
+
+NODE_DOFS = kernels.NODE_DOFS
+#: below this value of 1 + d.tau a beam tangent is at the chart's singular direction
+CHART_SINGULAR = 1e-6
+#: half-bandwidth of every beam block (16 x 16 element blocks; the clamp rows reach 12 ahead)
+BANDWIDTH = 15
+
+
+class SystemModel(NamedTuple):
+    """Everything constant that the compiled equations need (SI units). Per-beam arrays
+    have one row per ANCF beam; ``beam_index`` gives the beam's place among all beams (its
+    chart in the chart array); ``beam_x0``/``beam_lambda0`` where its coordinates and clamp
+    multipliers start in x and lambda (from the layout)."""
+
+    border: int
+    z_of_x: np.ndarray  # int64 (nx,)
+    z_of_lambda: np.ndarray  # int64 (n_lambda,)
+    held: bool
+    hub_inertia: float  # kg m^2
+    drive: tuple  # CompiledDrive of hubbeam.system.laws
+    torque: tuple  # CompiledTorque of hubbeam.system.laws
+    beam_index: np.ndarray  # int64 (nb,)
+    beam_x0: np.ndarray  # int64 (nb,)
+    beam_lambda0: np.ndarray  # int64 (nb,)
+    beam_elements: np.ndarray  # int64 (nb,)
+    S: np.ndarray  # (nb, ng, 4) Hermite functions at the Gauss points, and derivatives (1/m, 1/m^2)
+    dS: np.ndarray
+    d2S: np.ndarray
+    w: np.ndarray  # (nb, ng) Gauss weights on [0, 1] (0 on padding points)
+    element_length: np.ndarray  # (nb,) m
+    stiffness: np.ndarray  # (nb, 4) EA, GJ_t, EI_y, EI_z (N, N m^2)
+    trans_mass: np.ndarray  # (nb, 16, 16) translational element mass (kg)
+    inertia: np.ndarray  # (nb, 3) rho (I_y + I_z), rho I_y, rho I_z (kg m)
+    width: np.ndarray  # (nb,) frontal width of the drag (m)
+    mount: np.ndarray  # (nb, 4) radius, twist, azimuth, precone (m, rad)
+    tip_force: np.ndarray  # (nb, 3) N
+    tip_moment: np.ndarray  # (nb, 3) N m
+    tip_body: np.ndarray  # (nb, 7) TipBody.params()
+    gravity: np.ndarray  # (3,) m/s^2
+    gravity_load: np.ndarray  # (nx,) generalized gravity force of the beams' own mass (N)
+    drag: np.ndarray  # (2,) c1, c2 of Eq. 37
+
+
+@njit(cache=True)
+def drive_angle(model, t):
+    """theta_p(t) of the driving constraint (a fixed hub has the profile 'rest')."""
+    d = model.drive
+    return drive_values(d[0], d[1], d[2], d[3], t)[0]
+
+
+@njit(cache=True)
+def applied_torque(model, t, theta, omega):
+    """(T, dT/dtheta, dT/domega) of the hub's torque law (N m)."""
+    tq = model.torque
+    return torque_values(tq[0], tq[1], tq[2], tq[3], tq[4], tq[5], tq[6], tq[7], t, theta, omega)
+
+
+@njit(cache=True)
+def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, want_matrix,
+                     res, ab, brow, bcol, bb):
+    """Scaled residual and (when ``want_matrix``) Newton matrix of the hub and its ANCF beams.
+
+    Force rows: coef_k (M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda) on each beam's
+    q, coef_k (J theta'' - T + Phi_theta^T lambda) on theta; constraint rows: scale Phi(x, t).
+    ``load_factor`` scales the applied loads (gravity, tip loads, the hub torque) for load
+    stepping. The matrix coef_m M + coef_c C + coef_k (K - dQ/dx + lambda . d2 Phi), with the
+    constraint Jacobian scaled by ``scale`` in its rows and columns, is written into the
+    bordered storage (``bb`` border x border, ``brow`` border rows, ``bcol`` border columns,
+    ``ab`` the band of the rest in gbtrf layout with kl = ku = BANDWIDTH). The small velocity
+    derivative of the rotary-inertia force and the q-derivative of M(q) acc are left out
+    (they slow Newton slightly and never change the answer). ``F`` holds every beam's chart.
+
+    Returns (chart margin min(1 + d.tau) over all Gauss points, dissipated power W). A margin
+    at or below :data:`CHART_SINGULAR` means the residual is not valid.
+    """
+    nb_border = model.border
+    zx = model.z_of_x
+    zl = model.z_of_lambda
+    ku = 2 * BANDWIDTH
+    for i in range(res.shape[0]):
+        res[i] = 0.0
+    if want_matrix:
+        ab[:, :] = 0.0
+        brow[:, :] = 0.0
+        bcol[:, :] = 0.0
+        bb[:, :] = 0.0
+    margin = 2.0
+    power = 0.0
+    # ---------------------------------------------------------------- hub
+    torque, d_theta, d_omega = applied_torque(model, t, x[0], v[0])
+    hub_row = model.hub_inertia * acc[0] - load_factor * torque
+    if model.held:
+        hub_row += lam[0]
+        res[1] = scale * (x[0] - drive_angle(model, t))
+    if want_matrix:
+        bb[0, 0] += coef_m * model.hub_inertia - load_factor * (coef_k * d_theta + coef_c * d_omega)
+        if model.held:
+            bb[0, 1] += scale
+            bb[1, 0] += scale
+    # ---------------------------------------------------------------- ANCF beams
+    phi = np.empty(6)
+    jac = np.empty((6, 8))
+    hess = np.empty((8, 8))
+    lam_k = np.empty(6)
+    c = np.empty(8)
+    tip_jacobian = np.empty((4, 3))
+    force8 = np.empty(8)
+    nb8 = 8 if want_matrix else 0
+    block8 = np.zeros((nb8, nb8))
+    g_tip = np.empty(3)
+    for k in range(model.beam_index.shape[0]):
+        n_el = model.beam_elements[k]
+        nq = NODE_DOFS * (n_el + 1)
+        x0 = model.beam_x0[k]
+        l0 = model.beam_lambda0[k]
+        Fk = F[model.beam_index[k]]
+        q = x[x0 : x0 + nq]
+        qd = v[x0 : x0 + nq]
+        qa = acc[x0 : x0 + nq]
+        S, dS, d2S, w, le = model.S[k], model.dS[k], model.d2S[k], model.w[k], model.element_length[k]
+        blocks = np.zeros((n_el if want_matrix else 0, 16, 16))
+        fq = np.empty(nq)
+        _, mk = kernels.elastic_kernel(q, Fk, le, S, dS, d2S, w, model.stiffness[k], coef_k, fq, blocks)
+        margin = min(margin, mk)
+        if not mk > CHART_SINGULAR:
+            return margin, 0.0
+        term = np.empty(nq)
+        kernels.rotary_inertia_kernel(q, qd, qa, Fk, le, S, dS, w, model.inertia[k], coef_m, term, blocks)
+        for j in range(nq):
+            fq[j] -= term[j]  # -(Q_v - M_rot acc)
+        power += kernels.drag_kernel(qd, le, S, w, model.width[k], model.drag[0], model.drag[1], coef_c, term,
+                                     blocks)
+        for j in range(nq):
+            fq[j] -= term[j]
+        kernels.translational_mass_product(model.trans_mass[k], qa, fq)
+        applied_load(model, k, q, Fk, load_factor, term, tip_jacobian)
+        for j in range(nq):
+            fq[j] -= term[j]
+        tip = nq - NODE_DOFS
+        if model.tip_body[k, 0] > 0.0 or model.tip_body[k, 1] > 0.0 or model.tip_body[k, 2] > 0.0 \
+                or model.tip_body[k, 3] > 0.0:
+            for i in range(3):
+                g_tip[i] = load_factor * model.gravity[i]
+            for i in range(8):
+                force8[i] = 0.0
+            if want_matrix:
+                block8[:, :] = 0.0
+            ancf_tip_body_terms(model.tip_body[k], Fk, q[tip : tip + 8], qd[tip : tip + 8], qa[tip : tip + 8],
+                                g_tip, coef_m, coef_k, force8, block8)
+            for i in range(8):
+                fq[tip + i] += force8[i]
+            if want_matrix:
+                for i in range(8):
+                    for j in range(8):
+                        blocks[n_el - 1, 8 + i, 8 + j] += block8[i, j]
+        # clamp of the root to the hub
+        c[0] = x[0]
+        for j in range(7):
+            c[1 + j] = q[j]
+        for i in range(6):
+            lam_k[i] = lam[l0 + i]
+        clamp_equations(c, model.mount[k], Fk, lam_k, phi, jac, hess)
+        for j in range(7):
+            acc_j = 0.0
+            for i in range(6):
+                acc_j += jac[i, 1 + j] * lam_k[i]
+            fq[j] += acc_j
+        for i in range(6):
+            hub_row += jac[i, 0] * lam_k[i]
+            res[zl[l0 + i]] = scale * phi[i]
+        for j in range(nq):
+            res[zx[x0 + j]] = coef_k * fq[j]
+        if not want_matrix:
+            continue
+        # the tip moment's load stiffness on the tip's (r0', theta_1) rows and r0' columns
+        for i in range(4):
+            for j in range(3):
+                blocks[n_el - 1, 11 + i, 11 + j] -= coef_k * tip_jacobian[i, j]
+        kernels.add_translational_mass(model.trans_mass[k], n_el, coef_m, blocks)
+        q_start = zx[x0] - nb_border  # interior index of the beam's first coordinate
+        add_element_blocks_banded(ab, blocks, q_start, ku, 1.0)
+        # clamp: Jacobian in the multiplier rows and columns, Hessian on [theta, root coordinates]
+        for i in range(6):
+            ri = zl[l0 + i] - nb_border
+            brow[0, ri] += scale * jac[i, 0]
+            bcol[ri, 0] += scale * jac[i, 0]
+            for j in range(7):
+                cj = q_start + j
+                ab[ku + ri - cj, cj] += scale * jac[i, 1 + j]
+                ab[ku + cj - ri, ri] += scale * jac[i, 1 + j]
+        bb[0, 0] += coef_k * hess[0, 0]
+        for a in range(7):
+            ca = q_start + a
+            brow[0, ca] += coef_k * hess[0, 1 + a]
+            bcol[ca, 0] += coef_k * hess[1 + a, 0]
+            for b in range(7):
+                cb = q_start + b
+                ab[ku + ca - cb, cb] += coef_k * hess[1 + a, 1 + b]
+    res[0] = coef_k * hub_row
+    return margin, power
+
+
+@njit(cache=True)
+def applied_load(model, k, q, F, factor, Q, tip_jacobian):
+    """Q = ``factor`` times the applied generalized force on beam k's coordinates q: gravity
+    on its own mass (Eq. 32), the tip force and the tip moment
+    (:func:`hubbeam.system.loads.tip_moment_terms`), and tip_jacobian (4 x 3) = ``factor``
+    d Q / d r0'(L) of the moment on the tip's (r0', theta_1) rows (zero without a moment)."""
+    nq = q.shape[0]
+    tip = nq - NODE_DOFS
+    x0 = model.beam_x0[k]
+    for j in range(nq):
+        Q[j] = factor * model.gravity_load[x0 + j]
+    for i in range(3):
+        Q[tip + i] += factor * model.tip_force[k, i]
+    tip_jacobian[:, :] = 0.0
+    moment = model.tip_moment[k]
+    if moment[0] == 0.0 and moment[1] == 0.0 and moment[2] == 0.0:
+        return
+    tQ = np.empty(4)
+    tip_moment_terms(q[tip + 3 : tip + 6], moment, F, tQ, tip_jacobian)
+    for i in range(4):
+        Q[tip + 3 + i] += factor * tQ[i]
+        for j in range(3):
+            tip_jacobian[i, j] *= factor
+
+
+@njit(cache=True)
+def dissipated_power(model, v):
+    """Power of the drag of Eq. 37 on every ANCF beam at velocities v (W, >= 0)."""
+    power = 0.0
+    for k in range(model.beam_index.shape[0]):
+        nq = NODE_DOFS * (model.beam_elements[k] + 1)
+        x0 = model.beam_x0[k]
+        qd = v[x0 : x0 + nq]
+        force = np.empty(nq)
+        power += kernels.drag_kernel(qd, model.element_length[k], model.S[k], model.w[k], model.width[k],
+                                     model.drag[0], model.drag[1], 0.0, force, np.empty((0, 16, 16)))
+    return power
+
+
+@njit(cache=True)
+def hub_power(model, t, x, v, lam):
+    """Power of the drive and the applied torque on the hub (W): (T_applied - lambda_drive) theta'."""
+    torque = applied_torque(model, t, x[0], v[0])[0]
+    if model.held:
+        torque -= lam[0]
+    return torque * v[0]

@@ -1,0 +1,271 @@
+"""An FFR beam on the hub (paper Secs. 3 and 4).
+
+Coordinates q = [r_C (3), Theta (3), p]: body-frame origin (at the root A), 2-3-1 Cardan
+angles of the body frame (:mod:`hubbeam.elements.ffr.cardan`) and the deformation
+coordinates of nodes 1..n (the root node is clamped to the body frame).
+
+**Clamp.** The paper couples the body frame to the hub by Eqs. 73 and 76. As printed,
+Eq. 73 fixes five of the six freedoms. hubbeam uses the full clamp
+A0 = A_h(theta + psi) R_z(p) R_x(-beta) (the mount frame of :mod:`hubbeam.system.mount`),
+which in 2-3-1 Cardan angles (A_h(theta) = R_y(-theta), Eq. 74) is *linear*:
+
+    r_C - R i_k(theta) = 0,   Theta1 + theta + psi = 0,   Theta2 - p = 0,   Theta3 + beta = 0.
+
+It is better conditioned than Eq. 73 and keeps the Cardan angles away from their
+singularity (Theta2 = precone, limited well below 90 deg).
+
+**Equations** (Eqs. 65-72): with v = H q' (v = [r_C', omega^b, p'], omega^b = D Theta'),
+M = H^T M_v H and Q = H^T (Q_g + Q_f + Q_d + Q_v + Q_tip) - H^T M_v h. The Newton matrices
+are dense (the body's reference coordinates couple to every deformation coordinate). The
+dynamic iteration matrix is coef_m M + coef_c H^T C_v H + coef_k K_elastic; the inertia
+forces' derivatives are left out (O((omega h)^2) against the mass term; they only slow
+Newton). The static and modal stiffness are central differences of the forces (dense and
+small: exact to about 1e-8 relative). A tip body is part of the body's inertia invariants
+(:class:`hubbeam.elements.ffr.body.FfrBeam`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hubbeam.elements.ffr.body import FfrBeam
+from hubbeam.elements.ffr.cardan import angular_velocity_matrix, angular_velocity_matrix_rate, rotation_matrix
+from hubbeam.numerics import central_difference_jacobian, relative_steps
+from hubbeam.system.mount import Mount
+from hubbeam.system.parts import BeamPart
+
+R_C, ANGLES, BODY = slice(0, 3), slice(3, 6), 6
+#: the hub's axis j0 (global)
+AXIS = np.array([0.0, 1.0, 0.0])
+
+
+@dataclass(eq=False)
+class FfrPart(BeamPart):
+    """An FFR beam (:class:`~hubbeam.elements.ffr.body.FfrBeam`) on its mount."""
+
+    beam: FfrBeam
+    mount: Mount = field(default_factory=Mount)
+    tip_force: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    tip_moment: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    name: str = "beam1"
+
+    formulation = "ffr"
+    root_dofs = 6  # r_C, Theta
+
+    def __post_init__(self) -> None:
+        self.tip_force = np.asarray(self.tip_force, dtype=float)
+        self.tip_moment = np.asarray(self.tip_moment, dtype=float)
+        # the tip point (L, 0, 0) and its section's small rotation over p
+        self._tip_rows = self.beam.displacement_row(self.beam.length)
+        self._tip_rotation_rows = self.beam.rotation_row(self.beam.length)
+
+    @property
+    def ndof(self) -> int:
+        return BODY + self.beam.ndof
+
+    @property
+    def length(self) -> float:
+        return float(self.beam.length)
+
+    @property
+    def section(self):
+        return self.beam.section
+
+    @property
+    def tip_body(self):
+        return self.beam.tip_body
+
+    # ------------------------------------------------------------ states
+    def initial_state(self, theta: float) -> tuple[np.ndarray, np.ndarray]:
+        """Undeformed beam clamped at hub angle theta; the chart is unused by FFR (identity)."""
+        m = self.mount
+        q = np.zeros(self.ndof)
+        q[R_C] = m.root(theta)
+        q[ANGLES] = [-(theta + m.azimuth), m.precone, -m.twist]
+        return q, np.eye(3)
+
+    def _body(self, q):
+        angles = q[ANGLES]
+        return rotation_matrix(angles), angular_velocity_matrix(angles)
+
+    def _H(self, D):
+        H = np.eye(self.ndof)
+        H[3:6, 3:6] = D
+        return H
+
+    def steady_rotation_rates(self, q, chart, omega: float):
+        """Rates of a rigid rotation with the hub at theta' = omega (w = -omega j0):
+        r_C' = w x r_C, Theta' = D^-1 A0^T w, p' = 0; accelerations r_C'' = w x (w x r_C),
+        Theta'' = -D^-1 D' Theta' (omega^b = A0^T w is constant), p'' = 0."""
+        A0, D = self._body(q)
+        w = -omega * AXIS
+        v = np.zeros(self.ndof)
+        a = np.zeros(self.ndof)
+        v[R_C] = np.cross(w, q[R_C])
+        v[ANGLES] = np.linalg.solve(D, A0.T @ w)
+        a[R_C] = np.cross(w, v[R_C])
+        a[ANGLES] = -np.linalg.solve(D, angular_velocity_matrix_rate(q[ANGLES], v[ANGLES]))
+        return v, a
+
+    # ------------------------------------------------------------ constraints
+    def clamp(self, q, chart, theta):
+        """Phi (6), its Jacobian on [theta, r_C, Theta] (6 x 7) and the multiplier-weighted
+        Hessian on them (7 x 7); p does not enter."""
+        m = self.mount
+        a = theta + m.azimuth
+        c, s = np.cos(a), np.sin(a)
+        phi = np.zeros(6)
+        jac = np.zeros((6, 7))
+        phi[0:3] = q[R_C] - m.radius * np.array([c, 0.0, s])
+        phi[3] = q[3] + a
+        phi[4] = q[4] - m.precone
+        phi[5] = q[5] + m.twist
+        jac[0:3, 1:4] = np.eye(3)
+        jac[0:3, 0] = -m.radius * np.array([-s, 0.0, c])
+        jac[3, 4] = jac[3, 0] = 1.0
+        jac[4, 5] = 1.0
+        jac[5, 6] = 1.0
+
+        def hess(lam):
+            H = np.zeros((7, 7))
+            H[0, 0] = m.radius * (lam[0] * c + lam[2] * s)
+            return H
+
+        return phi, jac, hess
+
+    # ------------------------------------------------------------ generalized forces
+    def forces(self, q, v, acc, gravity, damping, tangent: bool, factor: float = 1.0):
+        """M q'' - Q on q (everything but the constraints), and the pieces of the iteration
+        matrix: M, H^T C_v H, the elastic tangent on p. ``factor`` scales the applied loads
+        (gravity, tip force and moment)."""
+        beam = self.beam
+        nf = beam.ndof
+        A0, D = self._body(q)
+        H = self._H(D)
+        p, pd = q[BODY:], v[BODY:]
+        vb = H @ v
+        omega = vb[3:6]
+        h = np.zeros(6 + nf)
+        h[3:6] = angular_velocity_matrix_rate(q[ANGLES], v[ANGLES])
+        Mv = beam.mass_matrix(p, A0)
+        _, f_el, K_el = beam.elastic(p)
+        Q = beam.quadratic_velocity(p, pd, omega, A0) + factor * (beam.gravity(p, A0, gravity) + self._tip_load(A0))
+        Q[6:] -= f_el
+        Qd, Cv = self._drag(q, vb, A0, damping, tangent)
+        Q += Qd
+        vdot = H @ acc + h
+        force = H.T @ (Mv @ vdot - Q)
+        if not tangent:
+            return force, None
+        M = H.T @ Mv @ H
+        C = H.T @ Cv @ H
+        K = np.zeros_like(M)
+        K[6:, 6:] = K_el
+        return force, (M, C, K)
+
+    def stiffness(self, q, gravity, damping, factor: float = 1.0, spin: float = 0.0) -> np.ndarray:
+        """d(forces)/dq at rest (or in steady rotation at ``spin`` rad/s, its rates following q)
+        by central differences: the static and modal stiffness with every load's dependence."""
+        def forces(qq):
+            if spin:
+                vel, acc = self.steady_rotation_rates(qq, None, spin)
+                vel, acc = factor**0.5 * vel, factor * acc
+            else:
+                vel = acc = np.zeros_like(qq)
+            return self.forces(qq, vel, acc, gravity, damping, tangent=False, factor=factor)[0]
+
+        return central_difference_jacobian(forces, q, relative_steps(q))
+
+    def _tip_load(self, A0):
+        """Virtual work of the tip force and moment (global, constant) on v: the force acts at
+        the tip point, the moment on the body rotation plus the small section rotations."""
+        Q = np.zeros(6 + self.beam.ndof)
+        if np.any(self.tip_force):
+            fb = A0.T @ self.tip_force
+            Q[0:3] += self.tip_force
+            r_tip = np.array([self.beam.length, 0.0, 0.0])  # small-deformation lever arm
+            Q[3:6] += np.cross(r_tip, fb)
+            Q[6:] += self._tip_rows.T @ fb
+        if np.any(self.tip_moment):
+            mb = A0.T @ self.tip_moment
+            Q[3:6] += mb
+            Q[6:] += self._tip_rotation_rows.T @ mb
+        return Q
+
+    def _drag(self, q, vb, A0, damping, tangent: bool):
+        """Eq. 64 on the centre line (frontal width b): Q_d and its velocity Jacobian C_v
+        (d(-Q_d)/dv)."""
+        c1, c2 = damping
+        n = vb.shape[0]
+        if c1 == 0.0 and c2 == 0.0:
+            return np.zeros(n), np.zeros((n, n))
+        t = self.beam.centre_line_table
+        b = self.beam.section.width
+        p = q[BODY:]
+        r = np.column_stack([t["x"], np.zeros((t["x"].shape[0], 2))]) + t["N"] @ p  # body frame
+        S = np.empty((r.shape[0], 3, n))
+        S[:, :, 0:3] = np.eye(3)
+        rt = np.zeros((r.shape[0], 3, 3))  # skew(r) for every point
+        rt[:, 0, 1], rt[:, 0, 2], rt[:, 1, 2] = -r[:, 2], r[:, 1], -r[:, 0]
+        rt -= rt.transpose(0, 2, 1)
+        S[:, :, 3:6] = -A0 @ rt
+        S[:, :, 6:] = A0 @ t["N"]
+        rdot = S @ vb
+        speed = np.linalg.norm(rdot, axis=1)
+        weight = b * t["w"]
+        Q = -np.einsum("qif,qi->f", S, (weight * (c1 + c2 * speed))[:, None] * rdot)
+        if not tangent:
+            return Q, None
+        safe = np.where(speed > 0, speed, 1.0)
+        G = (c1 + c2 * speed)[:, None, None] * np.eye(3) + c2 * rdot[:, :, None] * (rdot / safe[:, None])[:, None, :]
+        GS = (weight[:, None, None] * G) @ S
+        C = S.reshape(-1, n).T @ GS.reshape(-1, n)
+        return Q, C
+
+    def dissipated_power(self, q, v, damping) -> float:
+        c1, c2 = damping
+        if c1 == 0.0 and c2 == 0.0:
+            return 0.0
+        A0, D = self._body(q)
+        vb = self._H(D) @ v
+        Qd, _ = self._drag(q, vb, A0, damping, tangent=False)
+        return float(-Qd @ vb)
+
+    # ------------------------------------------------------------ inertia and energies
+    def mass_matrix(self, q, chart=None) -> np.ndarray:
+        A0, D = self._body(q)
+        H = self._H(D)
+        return H.T @ self.beam.mass_matrix(q[BODY:], A0) @ H
+
+    def apply_mass(self, q, chart, u) -> np.ndarray:
+        return self.mass_matrix(q) @ u
+
+    def energies(self, q, v, chart, gravity) -> dict[str, float]:
+        A0, D = self._body(q)
+        vb = self._H(D) @ v
+        p = q[BODY:]
+        kinetic = 0.5 * vb @ self.beam.mass_matrix(p, A0) @ vb
+        strain = self.beam.elastic(p)[0]
+        inv = self.beam.invariants
+        grav = -np.asarray(gravity) @ (inv["m"] * q[R_C] + A0 @ self.beam.first_moment(p))
+        return {"kinetic": float(kinetic), "strain": float(strain), "gravity": float(grav)}
+
+    # ------------------------------------------------------------ measured quantities
+    def point_position(self, q, station: float, y: float = 0.0, z: float = 0.0) -> np.ndarray:
+        """Global position of the material point (station, y, z) (Eq. 42)."""
+        A0, _ = self._body(q)
+        u = self.beam.displacement_row(station, y, z) @ q[BODY:]
+        return q[R_C] + A0 @ (np.array([station, y, z]) + u)
+
+    def tip_position(self, q) -> np.ndarray:
+        return self.point_position(q, self.beam.length)
+
+    def surface_strain(self, q, chart, station, y, z) -> float:
+        return self.beam.surface_strain(q[BODY:], station, y, z)
+
+    def centre_line(self, q, chart=None, points_per_element: int = 8) -> np.ndarray:
+        beam = self.beam
+        xs = np.linspace(0.0, beam.length, beam.elements * points_per_element + 1)
+        return np.array([self.point_position(q, s) for s in xs])

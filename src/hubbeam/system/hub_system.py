@@ -1,0 +1,533 @@
+"""The hub and its beams as one system (paper Sec. 4): what the solvers see.
+
+A :class:`HubSystem` is a :class:`Hub` (its angle theta, inertia, drive or torque law) and
+any number of beam parts (:mod:`hubbeam.system.parts`: ANCF and FFR, mixed), each clamped
+to the hub by six equations, plus the environment (gravity, the air drag of Eq. 37). The
+:class:`~hubbeam.system.layout.Layout` places coordinates x, multipliers lambda and Newton
+unknowns z. The equations of the hub and every ANCF beam (with tip bodies and loads) are
+one compiled call (:func:`hubbeam.system.equations.system_equations`) into a bordered band
+matrix; FFR beams add their dense terms in Python on top (a dense matrix then).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from hubbeam.errors import ChartSingularityError
+from hubbeam.system.ancf_part import AncfPart
+from hubbeam.system.assembly import (BorderedBandMatrix, DenseMatrix, add_element_blocks_banded,
+                                     add_element_blocks_dense)
+from hubbeam.system.equations import (BANDWIDTH, CHART_SINGULAR, SystemModel, dissipated_power, hub_power,
+                                      system_equations)
+from hubbeam.system.hub import hub_frame
+from hubbeam.system.laws import DriveProfile, TorqueLaw
+from hubbeam.system.layout import CLAMP_EQUATIONS, Layout
+from hubbeam.system.parts import BeamPart, ChartedBeamPart
+from hubbeam.system.tip_body import TipBody
+
+#: the hub's axis j0 (global); the hub turns about -j0 for increasing theta (Eq. 74)
+AXIS = np.array([0.0, 1.0, 0.0])
+MOTIONS = ("free", "prescribed", "fixed")
+
+
+@dataclass(frozen=True)
+class Hub:
+    """The hub: ``motion`` "free" (theta a coordinate, driven by the ``torque`` law),
+    "prescribed" (theta = theta_p(t) of the ``drive`` profile, Eq. 82) or "fixed"
+    (theta = 0); ``inertia`` about j0 (kg m^2)."""
+
+    motion: str = "fixed"
+    inertia: float = 1.0
+    torque: TorqueLaw = field(default_factory=TorqueLaw)
+    drive: DriveProfile = field(default_factory=lambda: DriveProfile("rest"))
+
+    def __post_init__(self) -> None:
+        if self.motion not in MOTIONS:
+            raise ValueError(f"hub motion {self.motion!r}: choose one of {MOTIONS}")
+
+    @property
+    def held(self) -> bool:
+        return self.motion != "free"
+
+
+class HubSystem:
+    """A hub carrying beams. ``gravity`` (m/s^2, global), ``damping`` = (c1, c2) of Eq. 37."""
+
+    def __init__(self, beams: list[BeamPart], hub: Hub = Hub(), gravity=(0.0, 0.0, 0.0),
+                 damping: tuple[float, float] = (0.0, 0.0)) -> None:
+        if not beams:
+            raise ValueError("a hub system needs at least one beam")
+        self.beams = list(beams)
+        self.hub = hub
+        self.gravity = np.asarray(gravity, dtype=float)
+        self.damping = (float(damping[0]), float(damping[1]))
+        self.layout = Layout(tuple(b.ndof for b in self.beams), hub.held)
+        self._models: dict[bool, SystemModel] = {}
+
+    # ------------------------------------------------------------ what the system is
+    @property
+    def motion(self) -> str:
+        return self.hub.motion
+
+    @property
+    def drive(self) -> DriveProfile:
+        return self.hub.drive
+
+    @property
+    def beam(self):
+        """The first beam's element mesh (single-beam convenience)."""
+        return self.beams[0].beam
+
+    @property
+    def nx(self) -> int:
+        return self.layout.nx
+
+    def layout_for(self, held: bool) -> Layout:
+        return self.layout.with_held(held)
+
+    def n_constraints(self, held: bool) -> int:
+        return self.layout_for(held).n_lambda
+
+    def beam_index(self, name: str | None) -> int:
+        """Index of the beam called ``name`` (None: the first)."""
+        if name is None:
+            return 0
+        for k, b in enumerate(self.beams):
+            if b.name == name:
+                return k
+        raise KeyError(name)
+
+    def drive_angle(self, t: float, held: bool | None = None) -> float | None:
+        """theta_p(t) of the driving constraint, or None for a free hub."""
+        if held is None:
+            held = self.hub.held
+        if not held:
+            return None
+        return self.hub.drive(t)[0] if self.motion == "prescribed" else 0.0
+
+    @property
+    def length_scale(self) -> float:
+        """Length for relative tolerances on coordinates (m): the longest beam."""
+        return max(b.length for b in self.beams)
+
+    @property
+    def mass_scale(self) -> float:
+        """rho A l of the first beam's element (kg): scales the constraint rows of the dynamics."""
+        b = self.beams[0]
+        return b.section.mass_per_length * b.beam.element_length
+
+    @property
+    def constraint_scale(self) -> float:
+        """EA / l of the first beam (N/m): scales the constraint rows of the statics."""
+        b = self.beams[0]
+        return b.section.stiffness[0] / b.beam.element_length
+
+    def without_damping(self) -> "HubSystem":
+        """The same system without air drag."""
+        return HubSystem(self.beams, self.hub, self.gravity, (0.0, 0.0))
+
+    def with_hub(self, **changes) -> "HubSystem":
+        """The same beams on a hub with some fields changed (motion, drive, torque, inertia)."""
+        return HubSystem(self.beams, replace(self.hub, **changes), self.gravity, self.damping)
+
+    # ------------------------------------------------------------ states
+    def initial_state(self, theta: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """Straight undeformed beams clamped to the hub at angle theta: (x, charts (nb, 3, 3))."""
+        x = np.empty(self.nx)
+        x[0] = theta
+        charts = np.empty((len(self.beams), 3, 3))
+        for k, part in enumerate(self.beams):
+            x[self.layout.beam_x(k)], charts[k] = part.initial_state(theta)
+        return x, charts
+
+    def parts(self, x, F):
+        """(k, part, q_k, chart_k) for every beam."""
+        for k, part in enumerate(self.beams):
+            yield k, part, x[self.layout.beam_x(k)], F[k]
+
+    def steady_rotation_rates(self, x, F, omega: float) -> tuple[np.ndarray, np.ndarray]:
+        """Velocity and acceleration of x when the whole system turns rigidly with the hub at
+        theta' = omega (rad/s) (angular velocity w = -omega j0, Eq. 74)."""
+        v, a = np.zeros(self.nx), np.zeros(self.nx)
+        v[0] = omega
+        for k, part, q, chart in self.parts(x, F):
+            s = self.layout.beam_x(k)
+            v[s], a[s] = part.steady_rotation_rates(q, chart, omega)
+        return v, a
+
+    # ------------------------------------------------------------ charts
+    def chart_margin(self, x, F) -> float:
+        """min(1 + d.tau) over every charted beam's Gauss points: 0 at a chart's singular direction."""
+        margins = [part.chart_margin(q, chart) for _, part, q, chart in self.parts(x, F)
+                   if isinstance(part, ChartedBeamPart)]
+        return min(margins, default=2.0)
+
+    def better_chart(self, x, F=None, limit: float | None = None) -> np.ndarray:
+        """Charts for every beam: a better one for each charted beam whose margin is below
+        ``limit`` (every charted beam when ``limit`` is None or F is None)."""
+        new = np.array(F, dtype=float) if F is not None else self.initial_state(0.0)[1]
+        for k, part in enumerate(self.beams):
+            if not isinstance(part, ChartedBeamPart):
+                continue
+            q = x[self.layout.beam_x(k)]
+            if F is None or limit is None or part.chart_margin(q, F[k]) < limit:
+                new[k] = part.better_chart(q)
+        return new
+
+    def remap(self, x, F, F_new) -> np.ndarray:
+        """x re-expressed in the charts F_new (same configuration)."""
+        out = np.array(x, dtype=float)
+        for k, part, q, chart in self.parts(x, F):
+            if isinstance(part, ChartedBeamPart) and not np.array_equal(chart, F_new[k]):
+                out[self.layout.beam_x(k)] = part.remap(q, chart, F_new[k])
+        return out
+
+    def axis_chart(self, x, F) -> tuple[np.ndarray, np.ndarray]:
+        """x re-expressed in the charts in which a rigid rotation about the hub axis is exact."""
+        F_new = np.array(F, dtype=float)
+        for k, part in enumerate(self.beams):
+            if isinstance(part, ChartedBeamPart):
+                F_new[k] = part.axis_chart()
+        return self.remap(x, F, F_new), F_new
+
+    # ------------------------------------------------------------ compiled model
+    #: half-bandwidth of the beam blocks of the Newton matrix
+    bandwidth = BANDWIDTH
+
+    @property
+    def compiled(self) -> bool:
+        """Whether the whole system integrates in compiled code (every beam ANCF, a compiled torque law)."""
+        return all(isinstance(b, AncfPart) for b in self.beams) and self.hub.torque.compilable
+
+    def model(self, held: bool | None = None) -> SystemModel:
+        """The constants of the compiled equations for the hub held or not (default: its motion)."""
+        held = self.hub.held if held is None else held
+        if held not in self._models:
+            self._models[held] = self._build_model(held)
+        return self._models[held]
+
+    def _build_model(self, held: bool) -> SystemModel:
+        layout = self.layout_for(held)
+        ancf = [(k, b) for k, b in enumerate(self.beams) if isinstance(b, AncfPart)]
+        nb = len(ancf)
+        ng = max((b.beam.gauss_points for _, b in ancf), default=1)
+        S, dS, d2S = np.zeros((nb, ng, 4)), np.zeros((nb, ng, 4)), np.zeros((nb, ng, 4))
+        w = np.zeros((nb, ng))
+        gravity_load = np.zeros(self.nx)
+        for i, (k, b) in enumerate(ancf):
+            tS, tdS, td2S, tw = b.beam._tables
+            n = tw.shape[0]
+            for arr, table in ((S, tS), (dS, tdS), (d2S, td2S)):
+                arr[i, :n] = table
+                arr[i, n:] = table[0]  # padding points repeat a real one, with weight 0
+            w[i, :n] = tw
+            gravity_load[layout.beam_x(k)] = b.beam.distributed_load(b.section.mass_per_length * self.gravity)
+        # a fixed hub is held at theta = 0: the profile 'rest'
+        drive = self.hub.drive if self.motion == "prescribed" else DriveProfile("rest")
+        torque = self.hub.torque if (not held and self.hub.torque.compilable) else TorqueLaw()
+        ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
+        return SystemModel(
+            layout.border, layout.z_of_x, layout.z_of_lambda, held, float(self.hub.inertia),
+            tuple(drive.compiled()), tuple(torque.compiled()),
+            ints([k for k, _ in ancf]), ints([layout.beam_x(k).start for k, _ in ancf]),
+            ints([layout.clamp_lambda(k).start for k, _ in ancf]), ints([b.beam.elements for _, b in ancf]),
+            S, dS, d2S, w,
+            np.array([b.beam.element_length for _, b in ancf], dtype=float).reshape(nb),
+            np.array([b.beam._stiffness for _, b in ancf], dtype=float).reshape(nb, 4),
+            np.array([b.beam._trans_mass for _, b in ancf], dtype=float).reshape(nb, 16, 16),
+            np.array([b.beam._inertia for _, b in ancf], dtype=float).reshape(nb, 3),
+            np.array([b.section.width for _, b in ancf], dtype=float).reshape(nb),
+            np.array([b.mount.params() for _, b in ancf], dtype=float).reshape(nb, 4),
+            np.array([b.tip_force for _, b in ancf], dtype=float).reshape(nb, 3),
+            np.array([b.tip_moment for _, b in ancf], dtype=float).reshape(nb, 3),
+            np.array([(b.tip_body or TipBody()).params() for _, b in ancf], dtype=float).reshape(nb, 7),
+            np.array(self.gravity, dtype=float), gravity_load, np.array(self.damping, dtype=float),
+        )
+
+    # ------------------------------------------------------------ equations
+    def equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale, load_factor=1.0,
+                  want_matrix=True, held=None, stiffness="dynamic"):
+        """Scaled residual on z and Newton matrix coef_m M + coef_c C + coef_k (K - dQ/dx +
+        lambda.d2 Phi) of the equations of motion (Eq. 77), lambda = scale mu / coef_k (see
+        :func:`~hubbeam.system.equations.system_equations`). ``held`` overrides the hub's
+        drive constraint (statics hold the hub). ``stiffness``: "dynamic" (the iteration
+        matrix) or "exact" (FFR beams' stiffness with every load's dependence, for statics and
+        modes). Returns (residual, matrix): a BorderedBandMatrix when every beam is ANCF, else
+        a DenseMatrix."""
+        held = self.hub.held if held is None else held
+        model = self.model(held)
+        layout = self.layout_for(held)
+        res = np.empty(layout.nz)
+        bw = BANDWIDTH
+        matrix = BorderedBandMatrix.empty(layout.nz, layout.border, bw)
+        F = np.ascontiguousarray(F, dtype=float)
+        x, v, acc, lam = (np.ascontiguousarray(a, dtype=float) for a in (x, v, acc, lam))
+        margin, _ = system_equations(model, F, x, v, acc, lam, float(t), float(coef_m), float(coef_c),
+                                     float(coef_k), float(scale), float(load_factor), bool(want_matrix), res,
+                                     matrix.ab, matrix.brow, matrix.bcol, matrix.bb)
+        if not margin > CHART_SINGULAR:
+            raise ChartSingularityError(
+                f"a beam tangent is at the singular direction of the rotation chart (1 + d.tau = {margin:.2e})")
+        if not self.hub.torque.compilable and not held:
+            torque, d_theta, d_omega = self.hub.torque(t, x[0], v[0])
+            res[0] -= coef_k * load_factor * torque
+        python_parts = [(k, b) for k, b in enumerate(self.beams) if not isinstance(b, AncfPart)]
+        if not python_parts and self.hub.torque.compilable:
+            return res, matrix
+        dense = matrix.to_dense() if want_matrix else None
+        if dense is not None and not self.hub.torque.compilable and not held:
+            dense[0, 0] -= load_factor * (coef_k * d_theta + coef_c * d_omega)
+        for k, part in python_parts:
+            self._add_python_part(k, part, layout, x, v, acc, lam, F, coef_m, coef_c, coef_k, scale, load_factor,
+                                  res, dense, stiffness)
+        return res, (DenseMatrix(dense) if want_matrix else None)
+
+    def _add_python_part(self, k, part, layout, x, v, acc, lam, F, coef_m, coef_c, coef_k, scale, factor, res,
+                         dense, stiffness):
+        """Residual rows and matrix blocks of a beam integrated in Python (FFR)."""
+        sx, sl = layout.beam_x(k), layout.clamp_lambda(k)
+        zq = layout.z_of_x[sx]
+        zl = layout.z_of_lambda[sl]
+        q, lam_k = x[sx], lam[sl]
+        force, mats = part.forces(q, v[sx], acc[sx], self.gravity, self.damping, tangent=dense is not None,
+                                  factor=factor)
+        phi, jac, hess = part.clamp(q, F[k], x[0])
+        r = part.root_dofs
+        force[:r] += jac[:, 1:].T @ lam_k
+        res[zq] = coef_k * force
+        res[zl] = scale * phi
+        res[0] += coef_k * jac[:, 0] @ lam_k
+        if dense is None:
+            return
+        M, C, K = mats
+        if stiffness == "exact":
+            K = part.stiffness(q, self.gravity, self.damping, factor)
+        dense[np.ix_(zq, zq)] += coef_m * M + coef_c * C + coef_k * K
+        zc = np.concatenate([[0], zq[:r]])  # z indices of [theta, q_root]
+        dense[np.ix_(zc, zc)] += coef_k * hess(lam_k)
+        dense[np.ix_(zl, zc)] += scale * jac
+        dense[np.ix_(zc, zl)] += scale * jac.T
+
+    def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
+        """Scaled residual of the equations of motion on z (no matrix)."""
+        return self.equations(x, v, acc, lam, F, t, 0.0, 0.0, coef_k, scale, want_matrix=False)[0]
+
+    def dynamic_equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale):
+        """Scaled residual and Newton matrix of the equations of motion on z."""
+        return self.equations(x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale)
+
+    # ------------------------------------------------------------ statics and linearisation
+    def static_equations(self, x, mu, F, factor, spin=0.0):
+        """Residual and Newton matrix of the static problem with the hub held at theta = 0, on z
+        of the held layout (lambda = s mu, s = :attr:`constraint_scale`). ``spin`` (rad/s): the
+        hub's steady rate; the rigid-rotation velocities and accelerations (centrifugal,
+        gyroscopic and drag loads, scaled with the loads: rates by sqrt(factor)) are applied,
+        which gives the steadily rotating state in the hub frame. The matrix of an ANCF beam
+        adds the centrifugal stiffness -factor M D (D: (w x)^2 on positions and slopes; the
+        small dependence of the gyroscopic and drag loads on q is left out); FFR beams have the
+        exact stiffness by differences. A BorderedBandMatrix when every beam is ANCF."""
+        s = self.constraint_scale
+        layout = self.layout_for(True)
+        lam = s * np.asarray(mu, dtype=float)
+        if spin:
+            vel, acc = self.steady_rotation_rates(x, F, spin)
+            vel, acc = np.sqrt(factor) * vel, factor * acc
+        else:
+            vel = acc = np.zeros(self.nx)
+        res, matrix = self.equations(x, vel, acc, lam, F, 0.0, 0.0, 0.0, 1.0, s, load_factor=factor, held=True,
+                                     stiffness="exact")
+        if not spin:
+            return res, matrix
+        W = spin**2 * (np.outer(AXIS, AXIS) - np.eye(3))  # (w x)^2
+        zx = layout.z_of_x
+        for k, part, q, chart in self.parts(x, F):
+            sx = layout.beam_x(k)
+            if isinstance(part, AncfPart):
+                D = np.zeros((16, 16))
+                for off in (0, 3, 8, 11):
+                    D[off : off + 3, off : off + 3] = W
+                blocks = factor * part.beam.mass_blocks(q, chart) @ D
+                if part.tip_body is not None:
+                    blocks[-1, 8:16, 8:16] += factor * part._tip_body_terms(q, np.zeros_like(q), chart, np.zeros(3))[1] \
+                        @ D[8:16, 8:16]
+                start = zx[sx][0]
+                if isinstance(matrix, BorderedBandMatrix):
+                    add_element_blocks_banded(matrix.ab, blocks, start - layout.border, 2 * matrix.bandwidth, 1.0)
+                else:
+                    add_element_blocks_dense(matrix.a, blocks, start, 1.0)
+            else:  # the FFR stiffness above was at rest: redo it in steady rotation
+                zq = zx[sx]
+                matrix.a[np.ix_(zq, zq)] += part.stiffness(q, self.gravity, self.damping, factor, spin) \
+                    - part.stiffness(q, self.gravity, self.damping, factor)
+        return res, matrix
+
+    def linearised(self, x, lam, F, factor=1.0, held=False):
+        """Dense stiffness and mass of x about an equilibrium, and the constraint Jacobian.
+
+        Returns (K, M, A): K = d2(U - W)/dx2 + lambda.d2 Phi/dx2 (load stiffness of the tip
+        moment and, for FFR, of gravity included), M the mass matrix, A = dPhi/dx. ``held``
+        keeps the driving constraint (theta = theta_p(0)); ``lam`` are the multipliers of the
+        held layout (a static solution's)."""
+        layout = self.layout_for(held)
+        lam = self.lambda_from_held(lam, held)
+        zero = np.zeros(self.nx)
+        _, Kz = self.equations(x, zero, zero, lam, F, 0.0, 0.0, 0.0, 1.0, 1.0, load_factor=factor, held=held,
+                               stiffness="exact")
+        _, Mz = self.equations(x, zero, zero, lam, F, 0.0, 1.0, 0.0, 0.0, 1.0, load_factor=factor, held=held)
+        Kd = Kz.to_dense() if isinstance(Kz, BorderedBandMatrix) else Kz.a
+        Md = Mz.to_dense() if isinstance(Mz, BorderedBandMatrix) else Mz.a
+        zx, zl = layout.z_of_x, layout.z_of_lambda
+        return Kd[np.ix_(zx, zx)], Md[np.ix_(zx, zx)], Kd[np.ix_(zl, zx)]
+
+    def constraint_jacobian(self, x, F, held: bool | None = None) -> np.ndarray:
+        """dPhi/dx (n_lambda x nx) of the clamps and, for a held hub, the drive."""
+        held = self.hub.held if held is None else held
+        layout = self.layout_for(held)
+        zero = np.zeros(self.nx)
+        _, matrix = self.equations(x, zero, zero, np.zeros(layout.n_lambda), F, 0.0, 0.0, 0.0, 0.0, 1.0, held=held)
+        A = matrix.to_dense() if isinstance(matrix, BorderedBandMatrix) else matrix.a
+        return A[np.ix_(layout.z_of_lambda, layout.z_of_x)]
+
+    def lambda_from_held(self, lam, held: bool) -> np.ndarray:
+        """Multipliers of the held layout (a static solution's) for the layout with the hub
+        held or free (the drive multiplier dropped)."""
+        lam = np.asarray(lam, dtype=float)
+        if held:
+            return lam
+        src, dst = self.layout_for(True), self.layout_for(False)
+        out = np.empty(dst.n_lambda)
+        for k in range(len(self.beams)):
+            out[dst.clamp_lambda(k)] = lam[src.clamp_lambda(k)]
+        return out
+
+    def constraint_acceleration_terms(self, x, v, F, t, held=None) -> np.ndarray:
+        """v^T Phi_xx v + Phi_tt for every constraint: what Phi_x xdd must cancel. The clamps
+        have no explicit time dependence; the drive theta - theta_p(t) has Phi_tt = -theta_p''."""
+        held = self.hub.held if held is None else held
+        layout = self.layout_for(held)
+        out = np.zeros(layout.n_lambda)
+        if held and self.motion == "prescribed":
+            out[layout.drive_lambda] = -self.hub.drive(t)[2]
+        for k, part, q, chart in self.parts(x, F):
+            _, jac, hess = part.clamp(q, chart, x[0])
+            c = np.concatenate([[v[0]], v[layout.beam_x(k)][: part.root_dofs]])
+            sl = layout.clamp_lambda(k)
+            out[sl] = [c @ hess(e) @ c for e in np.eye(CLAMP_EQUATIONS)]
+        return out
+
+    def constraint_violation(self, x, F, t) -> float:
+        """Largest violation of the clamps' position equations (m)."""
+        return max(float(np.max(np.abs(part.clamp(q, chart, x[0])[0][0:3]))) for _, part, q, chart in self.parts(x, F))
+
+    def static_force_scale(self, x, F, spin: float = 0.0) -> float:
+        """The size of the applied generalized forces (N), for the static force tolerance."""
+        scale = 1e-9
+        for _, part, q, chart in self.parts(x, F):
+            sec = part.section
+            mass = sec.mass_per_length * part.length + (part.tip_body.mass if part.tip_body is not None else 0.0)
+            scale = max(scale, mass * float(np.linalg.norm(self.gravity)) / max(getattr(part.beam, "elements", 1), 1),
+                        float(np.linalg.norm(part.tip_force)), float(np.linalg.norm(part.tip_moment)) / part.length)
+            if spin:
+                scale = max(scale, mass * spin**2 * (part.mount.radius + part.length) / part.beam.elements)
+        return scale
+
+    # ------------------------------------------------------------ measured quantities
+    def drive_torque(self, lam: np.ndarray) -> float:
+        """Torque the drive applies to the hub (N m): minus the driving constraint's multiplier;
+        zero for a free hub (no driving constraint)."""
+        i = self.layout.drive_lambda
+        return float(-lam[i]) if i is not None and lam.shape[0] == self.layout.n_lambda else 0.0
+
+    def applied_torque(self, t: float, x: np.ndarray, v: np.ndarray) -> float:
+        """The free hub's torque law at the state (N m); zero for a held hub."""
+        if self.hub.held:
+            return 0.0
+        return float(self.hub.torque(t, x[0], v[0])[0])
+
+    def energies(self, x, v, F, beam: int | None = None) -> dict[str, float]:
+        """Kinetic (hub and beams, rotary inertia and tip bodies included), strain and gravity
+        energy (J); of one beam when ``beam`` is its index."""
+        total = {"kinetic": 0.0, "strain": 0.0, "gravity": 0.0}
+        if beam is None:
+            total["kinetic"] = 0.5 * self.hub.inertia * v[0] ** 2
+        for k, part, q, chart in self.parts(x, F):
+            if beam is not None and k != beam:
+                continue
+            for key, value in part.energies(q, v[self.layout.beam_x(k)], chart, self.gravity).items():
+                total[key] += value
+        return total
+
+    def angular_momentum(self, x, v, F) -> float:
+        """Angular momentum about the hub axis (N m s), positive in the sense of theta' (about -j0).
+
+        By Noether's theorem it is the generalized momentum M(q) v projected on the rigid
+        rotation of the whole system about the axis (xi = the rates of theta' = 1): J theta' +
+        sum_k v_k^T M_k(q_k) xi_k. In the axis charts xi is exact; otherwise the state is first
+        moved to them (velocities by the remap's Jacobian, a central difference)."""
+        x_axis, F_axis = self.axis_chart(x, F)
+        if not np.array_equal(F_axis, F):
+            eps = 1e-6
+            v = (self.remap(x + eps * v, F, F_axis) - self.remap(x - eps * v, F, F_axis)) / (2 * eps)
+            x, F = x_axis, F_axis
+        xi, _ = self.steady_rotation_rates(x, F, 1.0)
+        h = self.hub.inertia * v[0]
+        for k, part, q, chart in self.parts(x, F):
+            s = self.layout.beam_x(k)
+            h += v[s] @ part.apply_mass(q, chart, xi[s])
+        return float(h)
+
+    def dissipated_power(self, x, v, F) -> float:
+        """Power of the drag of Eq. 37 on every beam (W, >= 0)."""
+        power = float(dissipated_power(self.model(), np.ascontiguousarray(v, dtype=float)))
+        for k, part, q, chart in self.parts(x, F):
+            if not isinstance(part, AncfPart):
+                power += part.dissipated_power(q, v[self.layout.beam_x(k)], self.damping)
+        return power
+
+    def hub_power(self, t, x, v, lam) -> float:
+        """Power of the drive reaction and the applied torque on the hub (W)."""
+        if self.hub.torque.compilable:
+            return float(hub_power(self.model(), float(t), x, v, lam))
+        return (self.applied_torque(t, x, v) + self.drive_torque(lam)) * float(v[0])
+
+    def tip_position(self, x, beam: int = 0) -> np.ndarray:
+        return self.beams[beam].tip_position(x[self.layout.beam_x(beam)])
+
+    def tip_displacement(self, x, beam: int = 0) -> dict[str, float]:
+        """Tip centroid displacement of a beam from its undeformed place, in its own hub frame (m)."""
+        return self.beams[beam].tip_displacement(x[self.layout.beam_x(beam)], x[0])
+
+    def surface_strain(self, x, F, station: float, y: float, z: float, beam: int = 0) -> float:
+        return self.beams[beam].surface_strain(x[self.layout.beam_x(beam)], F[beam], station, y, z)
+
+    def centre_line(self, x, F, beam: int = 0, points_per_element: int = 8) -> np.ndarray:
+        return self.beams[beam].centre_line(x[self.layout.beam_x(beam)], F[beam], points_per_element)
+
+    def hub_frame(self, x) -> np.ndarray:
+        return hub_frame(x[0])
+
+
+def single_beam_system(beam, radius: float = 0.0, twist: float = 0.0, motion: str = "fixed",
+                       hub_inertia: float = 1.0, hub_torque: float | TorqueLaw = 0.0,
+                       drive: DriveProfile | None = None, gravity=(0.0, 0.0, 0.0), tip_force=(0.0, 0.0, 0.0),
+                       tip_moment=(0.0, 0.0, 0.0), damping=(0.0, 0.0), tip_body: TipBody | None = None,
+                       azimuth: float = 0.0, precone: float = 0.0) -> HubSystem:
+    """A hub with one beam (an :class:`~hubbeam.system.beam.AncfBeam` or an
+    :class:`~hubbeam.elements.ffr.body.FfrBeam`), the paper's system."""
+    from hubbeam.elements.ffr.body import FfrBeam
+    from hubbeam.system.ffr_part import FfrPart
+
+    from hubbeam.system.mount import Mount
+
+    mount = Mount(radius, twist, azimuth, precone)
+    if isinstance(beam, FfrBeam):
+        if tip_body is not None:
+            beam = replace(beam, tip_body=tip_body)
+        part = FfrPart(beam, mount, tip_force=tip_force, tip_moment=tip_moment)
+    else:
+        part = AncfPart(beam, mount, tip_body=tip_body, tip_force=tip_force, tip_moment=tip_moment)
+    torque = hub_torque if isinstance(hub_torque, TorqueLaw) else TorqueLaw.constant(float(hub_torque))
+    hub = Hub(motion, hub_inertia, torque, drive if drive is not None else DriveProfile("rest"))
+    return HubSystem([part], hub, gravity, damping)

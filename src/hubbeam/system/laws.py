@@ -1,0 +1,585 @@
+"""Time laws of the hub: prescribed drive profiles theta(t) and applied torque laws.
+
+Both kinds of law are usable from Python (``law(t)`` / ``law(t, theta, omega)``) and from
+numba-compiled code: ``law.compiled()`` gives plain arrays, and one njit function per family
+evaluates every kind with one compiled signature::
+
+    kind, params, knots, coefs = drive.compiled()
+    theta, omega, alpha = drive_values(kind, params, knots, coefs, t)
+
+    c = torque.compiled()
+    tq, dtq_dtheta, dtq_domega = torque_values(c.kind, c.params, c.knots, c.values, c.ref_kind,
+                                               c.ref_params, c.ref_knots, c.ref_coefs, t, theta, omega)
+
+``kind`` is a plain ``int`` (the value of :class:`DriveKind` / :class:`TorqueKind`), ``params`` a
+float64 array of 4 entries, ``knots`` a float64 1-D array, ``coefs`` a float64 2-D C-contiguous
+array; analytic laws carry empty ``knots`` (shape (0,)) and ``coefs`` (shape (0, 0)).
+
+Units: time s, angle rad, speed rad/s, acceleration rad/s^2, torque N m.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
+
+import numpy as np
+from numba import njit
+
+__all__ = [
+    "DriveKind",
+    "DriveProfile",
+    "CompiledDrive",
+    "drive_values",
+    "TorqueKind",
+    "TorqueLaw",
+    "CompiledTorque",
+    "torque_values",
+    "applied_power",
+    "applied_work",
+    "MIN_DRIVE_ROWS",
+    "MIN_TORQUE_ROWS",
+]
+
+
+class DriveKind(enum.IntEnum):
+    """The prescribed hub motions; ``int(kind)`` is what compiled code receives."""
+
+    REST = 0
+    CONSTANT = 1
+    EXPONENTIAL = 2
+    SPIN_UP = 3
+    TABLE = 4
+    SLEW = 5
+
+
+class TorqueKind(enum.IntEnum):
+    """The applied hub torque laws; ``int(kind)`` is what compiled code receives."""
+
+    CONSTANT = 0
+    TABLE = 1
+    PD = 2
+    CALLABLE = 3
+
+
+#: minimum number of rows of a drive table (the not-a-knot start condition needs two intervals)
+MIN_DRIVE_ROWS = 3
+#: minimum number of rows of a torque table (linear interpolation)
+MIN_TORQUE_ROWS = 2
+
+
+# ---------------------------------------------------------------------------------------------
+# compiled kernels (scalar loops only)
+
+
+@njit(cache=True)
+def _interval(knots, t):
+    """i with knots[i] <= t < knots[i+1], clipped to 0 .. len(knots) - 2 (binary search)."""
+    lo = 0
+    hi = knots.shape[0] - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if t < knots[mid]:
+            hi = mid
+        else:
+            lo = mid
+    return lo
+
+
+@njit(cache=True)
+def _poly2(coefs, i, h):
+    """Value, first and second derivative of the polynomial in row i (highest power first) at h."""
+    k = coefs.shape[1]
+    p = coefs[i, 0]
+    d1 = 0.0
+    d2 = 0.0
+    for m in range(1, k):
+        d2 = d2 * h + d1
+        d1 = d1 * h + p
+        p = p * h + coefs[i, m]
+    return p, d1, 2.0 * d2
+
+
+@njit(cache=True)
+def drive_values(kind, params, knots, coefs, t):
+    """(theta, theta', theta'') of a drive profile at time t (see :meth:`DriveProfile.compiled`).
+
+    ``params`` = (omega_s, T, t1, angle); ``knots``/``coefs`` the piecewise polynomial of theta
+    for a table (row i: theta on [knots[i], knots[i+1]] in powers of (t - knots[i]), highest
+    first), empty otherwise.
+    """
+    if kind == DriveKind.REST:
+        return 0.0, 0.0, 0.0
+    w = params[0]
+    T = params[1]
+    if kind == DriveKind.CONSTANT:
+        return w * t, w, 0.0
+    if kind == DriveKind.EXPONENTIAL:  # paper Eqs. 81 and 83
+        t1 = params[2]
+        if t < t1:
+            e = math.exp(-5.0 * t / T)
+            return w * (t + T / 5.0 * e - T / 5.0), w * (1.0 - e), w * 5.0 / T * e
+        e1 = math.exp(-5.0 * t1 / T)
+        return w * (t1 + T / 5.0 * e1 - T / 5.0) + w * (t - t1), w, 0.0
+    if kind == DriveKind.SPIN_UP:  # Kane, Ryan & Banerjee (1987)
+        if t < T:
+            a = 2.0 * math.pi / T
+            theta = (w / T) * (t * t / 2.0 + (T / (2 * math.pi)) ** 2 * (math.cos(a * t) - 1.0))
+            omega = (w / T) * (t - math.sin(a * t) / a)
+            alpha = (w / T) * (1.0 - math.cos(a * t))
+            return theta, omega, alpha
+        return w * (t - T / 2.0), w, 0.0
+    if kind == DriveKind.SLEW:  # rest to rest
+        angle = params[3]
+        if t < T:
+            a = 2.0 * math.pi / T
+            theta = angle * (t / T - math.sin(a * t) / (2.0 * math.pi))
+            omega = (angle / T) * (1.0 - math.cos(a * t))
+            alpha = (angle / T) * a * math.sin(a * t)
+            return theta, omega, alpha
+        return angle, 0.0, 0.0
+    if kind == DriveKind.TABLE:
+        n = knots.shape[0]
+        t_end = knots[n - 1]
+        if t >= t_end:  # speed held: theta linear, alpha = 0
+            th, om, _ = _poly2(coefs, n - 2, t_end - knots[n - 2])
+            return th + om * (t - t_end), om, 0.0
+        i = _interval(knots, t)
+        return _poly2(coefs, i, t - knots[i])
+    return math.nan, math.nan, math.nan
+
+
+@njit(cache=True)
+def _linear_hold(knots, values, t):
+    """Linear interpolation of values(knots) at t; the end values are held outside."""
+    n = knots.shape[0]
+    if t <= knots[0]:
+        return values[0]
+    if t >= knots[n - 1]:
+        return values[n - 1]
+    i = _interval(knots, t)
+    s = (t - knots[i]) / (knots[i + 1] - knots[i])
+    return values[i] + s * (values[i + 1] - values[i])
+
+
+@njit(cache=True)
+def torque_values(kind, params, knots, values, ref_kind, ref_params, ref_knots, ref_coefs, t, theta, omega):
+    """(torque, d torque / d theta, d torque / d omega) of a torque law (see :meth:`TorqueLaw.compiled`).
+
+    ``params`` = (value, kp, kd, 0); ``knots``/``values`` the torque table; ``ref_*`` the
+    reference drive of a PD law (as for :func:`drive_values`). A Python-callable law
+    (``TorqueKind.CALLABLE``) cannot be evaluated here and gives (0, 0, 0).
+    """
+    if kind == TorqueKind.CONSTANT:
+        return params[0], 0.0, 0.0
+    if kind == TorqueKind.TABLE:
+        return _linear_hold(knots, values, t), 0.0, 0.0
+    if kind == TorqueKind.PD:
+        kp = params[1]
+        kd = params[2]
+        th_ref, om_ref, _ = drive_values(ref_kind, ref_params, ref_knots, ref_coefs, t)
+        return kp * (th_ref - theta) + kd * (om_ref - omega), -kp, -kd
+    return 0.0, 0.0, 0.0
+
+
+# ---------------------------------------------------------------------------------------------
+# Python side
+
+
+class CompiledDrive(NamedTuple):
+    """Arguments of :func:`drive_values` (before ``t``)."""
+
+    kind: int  # int(DriveKind)
+    params: np.ndarray  # float64 (4,): omega_s, T, t1, angle
+    knots: np.ndarray  # float64 (n,): table times, empty otherwise
+    coefs: np.ndarray  # float64 (n-1, k) C-contiguous: theta pieces, highest power first; (0, 0) otherwise
+
+
+class CompiledTorque(NamedTuple):
+    """Arguments of :func:`torque_values` (before ``t, theta, omega``)."""
+
+    kind: int  # int(TorqueKind)
+    params: np.ndarray  # float64 (4,): value, kp, kd, 0
+    knots: np.ndarray  # float64 (n,): table times, empty otherwise
+    values: np.ndarray  # float64 (n,): table torques, empty otherwise
+    ref_kind: int  # the PD reference drive (rest for other laws), as CompiledDrive
+    ref_params: np.ndarray
+    ref_knots: np.ndarray
+    ref_coefs: np.ndarray
+
+
+_EMPTY1 = np.zeros(0)
+_EMPTY2 = np.zeros((0, 0))
+
+
+def _finite_float(name: str, value: Any) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: must be a number (got {value!r})") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{name}: must be finite (got {x})")
+    return x
+
+
+def _series(name_t: str, times: Any, name_v: str, values: Any, min_rows: int, start_at_zero: bool):
+    """Validated (times, values) as float64 arrays; ValueError naming the problem otherwise."""
+    try:
+        t = np.array(times, dtype=float)
+        v = np.array(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name_t}, {name_v}: must be sequences of numbers") from None
+    if t.ndim != 1 or v.ndim != 1:
+        raise ValueError(f"{name_t}, {name_v}: must be 1-D sequences (got shapes {t.shape} and {v.shape})")
+    if t.size != v.size:
+        raise ValueError(f"{name_v}: {v.size} values for {t.size} times")
+    if t.size < min_rows:
+        raise ValueError(f"{name_t}: a table needs at least {min_rows} rows (got {t.size})")
+    for name, a in ((name_t, t), (name_v, v)):
+        bad = np.flatnonzero(~np.isfinite(a))
+        if bad.size:
+            raise ValueError(f"{name}: row {bad[0]} is not finite ({a[bad[0]]})")
+    steps = np.diff(t)
+    bad = np.flatnonzero(steps <= 0.0)
+    if bad.size:
+        i = bad[0] + 1
+        raise ValueError(f"{name_t}: times must be strictly increasing (row {i}: {t[i]} after {t[i - 1]})")
+    if start_at_zero and t[0] != 0.0:
+        raise ValueError(f"{name_t}: the table must start at t = 0 (first time is {t[0]})")
+    return t, v
+
+
+def _table_pieces(times: np.ndarray, values: np.ndarray, quantity: str) -> np.ndarray:
+    """Piecewise polynomial coefficients of theta, shape (n-1, k), highest power first."""
+    from scipy.interpolate import CubicSpline
+
+    if quantity == "omega":
+        # C2 speed; alpha = 0 at the last row so that it is continuous with the held speed
+        spline = CubicSpline(times, values, bc_type=("not-a-knot", (1, 0.0)))
+        pieces = spline.antiderivative()  # theta(times[0]) = 0, quartic pieces, theta in C3
+    else:
+        # C2 angle; theta'' = 0 at the last row so that alpha is continuous with the held speed
+        pieces = CubicSpline(times, values, bc_type=("not-a-knot", (2, 0.0)))
+    return np.ascontiguousarray(np.asarray(pieces.c, dtype=float).T)
+
+
+_DRIVE_NAMES = {k.name.lower(): k for k in DriveKind}
+_TORQUE_NAMES = {k.name.lower(): k for k in TorqueKind}
+
+
+@dataclass(frozen=True, repr=False)
+class DriveProfile:
+    """Prescribed hub angle theta(t) with its first two derivatives (rad, rad/s, rad/s^2).
+
+    Kinds (``kind`` is the lower-case name of a :class:`DriveKind`):
+
+    - ``DriveProfile("rest")``: theta = 0.
+    - ``DriveProfile("constant", omega_s)``: theta = omega_s t.
+    - ``DriveProfile("exponential", omega_s, T, t1=inf)``: paper Eqs. 81, 83,
+      omega = omega_s (1 - exp(-5 t / T)) up to t1, then omega_s.
+    - ``DriveProfile("spin_up", omega_s, T)``: Kane, Ryan & Banerjee (1987),
+      omega = omega_s/T (t - T/(2 pi) sin(2 pi t/T)) up to T, then omega_s.
+    - ``DriveProfile.slew(angle, T)``: rest to rest,
+      theta = angle (t/T - sin(2 pi t/T)/(2 pi)) for t < T, then angle.
+    - ``DriveProfile.table(times, values, quantity="omega" | "theta")``: a measured speed (rad/s)
+      or angle (rad) series; see :meth:`table`.
+    """
+
+    kind: str
+    omega_s: float = 0.0
+    T: float = 1.0
+    t1: float = math.inf
+    angle: float = 0.0
+    times: tuple[float, ...] = ()
+    values: tuple[float, ...] = ()
+    quantity: str = "omega"
+    _compiled: CompiledDrive = field(init=False, repr=False, compare=False, hash=False)
+
+    # -- construction -------------------------------------------------------------------------
+
+    def __post_init__(self) -> None:
+        kind = self.kind
+        if isinstance(kind, DriveKind):
+            name = kind.name.lower()
+        elif isinstance(kind, str) and kind in _DRIVE_NAMES:
+            name = kind
+        else:
+            raise ValueError(f"unknown drive profile {kind!r}; choose one of {sorted(_DRIVE_NAMES)}")
+        object.__setattr__(self, "kind", name)
+        dk = _DRIVE_NAMES[name]
+        omega_s = _finite_float("omega_s", self.omega_s)
+        T = float(self.T)
+        t1 = float(self.t1)
+        angle = _finite_float("angle", self.angle)
+        if dk in (DriveKind.EXPONENTIAL, DriveKind.SPIN_UP, DriveKind.SLEW):
+            if not (math.isfinite(T) and T > 0.0):
+                raise ValueError(f"T: must be a finite time > 0 s for profile {name!r} (got {self.T})")
+        if dk == DriveKind.EXPONENTIAL and not t1 > 0.0:
+            raise ValueError(f"t1: must be > 0 s (or inf) for profile 'exponential' (got {self.t1})")
+        if dk != DriveKind.SLEW and angle != 0.0:
+            raise ValueError(f"angle: only for profile 'slew' (profile is {name!r})")
+        if dk != DriveKind.TABLE and (len(self.times) or len(self.values) or self.quantity != "omega"):
+            raise ValueError(f"times, values, quantity: only for profile 'table' (profile is {name!r})")
+        for attr, val in (("omega_s", omega_s), ("T", T), ("t1", t1), ("angle", angle)):
+            object.__setattr__(self, attr, val)
+
+        knots, coefs = _EMPTY1, _EMPTY2
+        if dk == DriveKind.TABLE:
+            if self.quantity not in ("omega", "theta"):
+                raise ValueError(f"quantity: must be 'omega' or 'theta' (got {self.quantity!r})")
+            knots, vals = _series("times", self.times, "values", self.values, MIN_DRIVE_ROWS, True)
+            if self.quantity == "theta" and vals[0] != 0.0:
+                raise ValueError(
+                    f"values: an angle table must start at theta = 0 (the initial configuration); got {vals[0]}"
+                )
+            object.__setattr__(self, "times", tuple(knots.tolist()))
+            object.__setattr__(self, "values", tuple(vals.tolist()))
+            coefs = _table_pieces(knots, vals, self.quantity)
+        params = np.array([omega_s, T, t1, angle], dtype=float)
+        object.__setattr__(self, "_compiled", CompiledDrive(int(dk), params, knots, coefs))
+
+    @classmethod
+    def rest(cls) -> DriveProfile:
+        """theta = 0."""
+        return cls("rest")
+
+    @classmethod
+    def constant(cls, omega_s: float) -> DriveProfile:
+        """theta = omega_s t."""
+        return cls("constant", omega_s)
+
+    @classmethod
+    def exponential(cls, omega_s: float, T: float, t1: float = math.inf) -> DriveProfile:
+        """Paper Eqs. 81, 83."""
+        return cls("exponential", omega_s, T, t1)
+
+    @classmethod
+    def spin_up(cls, omega_s: float, T: float) -> DriveProfile:
+        """Kane, Ryan & Banerjee (1987)."""
+        return cls("spin_up", omega_s, T)
+
+    @classmethod
+    def slew(cls, angle: float, T: float) -> DriveProfile:
+        """Rest-to-rest turn by ``angle`` (rad) in ``T`` (s).
+
+        theta = angle (t/T - sin(2 pi t/T)/(2 pi)) for t < T, then angle; omega and alpha are its
+        exact derivatives, both zero at t = 0 and t = T (alpha continuous, jerk not).
+        """
+        return cls("slew", T=T, angle=angle)
+
+    @classmethod
+    def table(cls, times: Any, values: Any, quantity: str = "omega") -> DriveProfile:
+        """A measured speed (``quantity="omega"``, rad/s) or angle (``"theta"``, rad) series.
+
+        Requirements: at least 3 rows (:data:`MIN_DRIVE_ROWS`), finite values, times strictly
+        increasing and starting at t = 0 (nothing is defined before the first row); an angle
+        table starts at theta = 0.
+
+        Interpolation (scipy ``CubicSpline``, stored as piecewise polynomials of theta):
+
+        - omega table: a cubic spline of omega (C2), not-a-knot at t = 0 and clamped
+          omega' = 0 at the last row; theta is its exact antiderivative with theta(0) = 0
+          (C3). After the last row omega is held (theta grows linearly, alpha = 0), so theta,
+          omega and alpha are continuous there. The clamped end condition bends the last
+          interval if the series has not settled; end the table where it has.
+        - theta table: a cubic spline of theta (C2), not-a-knot at t = 0 and theta'' = 0 at the
+          last row; after it omega = theta'(t_end) is held (alpha = 0, continuous).
+        """
+        return cls("table", times=times, values=values, quantity=quantity)
+
+    # -- use ----------------------------------------------------------------------------------
+
+    @property
+    def drive_kind(self) -> DriveKind:
+        return _DRIVE_NAMES[self.kind]
+
+    @property
+    def code(self) -> int:
+        """int(DriveKind) of this profile (what compiled code receives as ``kind``)."""
+        return int(self.drive_kind)
+
+    def compiled(self) -> CompiledDrive:
+        """(kind, params, knots, coefs) for :func:`drive_values`; fresh arrays on every call."""
+        c = self._compiled
+        return CompiledDrive(c.kind, c.params.copy(), c.knots.copy(), c.coefs.copy())
+
+    def __call__(self, t: float) -> tuple[float, float, float]:
+        c = self._compiled
+        return drive_values(c.kind, c.params, c.knots, c.coefs, float(t))
+
+    def __repr__(self) -> str:
+        k = self.drive_kind
+        if k == DriveKind.REST:
+            return "DriveProfile('rest')"
+        if k == DriveKind.CONSTANT:
+            return f"DriveProfile('constant', omega_s={self.omega_s!r})"
+        if k == DriveKind.EXPONENTIAL:
+            return f"DriveProfile('exponential', omega_s={self.omega_s!r}, T={self.T!r}, t1={self.t1!r})"
+        if k == DriveKind.SPIN_UP:
+            return f"DriveProfile('spin_up', omega_s={self.omega_s!r}, T={self.T!r})"
+        if k == DriveKind.SLEW:
+            return f"DriveProfile.slew(angle={self.angle!r}, T={self.T!r})"
+        return (f"DriveProfile.table(<{len(self.times)} rows, t = 0 .. {self.times[-1]!r} s>, "
+                f"quantity={self.quantity!r})")
+
+
+@dataclass(frozen=True, repr=False)
+class TorqueLaw:
+    """Torque applied to a free hub about j0 (N m), a function of t, theta and omega.
+
+    - ``TorqueLaw.constant(value)`` (also ``TorqueLaw()`` = 0 N m).
+    - ``TorqueLaw.table(times, torques)``: linear interpolation; the first torque is held before
+      the first row and the last after the last row (at least 2 rows, times strictly increasing).
+    - ``TorqueLaw.pd(kp, kd, reference)``: torque = kp (theta_ref - theta) + kd (omega_ref - omega)
+      with kp in N m/rad, kd in N m s/rad (both >= 0) and the reference a :class:`DriveProfile`.
+    - ``TorqueLaw.callable(function)``: ``function(t, theta, omega) -> float`` in Python. Calling
+      the law gives the derivatives by central differences (5 calls of the function) -- the slow
+      path; it cannot run inside compiled code (:attr:`compilable` is False and
+      :func:`torque_values` returns (0, 0, 0) for it).
+
+    ``law(t, theta, omega)`` returns (torque, d torque/d theta, d torque/d omega).
+    """
+
+    kind: str = "constant"
+    value: float = 0.0
+    times: tuple[float, ...] = ()
+    torques: tuple[float, ...] = ()
+    kp: float = 0.0
+    kd: float = 0.0
+    reference: DriveProfile | None = None
+    function: Callable[[float, float, float], float] | None = None
+    _compiled: CompiledTorque = field(init=False, repr=False, compare=False, hash=False)
+
+    def __post_init__(self) -> None:
+        kind = self.kind
+        if isinstance(kind, TorqueKind):
+            name = kind.name.lower()
+        elif isinstance(kind, str) and kind in _TORQUE_NAMES:
+            name = kind
+        else:
+            raise ValueError(f"unknown torque law {kind!r}; choose one of {sorted(_TORQUE_NAMES)}")
+        object.__setattr__(self, "kind", name)
+        tk = _TORQUE_NAMES[name]
+        value = _finite_float("value", self.value)
+        kp = _finite_float("kp", self.kp)
+        kd = _finite_float("kd", self.kd)
+        if tk != TorqueKind.CONSTANT and value != 0.0:
+            raise ValueError(f"value: only for law 'constant' (law is {name!r})")
+        if tk != TorqueKind.TABLE and (len(self.times) or len(self.torques)):
+            raise ValueError(f"times, torques: only for law 'table' (law is {name!r})")
+        if tk != TorqueKind.PD and (kp != 0.0 or kd != 0.0 or self.reference is not None):
+            raise ValueError(f"kp, kd, reference: only for law 'pd' (law is {name!r})")
+        if tk != TorqueKind.CALLABLE and self.function is not None:
+            raise ValueError(f"function: only for law 'callable' (law is {name!r})")
+        object.__setattr__(self, "value", value)
+        object.__setattr__(self, "kp", kp)
+        object.__setattr__(self, "kd", kd)
+
+        knots, vals = _EMPTY1, _EMPTY1
+        ref = DriveProfile("rest")
+        if tk == TorqueKind.TABLE:
+            knots, vals = _series("times", self.times, "torques", self.torques, MIN_TORQUE_ROWS, False)
+            object.__setattr__(self, "times", tuple(knots.tolist()))
+            object.__setattr__(self, "torques", tuple(vals.tolist()))
+        elif tk == TorqueKind.PD:
+            if kp < 0.0 or kd < 0.0:
+                raise ValueError(f"kp, kd: gains must be >= 0 (got kp = {kp}, kd = {kd})")
+            if not isinstance(self.reference, DriveProfile):
+                raise ValueError(f"reference: a pd law needs a DriveProfile (got {self.reference!r})")
+            ref = self.reference
+        elif tk == TorqueKind.CALLABLE:
+            if not callable(self.function):
+                raise ValueError(f"function: must be callable as function(t, theta, omega) (got {self.function!r})")
+        r = ref._compiled
+        params = np.array([value, kp, kd, 0.0])
+        object.__setattr__(self, "_compiled",
+                           CompiledTorque(int(tk), params, knots, vals, r.kind, r.params, r.knots, r.coefs))
+
+    @classmethod
+    def constant(cls, value: float = 0.0) -> TorqueLaw:
+        """A constant torque (N m)."""
+        return cls("constant", value)
+
+    @classmethod
+    def table(cls, times: Any, torques: Any) -> TorqueLaw:
+        """Torque series (s, N m): linear interpolation, end values held."""
+        return cls("table", times=times, torques=torques)
+
+    @classmethod
+    def pd(cls, kp: float, kd: float, reference: DriveProfile) -> TorqueLaw:
+        """torque = kp (theta_ref - theta) + kd (omega_ref - omega)."""
+        return cls("pd", kp=kp, kd=kd, reference=reference)
+
+    @classmethod
+    def callable(cls, function: Callable[[float, float, float], float]) -> TorqueLaw:  # noqa: A003
+        """A Python function torque(t, theta, omega) -> float (N m); not compilable."""
+        return cls("callable", function=function)
+
+    @property
+    def torque_kind(self) -> TorqueKind:
+        return _TORQUE_NAMES[self.kind]
+
+    @property
+    def compilable(self) -> bool:
+        """False for a Python-callable law: compiled code must evaluate it in Python."""
+        return self.torque_kind != TorqueKind.CALLABLE
+
+    def compiled(self) -> CompiledTorque:
+        """Arguments of :func:`torque_values` before (t, theta, omega); fresh arrays on every call."""
+        c = self._compiled
+        return CompiledTorque(c.kind, c.params.copy(), c.knots.copy(), c.values.copy(), c.ref_kind,
+                              c.ref_params.copy(), c.ref_knots.copy(), c.ref_coefs.copy())
+
+    def __call__(self, t: float, theta: float, omega: float) -> tuple[float, float, float]:
+        t, theta, omega = float(t), float(theta), float(omega)
+        if self.torque_kind == TorqueKind.CALLABLE:
+            f = self._call_function
+            h_th = 1e-6 * max(1.0, abs(theta))
+            h_om = 1e-6 * max(1.0, abs(omega))
+            tq = f(t, theta, omega)
+            d_th = (f(t, theta + h_th, omega) - f(t, theta - h_th, omega)) / (2.0 * h_th)
+            d_om = (f(t, theta, omega + h_om) - f(t, theta, omega - h_om)) / (2.0 * h_om)
+            return tq, d_th, d_om
+        c = self._compiled
+        return torque_values(c.kind, c.params, c.knots, c.values, c.ref_kind, c.ref_params, c.ref_knots,
+                             c.ref_coefs, t, theta, omega)
+
+    def _call_function(self, t: float, theta: float, omega: float) -> float:
+        value = self.function(t, theta, omega)
+        try:
+            x = float(value)
+        except (TypeError, ValueError):
+            raise ValueError(f"torque function returned {value!r}, not a number (t = {t})") from None
+        if not math.isfinite(x):
+            raise ValueError(f"torque function returned {x} (t = {t}, theta = {theta}, omega = {omega})")
+        return x
+
+    def __repr__(self) -> str:
+        k = self.torque_kind
+        if k == TorqueKind.CONSTANT:
+            return f"TorqueLaw.constant({self.value!r})"
+        if k == TorqueKind.TABLE:
+            return f"TorqueLaw.table(<{len(self.times)} rows, t = {self.times[0]!r} .. {self.times[-1]!r} s>)"
+        if k == TorqueKind.PD:
+            return f"TorqueLaw.pd(kp={self.kp!r}, kd={self.kd!r}, reference={self.reference!r})"
+        return f"TorqueLaw.callable({self.function!r})"
+
+
+def applied_power(torque: Any, omega: Any) -> np.ndarray:
+    """Power of the applied hub torque, torque * omega (W), element-wise."""
+    return np.asarray(torque, dtype=float) * np.asarray(omega, dtype=float)
+
+
+def applied_work(t: Any, torque: Any, omega: Any) -> np.ndarray:
+    """Work done by the applied hub torque from t[0] to each t[i] (J): cumulative trapezoid of torque * omega."""
+    t = np.asarray(t, dtype=float)
+    p = applied_power(torque, omega)
+    if t.shape != p.shape or t.ndim != 1:
+        raise ValueError(f"t, torque, omega: need three 1-D series of one length (got {t.shape} and {p.shape})")
+    out = np.zeros_like(t)
+    if t.size > 1:
+        out[1:] = np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))
+    return out

@@ -1,0 +1,84 @@
+"""Where a beam sits on the hub: azimuth, radius, twist and precone (the root placement).
+
+Beam k with azimuth psi, radius R, twist beta and precone p has its own hub frame
+A_h(theta + psi) (Eq. 74): i_k = i_h(theta + psi), j0, k_k = k_h(theta + psi). Its root is at
+R i_k. Its undeformed axis is i_k tilted out of the hub plane by p towards +j0 (a rotation
+by p about k_k), and its section is turned about that axis by -beta exactly as a single
+beam's is (conventions.md, Eq. 79): with beta = 0 the width (m) lies in the plane of the
+axis and j0. So the clamped root section frame [tau m n] is
+
+    a = A_h(theta + psi) R_k(p),   tau = a_1,   m = cos(beta) a_2 - sin(beta) a_3,
+    n = sin(beta) a_2 + cos(beta) a_3,
+
+with R_k(p) the rotation by p about the third axis. A beam at azimuth 180 deg with twist
+-beta is the mirror image (in the plane through j0 and k_h(theta)) of one at 0 deg with +beta.
+Every vector fixed to the hub turns with d v / d theta = v x j0 (the hub turns about -j0).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from hubbeam.system.hub import hub_frame
+
+
+@dataclass(frozen=True)
+class Mount:
+    """Root placement of one beam (SI units, angles in rad)."""
+
+    radius: float = 0.0
+    twist: float = 0.0
+    azimuth: float = 0.0
+    precone: float = 0.0
+
+    def params(self) -> np.ndarray:
+        """[radius, twist, azimuth, precone] for compiled code."""
+        return np.array([self.radius, self.twist, self.azimuth, self.precone], dtype=float)
+
+    def frame(self, theta: float) -> np.ndarray:
+        """Clamped root section frame [tau m n] (columns, global) at hub angle theta."""
+        return mount_frame(self.params(), float(theta))
+
+    def hub_frame(self, theta: float) -> np.ndarray:
+        """The beam's own hub frame [i_k j0 k_k] (columns) at hub angle theta."""
+        return beam_hub_frame(self.params(), float(theta))
+
+    def root(self, theta: float) -> np.ndarray:
+        """Root position R i_k (m)."""
+        return self.radius * self.hub_frame(theta)[:, 0]
+
+
+@njit(cache=True)
+def beam_hub_frame(mount, theta):
+    """A_h(theta + psi): columns i_k, j0, k_k (global)."""
+    return hub_frame(theta + mount[2])
+
+
+@njit(cache=True)
+def axis_frame(mount, theta):
+    """a = A_h(theta + psi) R_k(p): columns a_1 (the beam axis), a_2, a_3 = k_k."""
+    A = beam_hub_frame(mount, theta)
+    cp, sp = math.cos(mount[3]), math.sin(mount[3])
+    out = np.empty((3, 3))
+    for i in range(3):
+        out[i, 0] = cp * A[i, 0] + sp * A[i, 1]
+        out[i, 1] = -sp * A[i, 0] + cp * A[i, 1]
+        out[i, 2] = A[i, 2]
+    return out
+
+
+@njit(cache=True)
+def mount_frame(mount, theta):
+    """Clamped root section frame [tau m n] (columns, global) at hub angle theta."""
+    a = axis_frame(mount, theta)
+    cb, sb = math.cos(mount[1]), math.sin(mount[1])
+    C = np.empty((3, 3))
+    for i in range(3):
+        C[i, 0] = a[i, 0]
+        C[i, 1] = cb * a[i, 1] - sb * a[i, 2]
+        C[i, 2] = sb * a[i, 1] + cb * a[i, 2]
+    return C
