@@ -163,14 +163,16 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     law (e.g. ``TorqueLaw.callable(f)``: the slower Python step path); ``sensors`` its
     sensors. Returns (trajectory, failure): on a ComputationError, failure is that error and
     the trajectory holds the results up to it."""
-    from hubbeam.simulation import simulate
+    from hubbeam.simulation import initial_state, simulate
     from hubbeam.errors import ComputationError
     from hubbeam.solvers.generalized_alpha import NewtonOptions
 
     a = scenario.analysis
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
-        return simulate(build_system(scenario, torque), scenario.sensors if sensors is None else sensors, a.t_end, a.dt, a.spectral_radius,
-                        scenario.output_dt, progress, newton), None
+        system = build_system(scenario, torque)
+        state = initial_state(system, a.load_steps, a.start)
+        return simulate(system, scenario.sensors if sensors is None else sensors, a.t_end, a.dt, a.spectral_radius,
+                        scenario.output_dt, progress, newton, state), None
     except ComputationError as exc:
         return exc.partial, exc

@@ -1,8 +1,13 @@
-"""Failures of a computation, each saying where it happened and what to try.
+"""What can go wrong: bad input, and failures of a computation.
 
-Every failure of a computation (as opposed to bad input, :class:`hubbeam.io.scenario.ScenarioError`)
-is a :class:`ComputationError`; the command line turns it into exit status 1 and its message.
+Bad input is a :class:`ScenarioError` (one line naming the key; exit status 2 on the command
+line). Every failure of a computation is a :class:`ComputationError` that says where it
+happened and what to try (exit status 1).
 """
+
+
+class ScenarioError(ValueError):
+    """Bad scenario input: the message names the key and says what is wrong."""
 
 
 class ComputationError(RuntimeError):

@@ -64,11 +64,12 @@ def change_chart(system: HubSystem, state: ga.AlphaState, F_new: np.ndarray, eps
     return replace(state, x=g0, v=v_new, xdd=along(state.xdd) + curvature, a=along(state.a) + curvature, chart=F_new)
 
 
-def initial_state(system: HubSystem, load_steps: int = 20) -> ga.AlphaState:
-    """Where a run starts: at rest in the straight clamped state at theta = 0, or, for a
-    drive that already turns at t = 0 (profile 'constant'), in the steadily rotating
-    equilibrium (static analysis with the centrifugal load) with its rigid-rotation
-    velocities. A turning hub gets the axis chart (see HubSystem.axis_chart)."""
+def initial_state(system: HubSystem, load_steps: int = 20, start: str = "rest") -> ga.AlphaState:
+    """Where a run starts: at rest in the straight clamped state at theta = 0 (``start`` =
+    "rest") or at rest in the static equilibrium under gravity and loads with the hub at
+    theta = 0 ("equilibrium"); for a drive that already turns at t = 0 (profile 'constant'),
+    in the steadily rotating equilibrium (static analysis with the centrifugal load) with its
+    rigid-rotation velocities. A turning hub gets the axis charts (see HubSystem.axis_chart)."""
     omega0 = system.drive(0.0)[1] if system.motion == "prescribed" else 0.0
     if omega0:
         try:
@@ -77,7 +78,15 @@ def initial_state(system: HubSystem, load_steps: int = 20) -> ga.AlphaState:
             raise ComputationError(f"the steadily rotating start state (omega = {omega0:g} rad/s) was not found: {exc}") from exc
         v0, _ = system.steady_rotation_rates(sol.x, sol.chart, omega0)
         return ga.init(system, sol.x, sol.chart, v0=v0)
-    x0, F0 = system.initial_state(0.0)
+    if start == "equilibrium":
+        try:
+            sol = solve_static(system, load_steps=load_steps)
+        except ConvergenceError as exc:
+            raise ComputationError(f"the static start state (analysis.start = 'equilibrium') was not found: {exc}") \
+                from exc
+        x0, F0 = sol.x, sol.chart
+    else:
+        x0, F0 = system.initial_state(0.0)
     if system.motion != "fixed":
         x0, F0 = system.axis_chart(x0, F0)
     return ga.init(system, x0, F0)

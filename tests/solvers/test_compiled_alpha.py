@@ -5,13 +5,13 @@ import pytest
 
 from hubbeam.elements.ancf.chart import frame_from_director
 from hubbeam.io.scenario import Sensor
-from hubbeam.simulation import CompiledSteps, PythonSteps, initial_state, simulate
+from hubbeam.simulation import initial_state, simulate
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.errors import ComputationError
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
 from hubbeam.system.hub_system import HubSystem, single_beam_system
-from tests.conftest import L, plate
+from tests.conftest import assert_compiled_steps_are_python_steps, L, plate
 
 TIP = Sensor(name="tip", kind="tip_deflection")
 
@@ -31,21 +31,7 @@ class PythonOnly(HubSystem):
 
 @pytest.mark.parametrize("update", ["iteration", "step", "adaptive"])
 def test_compiled_steps_are_the_python_steps(update):
-    system = spinning_beam()
-    state = initial_state(system)
-    p = ga.AlphaParameters.from_spectral_radius(0.8)
-    options = ga.NewtonOptions(update=update)
-    fast, slow = CompiledSteps(system, p, options, 2e-3, state), PythonSteps(system, p, options, 2e-3, state)
-    a, steps_a, its_a, _, err_a, rec_a = fast.advance(state, 40, 0, 10, 40)
-    b, steps_b, its_b, _, err_b, rec_b = slow.advance(state, 40, 0, 10, 40)
-    assert err_a is None and err_b is None and steps_a == steps_b == 40
-    assert its_a == its_b  # the same Newton iterations, step by step
-    for u, w in ((a.x, b.x), (a.v, b.v), (a.xdd, b.xdd), (a.a, b.a), (a.lam, b.lam)):
-        assert np.max(np.abs(u - w)) <= 1e-9 * max(1.0, np.max(np.abs(w)))
-    assert [r[0].t for r in rec_a] == pytest.approx([0.02, 0.04, 0.06, 0.08])
-    assert [r[0].t for r in rec_b] == pytest.approx([0.02, 0.04, 0.06, 0.08])
-    assert fast.work["dissipated"] == pytest.approx(slow.work["dissipated"], rel=1e-9)
-    assert fast.work["drive"] == pytest.approx(slow.work["drive"], rel=1e-9)
+    assert_compiled_steps_are_python_steps(spinning_beam(), update)
 
 
 def test_a_chart_change_inside_the_compiled_run_matches_the_python_run():

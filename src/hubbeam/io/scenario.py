@@ -24,7 +24,7 @@ import unicodedata
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Annotated, Any, Literal, Union
+from typing import Annotated, Any, ClassVar, Literal, Union
 
 from pydantic import (
     BaseModel,
@@ -39,9 +39,7 @@ from pydantic import (
     model_validator,
 )
 
-
-class ScenarioError(ValueError):
-    """Bad scenario input: the message names the key and says what is wrong."""
+from hubbeam.errors import ScenarioError  # noqa: F401  (part of this module's interface)
 
 
 class _Strict(BaseModel):
@@ -210,10 +208,39 @@ TORQUE_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
 }
 
 
-class Drive(_Strict):
-    """A drive profile theta(t): ``[hub.drive]`` or ``[hub.torque.reference]``. Each profile
-    takes only its own keys (:data:`DRIVE_KEYS`); the others keep their neutral defaults and
-    are left out of :meth:`Scenario.to_dict`. ``file`` is stored as an absolute path."""
+class _KeyedChoice(_Strict):
+    """A table whose choice key (``profile``, ``law``) decides which of its other keys it takes
+    (``_keys``: choice -> (its keys, the required ones)); the others keep their neutral defaults
+    and are left out of :meth:`Scenario.to_dict`. ``file`` is stored as an absolute path and
+    must exist."""
+
+    _choice: ClassVar[str]
+    _keys: ClassVar[dict[str, tuple[tuple[str, ...], tuple[str, ...]]]]
+
+    @field_validator("file", check_fields=False)
+    @classmethod
+    def _absolute_file(cls, value, info: ValidationInfo):
+        return _absolute(value, info)
+
+    @model_validator(mode="after")
+    def _own_keys(self):
+        choice = getattr(self, self._choice)
+        own, required = self._keys[choice]
+        _given(self, own, required, f"{self._choice} {choice!r}")
+        if self.file is not None:
+            _check_file(self.file)
+        return self
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler):
+        return {k: v for k, v in handler(self).items() if k == self._choice or k in self.model_fields_set}
+
+
+class Drive(_KeyedChoice):
+    """A drive profile theta(t): ``[hub.drive]`` or ``[hub.torque.reference]`` (:data:`DRIVE_KEYS`)."""
+
+    _choice: ClassVar[str] = "profile"
+    _keys: ClassVar[dict] = DRIVE_KEYS
 
     profile: Literal["exponential", "constant", "spin_up", "slew", "table"] = "exponential"
     omega_s: float = 0.0  # rad/s
@@ -222,28 +249,14 @@ class Drive(_Strict):
     angle: float = 0.0  # rad (slew)
     file: Annotated[str, Field(min_length=1)] | None = None  # CSV: time, omega (rad/s) or theta (rad)
 
-    @field_validator("file")
-    @classmethod
-    def _absolute_file(cls, value, info: ValidationInfo):
-        return _absolute(value, info)
 
-    @model_validator(mode="after")
-    def _own_keys(self):
-        own, required = DRIVE_KEYS[self.profile]
-        _given(self, own, required, f"profile {self.profile!r}")
-        if self.file is not None:
-            _check_file(self.file)
-        return self
-
-    @model_serializer(mode="wrap")
-    def _dump(self, handler):
-        return {k: v for k, v in handler(self).items() if k == "profile" or k in self.model_fields_set}
-
-
-class HubTorque(_Strict):
+class HubTorque(_KeyedChoice):
     """A free hub's torque law ``[hub.torque]`` (:data:`TORQUE_KEYS`): constant ``value`` (N m);
     ``table`` ``file`` (CSV: time (s), torque (N m)); ``pd``: kp (N m/rad), kd (N m s/rad) and a
     ``reference`` drive profile, torque = kp (theta_ref - theta) + kd (omega_ref - omega)."""
+
+    _choice: ClassVar[str] = "law"
+    _keys: ClassVar[dict] = TORQUE_KEYS
 
     law: Literal["constant", "table", "pd"]
     value: float = 0.0
@@ -252,24 +265,11 @@ class HubTorque(_Strict):
     kd: NonNegative = 0.0
     reference: Drive | None = None
 
-    @field_validator("file")
-    @classmethod
-    def _absolute_file(cls, value, info: ValidationInfo):
-        return _absolute(value, info)
-
     @model_validator(mode="after")
-    def _own_keys(self):
-        own, required = TORQUE_KEYS[self.law]
-        _given(self, own, required, f"law {self.law!r}")
+    def _gains(self):
         if self.law == "pd" and self.kp == 0.0 and self.kd == 0.0:
             raise ValueError("kp: kp and kd are both 0, so the law applies no torque (give kp > 0 or kd > 0)")
-        if self.file is not None:
-            _check_file(self.file)
         return self
-
-    @model_serializer(mode="wrap")
-    def _dump(self, handler):
-        return {k: v for k, v in handler(self).items() if k == "law" or k in self.model_fields_set}
 
 
 def _torque_tag(value: Any) -> str | None:
@@ -342,6 +342,10 @@ class Analysis(_Strict):
     count: Annotated[int, Field(gt=0, le=500)] = 6
     newton: Literal["full", "step", "modified"] = "modified"
     tolerance: Annotated[float, Field(gt=0.0, lt=1e-3)] = 1e-9
+    #: where a dynamic run starts: "rest" (straight, undeformed, at rest: the paper's release) or
+    #: "equilibrium" (at rest in the static equilibrium under gravity and loads, hub at theta = 0).
+    #: A constant drive starts in the steadily rotating state either way.
+    start: Literal["rest", "equilibrium"] = "rest"
 
 
 # ------------------------------------------------------------------------- sensors

@@ -4,7 +4,7 @@ A table is a text file of comma-separated values (``;`` or tab also accepted whe
 no comma) with a header row naming the columns; blank lines and lines starting with ``#`` are
 skipped. Column names are matched case-insensitively and may carry a unit in brackets,
 ``time (s)`` or ``omega [rad/s]``; other columns are ignored. Every problem becomes one
-:class:`~hubbeam.io.scenario.ScenarioError` line ``"{key}: {path}: reason"``.
+:class:`~hubbeam.errors.ScenarioError` line ``"{key}: {path}: reason"``.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubbeam.io.scenario import ScenarioError
+from hubbeam.errors import ScenarioError
 from hubbeam.system.laws import MIN_DRIVE_ROWS, MIN_TORQUE_ROWS, DriveProfile, TorqueLaw
 
 __all__ = ["MAX_TABLE_BYTES", "read_series", "read_drive_table", "read_torque_table"]

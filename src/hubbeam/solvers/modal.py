@@ -45,8 +45,8 @@ def modal_analysis(
     """Lowest ``count`` elastic natural frequencies about ``equilibrium``.
 
     ``free_hub`` (default: the system's motion is "free") releases the hub angle so the
-    rigid rotation of hub and beam is a zero mode, which is left out; modes below
-    ``rigid_tol_hz`` are left out as rigid in any case.
+    rigid rotation of hub and beams is a zero mode, which is left out unless the hub's torque
+    law has a stiffness (a PD law); modes below ``rigid_tol_hz`` are left out as rigid in any case.
     """
     if free_hub is None:
         free_hub = system.motion == "free"
@@ -65,7 +65,9 @@ def modal_analysis(
         w2, V = w2.real[order], V.real[:, order]
     f = np.sqrt(np.abs(w2)) * np.sign(w2) / (2.0 * np.pi)
     rigid = np.abs(f) < rigid_tol_hz
-    if free_hub:
+    if free_hub and system.hub.torque(0.0, equilibrium.x[0], 0.0)[1] == 0.0:
+        # the rigid rotation of hub and beams; a torque law with a stiffness (PD, kp > 0) makes
+        # it the servo mode, an elastic mode like the others
         rigid[np.argmin(np.abs(f))] = True
     elastic = np.flatnonzero(~rigid)[:count]
     return Modes(f[elastic], N @ V[:, elastic], f[rigid])

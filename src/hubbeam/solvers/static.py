@@ -61,7 +61,7 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
         dx, dmu = layout.split_z(dz)
         x = x + dx
         mu = mu + dmu
-        step = np.max(np.abs(dx[1:])) / scale_x
+        step = np.max(np.abs(dx[layout.beams_x])) / scale_x
         if norm <= tol_force or step <= tol_step:
             return x, mu, it, norm
     raise ConvergenceError(f"residual {norm:.3e} N after {max_iter} iterations")

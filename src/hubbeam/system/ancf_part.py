@@ -38,21 +38,9 @@ class AncfPart(ChartedBeamPart):
     formulation = "ancf"
     root_dofs = 7  # r0 (3), r0' (3), theta_1 of the root node
 
-    def __post_init__(self) -> None:
-        self.tip_force = np.asarray(self.tip_force, dtype=float)
-        self.tip_moment = np.asarray(self.tip_moment, dtype=float)
-
     @property
     def ndof(self) -> int:
         return self.beam.ndof
-
-    @property
-    def length(self) -> float:
-        return float(self.beam.length)
-
-    @property
-    def section(self):
-        return self.beam.section
 
     @property
     def tip(self) -> slice:

@@ -130,15 +130,31 @@ class Factorisation:
 
 
 @njit(cache=True)
+def add_entry(ab, brow, bcol, bb, ku, i, j, value):
+    """A[i, j] += value in bordered storage (border size bb.shape[0]; ``ku``: the row of the
+    diagonal in ``ab``), i and j indices of the whole matrix."""
+    nb = bb.shape[0]
+    if i < nb:
+        if j < nb:
+            bb[i, j] += value
+        else:
+            brow[i, j - nb] += value
+    elif j < nb:
+        bcol[i - nb, j] += value
+    else:
+        ab[ku + i - j, j - nb] += value
+
+
+@njit(cache=True)
 def bordered_factor(ab, bw, ipiv, brow, bcol, bb, Y, schur):
     """Factorise the bordered matrix [[bb, brow], [bcol, B]] (B banded in ``ab``, overwritten
     by its LU): B^-1 bcol into the rows of ``Y`` (border x n), and the inverse of the Schur
     complement bb - brow B^-1 bcol (border x border, 1 or 2) into ``schur``. Returns 0, or
     j > 0 when B's pivot j is zero, or -1 when the Schur complement is singular."""
     info = band_factor(ab, bw, bw, ipiv)
-    if info != 0:
-        return info
     nb = bb.shape[0]
+    if info != 0 or nb == 0:
+        return info
     n = ab.shape[1]
     for j in range(nb):
         for i in range(n):
@@ -172,6 +188,8 @@ def bordered_solve(ab, bw, ipiv, brow, Y, schur, r):
     nb = schur.shape[0]
     interior = r[nb:]
     band_solve(ab, bw, bw, ipiv, interior)
+    if nb == 0:
+        return
     rb = np.empty(nb)
     for a in range(nb):
         acc = r[a]
@@ -218,7 +236,7 @@ class BorderedBandMatrix:
         schur = np.empty((self.border, self.border))
         info = bordered_factor(lu, bw, piv, self.brow, self.bcol, self.bb, Y, schur)
         if info != 0:
-            where = "the hub's border (Schur complement)" if info < 0 else f"column {info}"
+            where = "the hub's border (Schur complement)" if info < 0 else f"column {info} of the band"
             raise np.linalg.LinAlgError(f"singular matrix (zero pivot in {where})")
 
         def solve(rhs):

@@ -24,7 +24,7 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ancf import kernels
-from hubbeam.system.assembly import add_element_blocks_banded
+from hubbeam.system.assembly import add_element_blocks_banded, add_entry
 from hubbeam.system.clamp import clamp_equations
 from hubbeam.system.laws import drive_values, torque_values
 from hubbeam.system.loads import tip_moment_terms
@@ -124,10 +124,11 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         hub_row += lam[0]
         res[1] = scale * (x[0] - drive_angle(model, t))
     if want_matrix:
-        bb[0, 0] += coef_m * model.hub_inertia - load_factor * (coef_k * d_theta + coef_c * d_omega)
+        add_entry(ab, brow, bcol, bb, ku, 0, 0,
+                  coef_m * model.hub_inertia - load_factor * (coef_k * d_theta + coef_c * d_omega))
         if model.held:
-            bb[0, 1] += scale
-            bb[1, 0] += scale
+            add_entry(ab, brow, bcol, bb, ku, 0, 1, scale)
+            add_entry(ab, brow, bcol, bb, ku, 1, 0, scale)
     # ---------------------------------------------------------------- ANCF beams
     phi = np.empty(6)
     jac = np.empty((6, 8))
@@ -135,10 +136,6 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     lam_k = np.empty(6)
     c = np.empty(8)
     tip_jacobian = np.empty((4, 3))
-    force8 = np.empty(8)
-    nb8 = 8 if want_matrix else 0
-    block8 = np.zeros((nb8, nb8))
-    g_tip = np.empty(3)
     for k in range(model.beam_index.shape[0]):
         n_el = model.beam_elements[k]
         nq = NODE_DOFS * (n_el + 1)
@@ -170,12 +167,12 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         tip = nq - NODE_DOFS
         if model.tip_body[k, 0] > 0.0 or model.tip_body[k, 1] > 0.0 or model.tip_body[k, 2] > 0.0 \
                 or model.tip_body[k, 3] > 0.0:
+            g_tip = np.empty(3)
             for i in range(3):
                 g_tip[i] = load_factor * model.gravity[i]
-            for i in range(8):
-                force8[i] = 0.0
-            if want_matrix:
-                block8[:, :] = 0.0
+            force8 = np.zeros(8)
+            nb8 = 8 if want_matrix else 0
+            block8 = np.zeros((nb8, nb8))
             ancf_tip_body_terms(model.tip_body[k], Fk, q[tip : tip + 8], qd[tip : tip + 8], qa[tip : tip + 8],
                                 g_tip, coef_m, coef_k, force8, block8)
             for i in range(8):
@@ -208,25 +205,22 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
             for j in range(3):
                 blocks[n_el - 1, 11 + i, 11 + j] -= coef_k * tip_jacobian[i, j]
         kernels.add_translational_mass(model.trans_mass[k], n_el, coef_m, blocks)
-        q_start = zx[x0] - nb_border  # interior index of the beam's first coordinate
-        add_element_blocks_banded(ab, blocks, q_start, ku, 1.0)
+        q_start = zx[x0]  # z index of the beam's first coordinate
+        add_element_blocks_banded(ab, blocks, q_start - nb_border, ku, 1.0)
         # clamp: Jacobian in the multiplier rows and columns, Hessian on [theta, root coordinates]
         for i in range(6):
-            ri = zl[l0 + i] - nb_border
-            brow[0, ri] += scale * jac[i, 0]
-            bcol[ri, 0] += scale * jac[i, 0]
+            ri = zl[l0 + i]
+            add_entry(ab, brow, bcol, bb, ku, ri, 0, scale * jac[i, 0])
+            add_entry(ab, brow, bcol, bb, ku, 0, ri, scale * jac[i, 0])
             for j in range(7):
-                cj = q_start + j
-                ab[ku + ri - cj, cj] += scale * jac[i, 1 + j]
-                ab[ku + cj - ri, ri] += scale * jac[i, 1 + j]
-        bb[0, 0] += coef_k * hess[0, 0]
+                add_entry(ab, brow, bcol, bb, ku, ri, q_start + j, scale * jac[i, 1 + j])
+                add_entry(ab, brow, bcol, bb, ku, q_start + j, ri, scale * jac[i, 1 + j])
+        add_entry(ab, brow, bcol, bb, ku, 0, 0, coef_k * hess[0, 0])
         for a in range(7):
-            ca = q_start + a
-            brow[0, ca] += coef_k * hess[0, 1 + a]
-            bcol[ca, 0] += coef_k * hess[1 + a, 0]
+            add_entry(ab, brow, bcol, bb, ku, 0, q_start + a, coef_k * hess[0, 1 + a])
+            add_entry(ab, brow, bcol, bb, ku, q_start + a, 0, coef_k * hess[1 + a, 0])
             for b in range(7):
-                cb = q_start + b
-                ab[ku + ca - cb, cb] += coef_k * hess[1 + a, 1 + b]
+                add_entry(ab, brow, bcol, bb, ku, q_start + a, q_start + b, coef_k * hess[1 + a, 1 + b])
     res[0] = coef_k * hub_row
     return margin, power
 

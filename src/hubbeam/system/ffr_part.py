@@ -55,8 +55,7 @@ class FfrPart(BeamPart):
     root_dofs = 6  # r_C, Theta
 
     def __post_init__(self) -> None:
-        self.tip_force = np.asarray(self.tip_force, dtype=float)
-        self.tip_moment = np.asarray(self.tip_moment, dtype=float)
+        super().__post_init__()
         # the tip point (L, 0, 0) and its section's small rotation over p
         self._tip_rows = self.beam.displacement_row(self.beam.length)
         self._tip_rotation_rows = self.beam.rotation_row(self.beam.length)
@@ -64,14 +63,6 @@ class FfrPart(BeamPart):
     @property
     def ndof(self) -> int:
         return BODY + self.beam.ndof
-
-    @property
-    def length(self) -> float:
-        return float(self.beam.length)
-
-    @property
-    def section(self):
-        return self.beam.section
 
     @property
     def tip_body(self):

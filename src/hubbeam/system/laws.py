@@ -270,6 +270,15 @@ _DRIVE_NAMES = {k.name.lower(): k for k in DriveKind}
 _TORQUE_NAMES = {k.name.lower(): k for k in TorqueKind}
 
 
+def _kind_name(kind: Any, names: dict, what: str) -> str:
+    """The lower-case name of ``kind`` (an enum member or one of ``names``), or ValueError."""
+    if isinstance(kind, enum.IntEnum) and kind.name.lower() in names:
+        return kind.name.lower()
+    if isinstance(kind, str) and kind in names:
+        return kind
+    raise ValueError(f"unknown {what} {kind!r}; choose one of {sorted(names)}")
+
+
 @dataclass(frozen=True, repr=False)
 class DriveProfile:
     """Prescribed hub angle theta(t) with its first two derivatives (rad, rad/s, rad/s^2).
@@ -301,13 +310,7 @@ class DriveProfile:
     # -- construction -------------------------------------------------------------------------
 
     def __post_init__(self) -> None:
-        kind = self.kind
-        if isinstance(kind, DriveKind):
-            name = kind.name.lower()
-        elif isinstance(kind, str) and kind in _DRIVE_NAMES:
-            name = kind
-        else:
-            raise ValueError(f"unknown drive profile {kind!r}; choose one of {sorted(_DRIVE_NAMES)}")
+        name = _kind_name(self.kind, _DRIVE_NAMES, "drive profile")
         object.__setattr__(self, "kind", name)
         dk = _DRIVE_NAMES[name]
         omega_s = _finite_float("omega_s", self.omega_s)
@@ -454,13 +457,7 @@ class TorqueLaw:
     _compiled: CompiledTorque = field(init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self) -> None:
-        kind = self.kind
-        if isinstance(kind, TorqueKind):
-            name = kind.name.lower()
-        elif isinstance(kind, str) and kind in _TORQUE_NAMES:
-            name = kind
-        else:
-            raise ValueError(f"unknown torque law {kind!r}; choose one of {sorted(_TORQUE_NAMES)}")
+        name = _kind_name(self.kind, _TORQUE_NAMES, "torque law")
         object.__setattr__(self, "kind", name)
         tk = _TORQUE_NAMES[name]
         value = _finite_float("value", self.value)

@@ -8,10 +8,11 @@ clamp: six; a held hub: the drive theta = theta_p(t)). :class:`Layout` places th
 - multipliers  lambda = [lambda_drive (held hub only), lambda_clamp_1 (6), lambda_clamp_2 (6), ...]
 - Newton unknowns z = [theta, mu_drive, (mu_clamp_1, q_1), (mu_clamp_2, q_2), ...]
 
-The first ``border`` entries of z (theta and, for a held hub, the drive multiplier) couple
-to every beam; the rest of the Newton matrix is block-diagonal over the beams, each block
-banded for an ANCF beam. The solvers eliminate the border by a Schur complement
-(:class:`hubbeam.system.assembly.BorderedBandMatrix`). Nothing else in the package computes
+Theta and, for a held hub, the drive multiplier couple to every beam; the rest of the
+Newton matrix is block-diagonal over the beams, each block banded for an ANCF beam. With
+several beams these leading entries are the *border*, eliminated by a Schur complement
+(:class:`hubbeam.system.assembly.BorderedBandMatrix`); with one beam they fit in the band
+(theta reaches the root coordinates 14 entries on) and the border is empty. Nothing else in the package computes
 an offset into x, lambda or z: it asks the layout (``z_of_x``, ``z_of_lambda`` map every
 entry of x and lambda to its place in z).
 """
@@ -54,11 +55,22 @@ class Layout:
         return self.nx + self.n_lambda
 
     @property
-    def border(self) -> int:
-        """Leading entries of z that couple to every beam: theta and the drive multiplier."""
+    def leading(self) -> int:
+        """Entries of z before the beams' blocks: theta and, for a held hub, the drive multiplier."""
         return 1 + int(self.held)
 
+    @property
+    def border(self) -> int:
+        """Leading entries of z kept out of the band: theta and the drive multiplier when
+        several beams share them; none for one beam (the band holds them)."""
+        return 0 if self.beams == 1 else self.leading
+
     # ------------------------------------------------------------ where things are
+    #: the hub angle in x
+    theta = 0
+    #: every beam coordinate in x
+    beams_x = slice(1, None)
+
     def beam_x(self, k: int) -> slice:
         """Beam k's coordinates in x."""
         start = 1 + sum(self.beam_dofs[:k])
@@ -76,7 +88,7 @@ class Layout:
 
     def beam_z(self, k: int) -> slice:
         """Beam k's block in z: its clamp multipliers, then its coordinates."""
-        start = self.border + sum(CLAMP_EQUATIONS + n for n in self.beam_dofs[:k])
+        start = self.leading + sum(CLAMP_EQUATIONS + n for n in self.beam_dofs[:k])
         return slice(start, start + CLAMP_EQUATIONS + self.beam_dofs[k])
 
     @property

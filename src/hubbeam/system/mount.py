@@ -59,26 +59,25 @@ def beam_hub_frame(mount, theta):
 
 
 @njit(cache=True)
-def axis_frame(mount, theta):
-    """a = A_h(theta + psi) R_k(p): columns a_1 (the beam axis), a_2, a_3 = k_k."""
-    A = beam_hub_frame(mount, theta)
-    cp, sp = math.cos(mount[3]), math.sin(mount[3])
-    out = np.empty((3, 3))
-    for i in range(3):
-        out[i, 0] = cp * A[i, 0] + sp * A[i, 1]
-        out[i, 1] = -sp * A[i, 0] + cp * A[i, 1]
-        out[i, 2] = A[i, 2]
+def _turned(A, i, j, angle):
+    """A frame with its columns i and j turned by ``angle`` about the third one (right-handed:
+    column i moves towards column j)."""
+    c, s = math.cos(angle), math.sin(angle)
+    out = A.copy()
+    for r in range(3):
+        out[r, i] = c * A[r, i] + s * A[r, j]
+        out[r, j] = -s * A[r, i] + c * A[r, j]
     return out
 
 
 @njit(cache=True)
+def axis_frame(mount, theta):
+    """a = A_h(theta + psi) R_k(p): columns a_1 (the beam axis), a_2, a_3 = k_k."""
+    return _turned(beam_hub_frame(mount, theta), 0, 1, mount[3])
+
+
+@njit(cache=True)
 def mount_frame(mount, theta):
-    """Clamped root section frame [tau m n] (columns, global) at hub angle theta."""
-    a = axis_frame(mount, theta)
-    cb, sb = math.cos(mount[1]), math.sin(mount[1])
-    C = np.empty((3, 3))
-    for i in range(3):
-        C[i, 0] = a[i, 0]
-        C[i, 1] = cb * a[i, 1] - sb * a[i, 2]
-        C[i, 2] = sb * a[i, 1] + cb * a[i, 2]
-    return C
+    """Clamped root section frame [tau m n] (columns, global) at hub angle theta: the axis
+    frame turned by -beta about the axis."""
+    return _turned(axis_frame(mount, theta), 1, 2, -mount[1])

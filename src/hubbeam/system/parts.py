@@ -32,6 +32,11 @@ class BeamPart(ABC):
     mount: Mount
     tip_force: np.ndarray
     tip_moment: np.ndarray
+    beam: object  # the formulation's mesh: length, section, elements
+
+    def __post_init__(self) -> None:
+        self.tip_force = np.asarray(self.tip_force, dtype=float)
+        self.tip_moment = np.asarray(self.tip_moment, dtype=float)
 
     @property
     @abstractmethod
@@ -39,14 +44,14 @@ class BeamPart(ABC):
         """Number of coordinates q of this beam."""
 
     @property
-    @abstractmethod
     def length(self) -> float:
         """Undeformed length L (m)."""
+        return float(self.beam.length)
 
     @property
-    @abstractmethod
     def section(self):
         """The cross-section (:class:`hubbeam.elements.section.Section`)."""
+        return self.beam.section
 
     @abstractmethod
     def initial_state(self, theta: float) -> tuple[np.ndarray, np.ndarray]:
