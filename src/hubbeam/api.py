@@ -36,7 +36,8 @@ def beam_part(spec):
     if spec.formulation == "ancf":
         beam = AncfBeam(spec.length, spec.elements, section, spec.gauss_points or DEFAULT_GAUSS_POINTS)
         return AncfPart(beam, mount, tip_body=tip, name=spec.name, **loads)
-    beam = FfrBeam(spec.length, spec.elements, section, geometric_stiffening=spec.geometric_stiffening, tip_body=tip)
+    beam = FfrBeam(spec.length, spec.elements, section, geometric_stiffening=spec.geometric_stiffening, tip_body=tip,
+                   modes=spec.modes)
     return FfrPart(beam, mount, name=spec.name, **loads)
 
 

@@ -1,8 +1,9 @@
-"""Band storage and its LAPACK LU (called from compiled code and by BandMatrix), against dense solves."""
+"""Band and bordered band storage and their LU (LAPACK from compiled code; a Schur complement on the border), against dense solves."""
 
 import numpy as np
+import pytest
 
-from hubbeam.system.assembly import BandMatrix, band_factor, band_solve, banded_to_dense
+from hubbeam.system.assembly import BorderedBandMatrix, band_factor, band_solve, banded_to_dense
 
 
 def random_band(n, bw, seed):
@@ -39,6 +40,29 @@ def test_band_matrix_factorisation_solves_and_keeps_its_matrix():
     before = ab.copy()
     A = banded_to_dense(ab[bw:], bw, bw)
     b = np.random.default_rng(4).normal(size=n)
-    x = BandMatrix(ab, bw).factorise().solve(b)
+    m = BorderedBandMatrix(ab, bw, np.zeros((0, n)), np.zeros((n, 0)), np.zeros((0, 0)))
+    x = m.factorise().solve(b)
     assert np.allclose(A @ x, b, rtol=0, atol=1e-10)
     assert np.array_equal(ab, before)
+
+
+@pytest.mark.parametrize("border", [1, 2])
+def test_bordered_matrix_solves_like_the_dense_matrix(border):
+    """Dense border rows, columns and corner around a band (the hub angle and drive multiplier
+    coupling to several beams): the Schur-complement solve equals a dense solve."""
+    n, bw = 30, 4
+    rng = np.random.default_rng(7)
+    ab = random_band(n, bw, 5)
+    m = BorderedBandMatrix(ab, bw, rng.normal(size=(border, n)), rng.normal(size=(n, border)),
+                           rng.normal(size=(border, border)) + 5 * np.eye(border))
+    A = m.to_dense()
+    assert A.shape == (n + border, n + border)
+    assert np.allclose(A[border:, border:], banded_to_dense(ab[bw:], bw, bw))
+    b = rng.normal(size=n + border)
+    assert np.allclose(A @ m.factorise().solve(b), b, rtol=0, atol=1e-9)
+    m.add(0, border + 3, 2.5)
+    m.add(border + 3, border + 2, -1.0)
+    A2 = A.copy()
+    A2[0, border + 3] += 2.5
+    A2[border + 3, border + 2] += -1.0
+    assert np.allclose(m.to_dense(), A2)

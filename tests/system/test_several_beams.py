@@ -24,7 +24,7 @@ from hubbeam.system.hub_system import Hub, HubSystem, single_beam_system
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
-from tests.conftest import L, central_difference, plate
+from tests.conftest import assert_compiled_steps_are_python_steps, L, central_difference, plate
 from tests.system.conftest import parts_of, rigid_axis_inertia, tips
 
 GRAVITY = (0.0, -9.81, 0.0)
@@ -279,9 +279,16 @@ def test_ancf_and_ffr_beams_on_one_hub_agree_statically():
     assert ffr["tangential"] == pytest.approx(-ancf["tangential"], rel=5e-3)  # measured: 2.8e-4
 
 
+@pytest.mark.parametrize("update", ["iteration", "adaptive"])
+def test_compiled_steps_of_ancf_and_ffr_beams_are_the_python_steps(update):
+    """The compiled loop and the Python step on a mixed hub (ANCF and FFR beams, tip bodies):
+    the same Newton iterations and states."""
+    assert_compiled_steps_are_python_steps(mixed_pair(), update)
+
+
 def test_ancf_and_ffr_beams_on_a_free_hub_conserve_energy_and_momentum():
     system = mixed_pair()
-    assert not system.compiled  # FFR: the Python path
+    assert system.compiled  # FFR beams integrate in compiled code too
     traj = simulate(system, sensors("ancf", "ffr") + [Sensor(name="violation", kind="constraint_violation")],
                     t_end=0.5, dt=2e-3, spectral_radius=1.0, output_dt=0.02)
     e = traj.records["energy"]

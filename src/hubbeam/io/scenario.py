@@ -127,6 +127,8 @@ class Beam(_Strict):
     torsion_constant: Positive | None = None
     geometric_stiffening: bool = False
     gauss_points: Annotated[int, Field(ge=2, le=10)] | None = None
+    # --- modal reduction (FFR only): keep the `modes` lowest clamped-free modes
+    modes: Annotated[int, Field(ge=1)] | None = None
     # where the beam sits on the hub
     azimuth: float = 0.0  # deg
     radius: NonNegative | None = None  # m, default hub.radius
@@ -142,6 +144,13 @@ class Beam(_Strict):
             raise ValueError("geometric_stiffening: only applies to formulation = 'ffr'")
         if self.formulation == "ffr" and self.gauss_points is not None:
             raise ValueError("gauss_points: only applies to formulation = 'ancf'")
+        # --- modal reduction (FFR only)
+        if self.modes is not None and self.formulation != "ffr":
+            raise ValueError("modes: only applies to formulation = 'ffr' (modal reduction of the FFR beam)")
+        if self.modes is not None and self.modes > 6 * self.elements:
+            raise ValueError(f"modes: at most the nodal model's 6 x elements = {6 * self.elements} coordinates "
+                             f"(got {self.modes})")
+        # --- end modal reduction
         if not abs(self.precone) < MAX_PRECONE_DEG:
             raise ValueError(
                 f"precone: must be between -{MAX_PRECONE_DEG:g} and {MAX_PRECONE_DEG:g} deg (got {self.precone}): "
@@ -188,6 +197,7 @@ class ResolvedBeam:
     tip_body: ResolvedTipBody | None
     tip_force: tuple[float, float, float]  # N, global
     tip_moment: tuple[float, float, float]  # N m, global
+    modes: int | None = None  # FFR only: kept clamped-free modes; None: nodal
 
 
 # ------------------------------------------------------------------------- hub
@@ -478,6 +488,7 @@ class Scenario(_Strict):
                 precone=math.radians(b.precone), tip_body=tip,
                 tip_force=tuple(float(v) for v in self.loads.tip_force) if i == loaded else zero,
                 tip_moment=tuple(float(v) for v in self.loads.tip_moment) if i == loaded else zero,
+                modes=b.modes,
             ))
         return out
 
@@ -850,7 +861,7 @@ def _prune(data: dict, switch: tuple, set_paths: set) -> None:
                 table.pop(name, None)
 
     if key == "formulation":
-        drop(*{"ancf": ("geometric_stiffening",), "ffr": ("gauss_points",)}.get(value, ()))
+        drop(*{"ancf": ("geometric_stiffening", "modes"), "ffr": ("gauss_points",)}.get(value, ()))
     elif key == "motion" and switch[:-1] == ("hub",):
         if value != "free":
             drop("torque")

@@ -20,7 +20,7 @@ from numba import njit
 from hubbeam.solvers.generalized_alpha import (REUSE_VALID, NewtonAction, Outcome, algorithmic_acceleration,
                                                apply_increment, newton_decide, newton_start, predict)
 from hubbeam.system.assembly import bordered_factor, bordered_solve
-from hubbeam.system.equations import BANDWIDTH, CHART_SINGULAR, dissipated_power, hub_power, system_equations
+from hubbeam.system.equations import CHART_SINGULAR, dissipated_power, hub_power, system_equations
 
 
 @njit(cache=True)
@@ -69,7 +69,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         _copy(lam1, lam)
         stale = newton_start(update, reuse)
         fresh = not stale
-        margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
+        margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, False,
                                      fresh, res, ab, brow, bcol, bb)
         previous = np.inf
         converged = False
@@ -79,12 +79,12 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             if fresh:
                 reuse[REUSE_VALID] = 0
                 counters[2] += 1
-                if bordered_factor(ab, BANDWIDTH, ipiv, brow, bcol, bb, Y, schur) != 0:
+                if bordered_factor(ab, model.bandwidth, ipiv, brow, bcol, bb, Y, schur) != 0:
                     return Outcome.SINGULAR_MATRIX, size, t
                 reuse[REUSE_VALID] = 1
             for i in range(n):
                 res[i] = -res[i]
-            bordered_solve(ab, BANDWIDTH, ipiv, brow, Y, schur, res)
+            bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, res)
             counters[1] += 1
             if not np.all(np.isfinite(res)):
                 reuse[REUSE_VALID] = 0
@@ -105,7 +105,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             if fresh:
                 stale = False
             margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
-                                         fresh, res, ab, brow, bcol, bb)
+                                         False, fresh, res, ab, brow, bcol, bb)
             previous = np.inf if fresh else size
         if not converged:
             reuse[REUSE_VALID] = 0
@@ -117,7 +117,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         _copy(xdd, xdd1)
         _copy(lam, lam1)
         t = t1
-        p_d = dissipated_power(model, v)
+        p_d = dissipated_power(model, x, v)
         p_h = hub_power(model, t, x, v, lam)
         work[0] += 0.5 * h * (power[0] + p_d)
         work[1] += 0.5 * h * (power[1] + p_h)

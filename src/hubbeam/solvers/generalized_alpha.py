@@ -122,7 +122,7 @@ class IterationMatrix:
 
 
 def factorise(matrix, h: float, chart: np.ndarray) -> IterationMatrix:
-    """LU of a system matrix (BandMatrix or DenseMatrix) for step size h in ``chart``."""
+    """LU of a system matrix (a BorderedBandMatrix) for step size h in ``chart``."""
     try:
         return IterationMatrix(matrix.factorise(), h, chart)
     except np.linalg.LinAlgError as exc:

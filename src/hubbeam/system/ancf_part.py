@@ -126,10 +126,6 @@ class AncfPart(ChartedBeamPart):
             grav += self._tip_body_terms(q, v, chart, gravity)[4]
         return {"kinetic": float(kinetic), "strain": float(strain), "gravity": float(grav)}
 
-    def dissipated_power(self, v, damping) -> float:
-        """Power of the drag of Eq. 37 (W, >= 0)."""
-        return self.beam.drag(v, *damping)[0]
-
     # ------------------------------------------------------------ measured quantities
     def tip_position(self, q) -> np.ndarray:
         return q[self.tip][0:3].copy()

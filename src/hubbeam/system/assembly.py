@@ -3,7 +3,7 @@
 Band storage (as scipy.linalg.solve_banded takes it): ab[ku + i - j, j] = A[i, j].
 Element e of a beam couples the 16 coordinates starting at offset + 8 e.
 The band LU (:func:`band_factor`, :func:`band_solve`) is LAPACK's dgbtrf/dgbtrs from scipy's
-bundled LAPACK, callable from compiled code and used by :class:`BandMatrix` too. Its
+bundled LAPACK, callable from compiled code and used by :class:`BorderedBandMatrix` too. Its
 storage is gbtrf's: a Fortran-ordered array of shape (2 kl + ku + 1, n) with A[i, j] at
 ab[kl + ku + i - j, j] and kl spare rows on top for the fill-in of pivoting. Measured on
 this machine for n = 80, kl = ku = 15: factorisation about 21 us, solve about 3.5 us (a
@@ -16,7 +16,6 @@ import llvmlite.binding as llvm
 import numpy as np
 from numba import njit, types
 from numba.extending import get_cython_function_address
-from scipy.linalg.lapack import dgetrf, dgetrs
 
 # The LAPACK routines are registered under names of their own and called as external
 # functions, so compiled callers refer to them by name and stay cacheable (a ctypes
@@ -78,48 +77,6 @@ def banded_to_dense(ab: np.ndarray, kl: int, ku: int) -> np.ndarray:
         for i in range(max(0, j - ku), min(n, j + kl + 1)):
             A[i, j] = ab[ku + i - j, j]
     return A
-
-
-class BandMatrix:
-    """A square matrix in LAPACK general-band storage with kl = ku = ``bandwidth`` (the
-    gbtrf layout: ``bandwidth`` spare rows on top, A[i, j] at ab[2 bw + i - j, j])."""
-
-    def __init__(self, ab: np.ndarray, bandwidth: int) -> None:
-        self.ab, self.bandwidth = ab, bandwidth
-
-    def factorise(self) -> "Factorisation":
-        bw = self.bandwidth
-        lu = np.array(self.ab, dtype=float, order="F")
-        piv = np.zeros(lu.shape[1], dtype=np.int32)
-        info = band_factor(lu, bw, bw, piv)
-        if info != 0:
-            raise np.linalg.LinAlgError(f"singular matrix (zero pivot in column {info})")
-
-        def solve(rhs):
-            x = np.array(rhs, dtype=float)
-            band_solve(lu, bw, bw, piv, x)
-            return x
-
-        return Factorisation(solve)
-
-    def to_dense(self) -> np.ndarray:
-        return banded_to_dense(self.ab[self.bandwidth :], self.bandwidth, self.bandwidth)
-
-
-class DenseMatrix:
-    """A small dense square matrix (LAPACK getrf/getrs)."""
-
-    def __init__(self, a: np.ndarray) -> None:
-        self.a = a
-
-    def factorise(self) -> "Factorisation":
-        lu, piv, info = dgetrf(self.a)
-        if info != 0:
-            raise np.linalg.LinAlgError(f"singular matrix (zero pivot in column {info})")
-        return Factorisation(lambda rhs: dgetrs(lu, piv, rhs)[0])
-
-    def to_dense(self) -> np.ndarray:
-        return self.a
 
 
 class Factorisation:
@@ -227,6 +184,10 @@ class BorderedBandMatrix:
     @property
     def border(self) -> int:
         return self.bb.shape[0]
+
+    def add(self, i: int, j: int, value: float) -> None:
+        """A[i, j] += value."""
+        add_entry(self.ab, self.brow, self.bcol, self.bb, 2 * self.bandwidth, int(i), int(j), float(value))
 
     def factorise(self) -> "Factorisation":
         bw = self.bandwidth

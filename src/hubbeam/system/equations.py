@@ -1,5 +1,5 @@
-"""Compiled equations of motion of a hub and its ANCF beams (paper Eq. 77), residual and
-Newton matrix in one call, for any number of beams, tip bodies and hub laws.
+"""Compiled equations of motion of a hub and its beams (paper Eq. 77), residual and Newton
+matrix in one call, for any number of ANCF and FFR beams, tip bodies and hub laws.
 
 The unknowns are placed by :class:`hubbeam.system.layout.Layout`: z = [theta, mu_drive,
 (mu_clamp_k, q_k) for each beam]; lambda = scale mu / coef_k. The Newton matrix is
@@ -11,9 +11,9 @@ The physical terms come from their own kernels and are only added up here: elast
 rotary inertia, translational mass, drag (:mod:`hubbeam.elements.ancf.kernels`), gravity and
 tip loads (:func:`applied_load`, :mod:`hubbeam.system.loads`), tip bodies
 (:mod:`hubbeam.system.tip_body`), the clamp of each root (:mod:`hubbeam.system.clamp`), the
-drive and the torque law of the hub (:mod:`hubbeam.system.laws`). Beams of other
-formulations (FFR) are skipped here and added by the system in Python
-(:mod:`hubbeam.system.hub_system`).
+drive and the torque law of the hub (:mod:`hubbeam.system.laws`); for every FFR beam the
+body terms of :mod:`hubbeam.elements.ffr.kernels` (a dense block inside the band) and its
+linear Cardan-angle clamp (:mod:`hubbeam.system.ffr_part`).
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ancf import kernels
+from hubbeam.elements.ffr.kernels import ffr_body_terms, ffr_load_stiffness
 from hubbeam.system.assembly import add_element_blocks_banded, add_entry
 from hubbeam.system.clamp import clamp_equations
 from hubbeam.system.laws import drive_values, torque_values
@@ -33,8 +34,52 @@ from hubbeam.system.tip_body import ancf_tip_body_terms
 NODE_DOFS = kernels.NODE_DOFS
 #: below this value of 1 + d.tau a beam tangent is at the chart's singular direction
 CHART_SINGULAR = 1e-6
-#: half-bandwidth of every beam block (16 x 16 element blocks; the clamp rows reach 12 ahead)
+#: half-bandwidth of an ANCF beam block (16 x 16 element blocks; the clamp rows reach 12 ahead)
 BANDWIDTH = 15
+
+
+def bandwidth_for(ffr_dofs) -> int:
+    """Half-bandwidth of the Newton matrix: an ANCF block's, or an FFR beam's whole block
+    (its six clamp rows and 6 + nf coordinates) when wider."""
+    return max([BANDWIDTH] + [11 + n for n in ffr_dofs])
+
+
+#: dimensions of the per-beam arrays of :class:`hubbeam.elements.ffr.kernels.FfrArrays`
+FFR_FIELD_NDIM = {"m": 0, "c0": 1, "Sbar": 2, "I0": 2, "J": 3, "II": 4, "Mff": 2, "K": 2, "EAl": 0,
+                  "mean_stretch": 2, "mean_slope2": 3, "stiffening": 0, "tip_force": 1, "tip_moment": 1,
+                  "tip_rows": 2, "tip_rotation_rows": 2, "length": 0, "N_pts": 3, "x_pts": 1, "w_pts": 1,
+                  "width": 0}
+
+
+class FfrStack(NamedTuple):
+    """The FFR beams' constants (:func:`hubbeam.elements.ffr.kernels.pack`), one row per FFR
+    beam, zero-padded to the largest beam (the kernels read the leading nf entries)."""
+
+    x0: np.ndarray  # int64 (nb,): where q_k starts in x
+    lambda0: np.ndarray  # int64 (nb,): where its clamp multipliers start in lambda
+    nf: np.ndarray  # int64 (nb,): elastic coordinates
+    mount: np.ndarray  # (nb, 4) radius, twist, azimuth, precone
+    m: np.ndarray
+    c0: np.ndarray
+    Sbar: np.ndarray
+    I0: np.ndarray
+    J: np.ndarray
+    II: np.ndarray
+    Mff: np.ndarray
+    K: np.ndarray
+    EAl: np.ndarray
+    mean_stretch: np.ndarray
+    mean_slope2: np.ndarray
+    stiffening: np.ndarray
+    tip_force: np.ndarray
+    tip_moment: np.ndarray
+    tip_rows: np.ndarray
+    tip_rotation_rows: np.ndarray
+    length: np.ndarray
+    N_pts: np.ndarray
+    x_pts: np.ndarray
+    w_pts: np.ndarray
+    width: np.ndarray
 
 
 class SystemModel(NamedTuple):
@@ -70,6 +115,8 @@ class SystemModel(NamedTuple):
     gravity: np.ndarray  # (3,) m/s^2
     gravity_load: np.ndarray  # (nx,) generalized gravity force of the beams' own mass (N)
     drag: np.ndarray  # (2,) c1, c2 of Eq. 37
+    ffr: FfrStack
+    bandwidth: int
 
 
 @njit(cache=True)
@@ -87,17 +134,18 @@ def applied_torque(model, t, theta, omega):
 
 
 @njit(cache=True)
-def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, want_matrix,
-                     res, ab, brow, bcol, bb):
+def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
+                     want_matrix, res, ab, brow, bcol, bb):
     """Scaled residual and (when ``want_matrix``) Newton matrix of the hub and its ANCF beams.
 
     Force rows: coef_k (M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda) on each beam's
     q, coef_k (J theta'' - T + Phi_theta^T lambda) on theta; constraint rows: scale Phi(x, t).
     ``load_factor`` scales the applied loads (gravity, tip loads, the hub torque) for load
-    stepping. The matrix coef_m M + coef_c C + coef_k (K - dQ/dx + lambda . d2 Phi), with the
+    stepping; ``exact_stiffness`` adds the FFR beams' load stiffness (statics and modes; the
+    ANCF matrix is exact at rest anyway). The matrix coef_m M + coef_c C + coef_k (K - dQ/dx + lambda . d2 Phi), with the
     constraint Jacobian scaled by ``scale`` in its rows and columns, is written into the
     bordered storage (``bb`` border x border, ``brow`` border rows, ``bcol`` border columns,
-    ``ab`` the band of the rest in gbtrf layout with kl = ku = BANDWIDTH). The small velocity
+    ``ab`` the band of the rest in gbtrf layout with kl = ku = model.bandwidth). The small velocity
     derivative of the rotary-inertia force and the q-derivative of M(q) acc are left out
     (they slow Newton slightly and never change the answer). ``F`` holds every beam's chart.
 
@@ -107,7 +155,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     nb_border = model.border
     zx = model.z_of_x
     zl = model.z_of_lambda
-    ku = 2 * BANDWIDTH
+    ku = 2 * model.bandwidth
     for i in range(res.shape[0]):
         res[i] = 0.0
     if want_matrix:
@@ -221,8 +269,93 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
             add_entry(ab, brow, bcol, bb, ku, q_start + a, 0, coef_k * hess[1 + a, 0])
             for b in range(7):
                 add_entry(ab, brow, bcol, bb, ku, q_start + a, q_start + b, coef_k * hess[1 + a, 1 + b])
+    # ---------------------------------------------------------------- FFR beams
+    ff = model.ffr
+    for k in range(ff.nf.shape[0]):
+        n = 6 + ff.nf[k]
+        x0 = ff.x0[k]
+        l0 = ff.lambda0[k]
+        q = x[x0 : x0 + n]
+        force = np.empty(n)
+        nbk = n if want_matrix else 0
+        block = np.zeros((nbk, nbk))
+        inv, tip, drag = ffr_arguments(model, k)
+        power += ffr_body_terms(inv, q, v[x0 : x0 + n], acc[x0 : x0 + n], model.gravity, tip, drag, coef_m, coef_c,
+                                coef_k, load_factor, want_matrix, force, block)
+        for i in range(6):
+            lam_k[i] = lam[l0 + i]
+        ffr_clamp(ff.mount[k], x[0], q, lam_k, phi, jac, hess)
+        for j in range(6):
+            acc_j = 0.0
+            for i in range(6):
+                acc_j += jac[i, 1 + j] * lam_k[i]
+            force[j] += acc_j
+        for i in range(6):
+            hub_row += jac[i, 0] * lam_k[i]
+            res[zl[l0 + i]] = scale * phi[i]
+        for j in range(n):
+            res[zx[x0 + j]] = coef_k * force[j]
+        if not want_matrix:
+            continue
+        if exact_stiffness:
+            load = np.empty((n, n))
+            ffr_load_stiffness(inv, q, model.gravity, tip, load_factor, load)
+            for i in range(n):
+                for j in range(n):
+                    block[i, j] += coef_k * load[i, j]
+        q_start = zx[x0]
+        for i in range(n):
+            for j in range(n):
+                add_entry(ab, brow, bcol, bb, ku, q_start + i, q_start + j, block[i, j])
+        for i in range(6):
+            ri = zl[l0 + i]
+            add_entry(ab, brow, bcol, bb, ku, ri, 0, scale * jac[i, 0])
+            add_entry(ab, brow, bcol, bb, ku, 0, ri, scale * jac[i, 0])
+            for j in range(6):
+                add_entry(ab, brow, bcol, bb, ku, ri, q_start + j, scale * jac[i, 1 + j])
+                add_entry(ab, brow, bcol, bb, ku, q_start + j, ri, scale * jac[i, 1 + j])
+        add_entry(ab, brow, bcol, bb, ku, 0, 0, coef_k * hess[0, 0])
     res[0] = coef_k * hub_row
     return margin, power
+
+
+@njit(cache=True)
+def ffr_arguments(model, k):
+    """(inv, tip, drag) of FFR beam k for :mod:`hubbeam.elements.ffr.kernels`."""
+    ff = model.ffr
+    inv = (ff.m[k], ff.c0[k], ff.Sbar[k], ff.I0[k], ff.J[k], ff.II[k], ff.Mff[k], ff.K[k], ff.EAl[k],
+           ff.mean_stretch[k], ff.mean_slope2[k], ff.stiffening[k])
+    tip = (ff.tip_force[k], ff.tip_moment[k], ff.tip_rows[k], ff.tip_rotation_rows[k], ff.length[k])
+    drag = (ff.N_pts[k], ff.x_pts[k], ff.w_pts[k], ff.width[k], model.drag[0], model.drag[1])
+    return inv, tip, drag
+
+
+@njit(cache=True)
+def ffr_clamp(mount, theta, q, lam, phi, jac, hess):
+    """The six clamp equations of an FFR body frame (see :mod:`hubbeam.system.ffr_part`):
+    r_C - R i_k(theta) = 0, Theta1 + theta + psi = 0, Theta2 - p = 0, Theta3 + beta = 0, with
+    their Jacobian on [theta, r_C, Theta] (6 x 7, written into the leading columns of ``jac``)
+    and the multiplier-weighted Hessian (only d2/dtheta2 of the position rows; hess[0, 0])."""
+    radius, twist, azimuth, precone = mount[0], mount[1], mount[2], mount[3]
+    a = theta + azimuth
+    c, s = np.cos(a), np.sin(a)
+    jac[:, :] = 0.0
+    hess[:, :] = 0.0
+    phi[0] = q[0] - radius * c
+    phi[1] = q[1]
+    phi[2] = q[2] - radius * s
+    phi[3] = q[3] + a
+    phi[4] = q[4] - precone
+    phi[5] = q[5] + twist
+    for i in range(3):
+        jac[i, 1 + i] = 1.0
+    jac[0, 0] = radius * s
+    jac[2, 0] = -radius * c
+    jac[3, 0] = 1.0
+    jac[3, 4] = 1.0
+    jac[4, 5] = 1.0
+    jac[5, 6] = 1.0
+    hess[0, 0] = radius * (lam[0] * c + lam[2] * s)
 
 
 @njit(cache=True)
@@ -251,9 +384,17 @@ def applied_load(model, k, q, F, factor, Q, tip_jacobian):
 
 
 @njit(cache=True)
-def dissipated_power(model, v):
-    """Power of the drag of Eq. 37 on every ANCF beam at velocities v (W, >= 0)."""
+def dissipated_power(model, x, v):
+    """Power of the drag of Eq. 37 on every beam at the state (x, v) (W, >= 0)."""
     power = 0.0
+    ff = model.ffr
+    zero = np.zeros(x.shape[0])
+    for k in range(ff.nf.shape[0]):
+        n = 6 + ff.nf[k]
+        x0 = ff.x0[k]
+        inv, tip, drag = ffr_arguments(model, k)
+        power += ffr_body_terms(inv, x[x0 : x0 + n], v[x0 : x0 + n], zero[x0 : x0 + n], model.gravity, tip, drag,
+                                0.0, 0.0, 0.0, 0.0, False, np.empty(n), np.empty((0, 0)))
     for k in range(model.beam_index.shape[0]):
         nq = NODE_DOFS * (model.beam_elements[k] + 1)
         x0 = model.beam_x0[k]

@@ -15,13 +15,18 @@ It is better conditioned than Eq. 73 and keeps the Cardan angles away from their
 singularity (Theta2 = precone, limited well below 90 deg).
 
 **Equations** (Eqs. 65-72): with v = H q' (v = [r_C', omega^b, p'], omega^b = D Theta'),
-M = H^T M_v H and Q = H^T (Q_g + Q_f + Q_d + Q_v + Q_tip) - H^T M_v h. The Newton matrices
-are dense (the body's reference coordinates couple to every deformation coordinate). The
-dynamic iteration matrix is coef_m M + coef_c H^T C_v H + coef_k K_elastic; the inertia
-forces' derivatives are left out (O((omega h)^2) against the mass term; they only slow
-Newton). The static and modal stiffness are central differences of the forces (dense and
-small: exact to about 1e-8 relative). A tip body is part of the body's inertia invariants
-(:class:`hubbeam.elements.ffr.body.FfrBeam`).
+M = H^T M_v H and Q = H^T (Q_g + Q_f + Q_d + Q_v + Q_tip) - H^T M_v h. The beam's block of
+the Newton matrix is dense (the body's reference coordinates couple to every deformation
+coordinate). The dynamic iteration matrix is coef_m M + coef_c H^T C_v H + coef_k K_elastic;
+the inertia forces' derivatives are left out (O((omega h)^2) against the mass term; they
+only slow Newton); statics and modes add the exact load stiffness. A tip body is part of the
+body's inertia invariants (:class:`hubbeam.elements.ffr.body.FfrBeam`), modal reduction a
+basis of its elastic coordinates.
+
+The equations are evaluated in compiled code (:mod:`hubbeam.elements.ffr.kernels`, summed
+by :func:`hubbeam.system.equations.system_equations`). :meth:`FfrPart.forces` and
+:meth:`FfrPart.stiffness` below are their Python reference: the same formulas written with
+numpy, and the stiffness by central differences, which the tests hold the kernels against.
 """
 
 from __future__ import annotations
@@ -130,7 +135,7 @@ class FfrPart(BeamPart):
     def forces(self, q, v, acc, gravity, damping, tangent: bool, factor: float = 1.0):
         """M q'' - Q on q (everything but the constraints), and the pieces of the iteration
         matrix: M, H^T C_v H, the elastic tangent on p. ``factor`` scales the applied loads
-        (gravity, tip force and moment)."""
+        (gravity, tip force and moment). The Python reference of the compiled kernel."""
         beam = self.beam
         nf = beam.ndof
         A0, D = self._body(q)
@@ -158,7 +163,8 @@ class FfrPart(BeamPart):
 
     def stiffness(self, q, gravity, damping, factor: float = 1.0, spin: float = 0.0) -> np.ndarray:
         """d(forces)/dq at rest (or in steady rotation at ``spin`` rad/s, its rates following q)
-        by central differences: the static and modal stiffness with every load's dependence."""
+        by central differences: the static and modal stiffness with every load's dependence
+        (the reference for the compiled load and spin stiffness)."""
         def forces(qq):
             if spin:
                 vel, acc = self.steady_rotation_rates(qq, None, spin)
@@ -216,6 +222,7 @@ class FfrPart(BeamPart):
         return Q, C
 
     def dissipated_power(self, q, v, damping) -> float:
+        """Power of the drag (W, >= 0): the Python reference of the compiled one."""
         c1, c2 = damping
         if c1 == 0.0 and c2 == 0.0:
             return 0.0

@@ -17,10 +17,11 @@ import numpy as np
 
 from hubbeam.errors import ChartSingularityError
 from hubbeam.system.ancf_part import AncfPart
-from hubbeam.system.assembly import (BorderedBandMatrix, DenseMatrix, add_element_blocks_banded,
-                                     add_element_blocks_dense)
-from hubbeam.system.equations import (BANDWIDTH, CHART_SINGULAR, SystemModel, dissipated_power, hub_power,
-                                      system_equations)
+from hubbeam.system.assembly import BorderedBandMatrix, add_element_blocks_banded
+from hubbeam.elements.ffr.kernels import ffr_spin_stiffness, pack
+from hubbeam.system.equations import (CHART_SINGULAR, FFR_FIELD_NDIM, FfrStack, SystemModel, bandwidth_for, dissipated_power,
+                                      hub_power, system_equations)
+from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.hub import hub_frame
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.layout import CLAMP_EQUATIONS, Layout
@@ -193,13 +194,16 @@ class HubSystem:
         return self.remap(x, F, F_new), F_new
 
     # ------------------------------------------------------------ compiled model
-    #: half-bandwidth of the beam blocks of the Newton matrix
-    bandwidth = BANDWIDTH
+    @property
+    def bandwidth(self) -> int:
+        """Half-bandwidth of the beams' blocks of the Newton matrix."""
+        return bandwidth_for([b.beam.ndof for b in self.beams if isinstance(b, FfrPart)])
 
     @property
     def compiled(self) -> bool:
-        """Whether the whole system integrates in compiled code (every beam ANCF, a compiled torque law)."""
-        return all(isinstance(b, AncfPart) for b in self.beams) and self.hub.torque.compilable
+        """Whether the time integration runs in compiled code: every beam does; a torque law
+        that is a Python function takes the Python step."""
+        return self.hub.torque.compilable
 
     def model(self, held: bool | None = None) -> SystemModel:
         """The constants of the compiled equations for the hub held or not (default: its motion)."""
@@ -244,7 +248,26 @@ class HubSystem:
             np.array([b.tip_moment for _, b in ancf], dtype=float).reshape(nb, 3),
             np.array([(b.tip_body or TipBody()).params() for _, b in ancf], dtype=float).reshape(nb, 7),
             np.array(self.gravity, dtype=float), gravity_load, np.array(self.damping, dtype=float),
+            self._ffr_stack(layout), self.bandwidth,
         )
+
+    def _ffr_stack(self, layout: Layout) -> FfrStack:
+        """The FFR beams' constants, stacked and zero-padded (:class:`~hubbeam.system.equations.FfrStack`)."""
+        ffr = [(k, b) for k, b in enumerate(self.beams) if isinstance(b, FfrPart)]
+        packs = [pack(b) for _, b in ffr]
+        fields = {}
+        for name, ndim in FFR_FIELD_NDIM.items():
+            values = [np.asarray(getattr(p, name), dtype=float) for p in packs]
+            shape = tuple(np.max([v.shape for v in values], axis=0)) if values else (1,) * ndim
+            stacked = np.zeros((len(values),) + shape)
+            for i, v in enumerate(values):
+                stacked[(i,) + tuple(slice(0, n) for n in v.shape)] = v
+            fields[name] = stacked
+        ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
+        return FfrStack(ints([layout.beam_x(k).start for k, _ in ffr]),
+                        ints([layout.clamp_lambda(k).start for k, _ in ffr]), ints([b.beam.ndof for _, b in ffr]),
+                        np.array([b.mount.params() for _, b in ffr], dtype=float).reshape(len(ffr), 4),
+                        **fields)
 
     # ------------------------------------------------------------ equations
     def equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale, load_factor=1.0,
@@ -254,61 +277,26 @@ class HubSystem:
         :func:`~hubbeam.system.equations.system_equations`). ``held`` overrides the hub's
         drive constraint (statics hold the hub). ``stiffness``: "dynamic" (the iteration
         matrix) or "exact" (FFR beams' stiffness with every load's dependence, for statics and
-        modes). Returns (residual, matrix): a BorderedBandMatrix when every beam is ANCF, else
-        a DenseMatrix."""
+        modes). Returns (residual, BorderedBandMatrix)."""
         held = self.hub.held if held is None else held
         model = self.model(held)
         layout = self.layout_for(held)
         res = np.empty(layout.nz)
-        bw = BANDWIDTH
-        matrix = BorderedBandMatrix.empty(layout.nz, layout.border, bw)
+        matrix = BorderedBandMatrix.empty(layout.nz, layout.border, model.bandwidth)
         F = np.ascontiguousarray(F, dtype=float)
         x, v, acc, lam = (np.ascontiguousarray(a, dtype=float) for a in (x, v, acc, lam))
         margin, _ = system_equations(model, F, x, v, acc, lam, float(t), float(coef_m), float(coef_c),
-                                     float(coef_k), float(scale), float(load_factor), bool(want_matrix), res,
-                                     matrix.ab, matrix.brow, matrix.bcol, matrix.bb)
+                                     float(coef_k), float(scale), float(load_factor), stiffness == "exact",
+                                     bool(want_matrix), res, matrix.ab, matrix.brow, matrix.bcol, matrix.bb)
         if not margin > CHART_SINGULAR:
             raise ChartSingularityError(
                 f"a beam tangent is at the singular direction of the rotation chart (1 + d.tau = {margin:.2e})")
-        if not self.hub.torque.compilable and not held:
+        if not self.hub.torque.compilable and not held:  # a Python torque law (its derivatives by differences)
             torque, d_theta, d_omega = self.hub.torque(t, x[0], v[0])
             res[0] -= coef_k * load_factor * torque
-        python_parts = [(k, b) for k, b in enumerate(self.beams) if not isinstance(b, AncfPart)]
-        if not python_parts and self.hub.torque.compilable:
-            return res, matrix
-        dense = matrix.to_dense() if want_matrix else None
-        if dense is not None and not self.hub.torque.compilable and not held:
-            dense[0, 0] -= load_factor * (coef_k * d_theta + coef_c * d_omega)
-        for k, part in python_parts:
-            self._add_python_part(k, part, layout, x, v, acc, lam, F, coef_m, coef_c, coef_k, scale, load_factor,
-                                  res, dense, stiffness)
-        return res, (DenseMatrix(dense) if want_matrix else None)
-
-    def _add_python_part(self, k, part, layout, x, v, acc, lam, F, coef_m, coef_c, coef_k, scale, factor, res,
-                         dense, stiffness):
-        """Residual rows and matrix blocks of a beam integrated in Python (FFR)."""
-        sx, sl = layout.beam_x(k), layout.clamp_lambda(k)
-        zq = layout.z_of_x[sx]
-        zl = layout.z_of_lambda[sl]
-        q, lam_k = x[sx], lam[sl]
-        force, mats = part.forces(q, v[sx], acc[sx], self.gravity, self.damping, tangent=dense is not None,
-                                  factor=factor)
-        phi, jac, hess = part.clamp(q, F[k], x[0])
-        r = part.root_dofs
-        force[:r] += jac[:, 1:].T @ lam_k
-        res[zq] = coef_k * force
-        res[zl] = scale * phi
-        res[0] += coef_k * jac[:, 0] @ lam_k
-        if dense is None:
-            return
-        M, C, K = mats
-        if stiffness == "exact":
-            K = part.stiffness(q, self.gravity, self.damping, factor)
-        dense[np.ix_(zq, zq)] += coef_m * M + coef_c * C + coef_k * K
-        zc = np.concatenate([[0], zq[:r]])  # z indices of [theta, q_root]
-        dense[np.ix_(zc, zc)] += coef_k * hess(lam_k)
-        dense[np.ix_(zl, zc)] += scale * jac
-        dense[np.ix_(zc, zl)] += scale * jac.T
+            if want_matrix:
+                matrix.add(0, 0, -load_factor * (coef_k * d_theta + coef_c * d_omega))
+        return res, matrix
 
     def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
         """Scaled residual of the equations of motion on z (no matrix)."""
@@ -352,15 +340,14 @@ class HubSystem:
                 if part.tip_body is not None:
                     blocks[-1, 8:16, 8:16] += factor * part._tip_body_terms(q, np.zeros_like(q), chart, np.zeros(3))[1] \
                         @ D[8:16, 8:16]
-                start = zx[sx][0]
-                if isinstance(matrix, BorderedBandMatrix):
-                    add_element_blocks_banded(matrix.ab, blocks, start - layout.border, 2 * matrix.bandwidth, 1.0)
-                else:
-                    add_element_blocks_dense(matrix.a, blocks, start, 1.0)
-            else:  # the FFR stiffness above was at rest: redo it in steady rotation
-                zq = zx[sx]
-                matrix.a[np.ix_(zq, zq)] += part.stiffness(q, self.gravity, self.damping, factor, spin) \
-                    - part.stiffness(q, self.gravity, self.damping, factor)
+                add_element_blocks_banded(matrix.ab, blocks, zx[sx][0] - layout.border, 2 * matrix.bandwidth, 1.0)
+            else:  # the exact stiffness of the steady-rotation inertia rows (drag's left out)
+                spin_stiffness = np.empty((part.ndof, part.ndof))
+                ffr_spin_stiffness(pack(part).inv, np.ascontiguousarray(q), -np.sqrt(factor) * spin * AXIS,
+                                   spin_stiffness)
+                for i, zi in enumerate(zx[sx]):
+                    for j, zj in enumerate(zx[sx]):
+                        matrix.add(zi, zj, spin_stiffness[i, j])
         return res, matrix
 
     def linearised(self, x, lam, F, factor=1.0, held=False):
@@ -376,8 +363,7 @@ class HubSystem:
         _, Kz = self.equations(x, zero, zero, lam, F, 0.0, 0.0, 0.0, 1.0, 1.0, load_factor=factor, held=held,
                                stiffness="exact")
         _, Mz = self.equations(x, zero, zero, lam, F, 0.0, 1.0, 0.0, 0.0, 1.0, load_factor=factor, held=held)
-        Kd = Kz.to_dense() if isinstance(Kz, BorderedBandMatrix) else Kz.a
-        Md = Mz.to_dense() if isinstance(Mz, BorderedBandMatrix) else Mz.a
+        Kd, Md = Kz.to_dense(), Mz.to_dense()
         zx, zl = layout.z_of_x, layout.z_of_lambda
         return Kd[np.ix_(zx, zx)], Md[np.ix_(zx, zx)], Kd[np.ix_(zl, zx)]
 
@@ -387,7 +373,7 @@ class HubSystem:
         layout = self.layout_for(held)
         zero = np.zeros(self.nx)
         _, matrix = self.equations(x, zero, zero, np.zeros(layout.n_lambda), F, 0.0, 0.0, 0.0, 0.0, 1.0, held=held)
-        A = matrix.to_dense() if isinstance(matrix, BorderedBandMatrix) else matrix.a
+        A = matrix.to_dense()
         return A[np.ix_(layout.z_of_lambda, layout.z_of_x)]
 
     def lambda_from_held(self, lam, held: bool) -> np.ndarray:
@@ -480,11 +466,8 @@ class HubSystem:
 
     def dissipated_power(self, x, v, F) -> float:
         """Power of the drag of Eq. 37 on every beam (W, >= 0)."""
-        power = float(dissipated_power(self.model(), np.ascontiguousarray(v, dtype=float)))
-        for k, part, q, chart in self.parts(x, F):
-            if not isinstance(part, AncfPart):
-                power += part.dissipated_power(q, v[self.layout.beam_x(k)], self.damping)
-        return power
+        return float(dissipated_power(self.model(), np.ascontiguousarray(x, dtype=float),
+                                      np.ascontiguousarray(v, dtype=float)))
 
     def hub_power(self, t, x, v, lam) -> float:
         """Power of the drive reaction and the applied torque on the hub (W)."""

@@ -23,6 +23,15 @@ Every invariant is linear in the mass distribution and at most quadratic in d, s
 is represented exactly by seven weighted points with its mass, centre of mass and second
 moments (:meth:`~hubbeam.system.tip_body.TipBody.point_masses`).
 M_v, Q_v, Q_g, the energies and the momentum of the FFR system then include it.
+
+``modes=N`` makes the beam *modally reduced* (:mod:`hubbeam.elements.ffr.modal`): its
+elastic coordinates are eta with p = B eta, B the N lowest clamped-free modes of the nodal
+model above (tip body included; with geometric stiffening, those of bending and torsion plus
+the nodal axial coordinates). Every term is a contraction of p with the invariants or with
+rows over p, so the reduced beam is the nodal one with every invariant, row and stiffness
+mapped by B once, when it is built (:func:`~hubbeam.elements.ffr.modal.project`; rows built
+later pass through :meth:`FfrBeam._scatter`); every method is shared. ``ndof`` is the number
+of columns of B; ``elements`` and ``element_length`` describe the underlying mesh.
 """
 
 from __future__ import annotations
@@ -43,7 +52,8 @@ def skew(a: np.ndarray) -> np.ndarray:
 
 @dataclass
 class FfrBeam:
-    """n equal FFR elements over a beam of ``length`` (m) with one ``section``."""
+    """n equal FFR elements over a beam of ``length`` (m) with one ``section``; with ``modes``,
+    reduced to that many clamped-free modes (``frequencies_hz``, ``max_frequency_hz``, ``basis``)."""
 
     length: float
     elements: int
@@ -52,12 +62,22 @@ class FfrBeam:
     geometric_stiffening: bool = False
     #: a rigid body on the tip section (:class:`~hubbeam.system.tip_body.TipBody`), or None
     tip_body: object = None
+    #: None: the nodal coordinates p; N: the N lowest clamped-free modes (:mod:`~hubbeam.elements.ffr.modal`)
+    modes: int | None = None
     invariants: dict = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
+        #: p = basis @ eta for a modally reduced beam (nodal ndof x ndof); None: nodal
+        self.basis = None
+        #: a reduced beam's kept clamped-free modes: shapes over p (columns) and frequencies (Hz)
+        self.mode_shapes = self.frequencies_hz = None
         self.invariants = self._inertia_invariants()
         self.stiffness_matrix = self._stiffness()
         self.centre_line_table = self._centre_line_table()
+        if self.modes is not None:
+            from hubbeam.elements.ffr.modal import reduce
+
+            reduce(self, self.modes)
 
     # ---------------------------------------------------------------- layout
     @property
@@ -66,7 +86,18 @@ class FfrBeam:
 
     @property
     def ndof(self) -> int:
-        """Deformation coordinates (the root node is clamped to the body frame)."""
+        """Elastic coordinates: the nodal ones (the root node is clamped to the body frame),
+        or the kept modes of a reduced beam."""
+        return self.nodal_ndof if self.basis is None else self.basis.shape[1]
+
+    @property
+    def max_frequency_hz(self) -> float | None:
+        """The highest kept mode's clamped frequency (Hz) of a reduced beam; None for a nodal one."""
+        return None if self.frequencies_hz is None else float(self.frequencies_hz[-1])
+
+    @property
+    def nodal_ndof(self) -> int:
+        """Deformation coordinates of the nodal model, 6 per element."""
         return NODE_DOFS * self.elements
 
     def element_dofs(self, e: int) -> np.ndarray:
@@ -79,12 +110,13 @@ class FfrBeam:
         return e, x / self.element_length - e
 
     def _scatter(self, e: int, row: np.ndarray) -> np.ndarray:
-        """An element row (..., 12) as a row over p (..., ndof)."""
-        out = np.zeros(row.shape[:-1] + (self.ndof,))
+        """An element row (..., 12) as a row over the elastic coordinates (..., ndof): over p,
+        or mapped by the modal basis."""
+        out = np.zeros(row.shape[:-1] + (self.nodal_ndof,))
         dofs = self.element_dofs(e)
         keep = dofs >= 0
         out[..., dofs[keep]] = row[..., keep]
-        return out
+        return out if self.basis is None else out @ self.basis
 
     # ---------------------------------------------------------------- invariants
     def _inertia_invariants(self) -> dict:
@@ -133,8 +165,8 @@ class FfrBeam:
         Ke = Ka + l * (EIz * np.einsum("q,qi,qj->ij", wx, sh["N2xx"], sh["N2xx"])
                        + EIy * np.einsum("q,qi,qj->ij", wx, sh["N3xx"], sh["N3xx"])
                        + GJ * np.einsum("q,qi,qj->ij", wx, sh["N4x"], sh["N4x"]))
-        K = np.zeros((self.ndof, self.ndof))
-        self._axial_stiffness = np.zeros((self.ndof, self.ndof))
+        K = np.zeros((self.nodal_ndof, self.nodal_ndof))
+        self._axial_stiffness = np.zeros((self.nodal_ndof, self.nodal_ndof))
         for e in range(self.elements):
             dofs = self.element_dofs(e)
             keep = dofs >= 0
@@ -150,8 +182,8 @@ class FfrBeam:
         l = self.element_length
         sh = line_shapes(xg, l)
         N, xs, ws = [], [], []
-        a = np.zeros((self.elements, self.ndof))
-        G = np.zeros((self.elements, self.ndof, self.ndof))
+        a = np.zeros((self.elements, self.nodal_ndof))
+        G = np.zeros((self.elements, self.nodal_ndof, self.nodal_ndof))
         for e in range(self.elements):
             for k in range(xg.shape[0]):
                 N.append(self._scatter(e, displacement_matrix(sh, k, 0.0, 0.0)))

@@ -1,0 +1,849 @@
+"""Compiled equations of one FFR beam (:class:`hubbeam.system.ffr_part.FfrPart`).
+
+:func:`ffr_body_terms` computes what :meth:`FfrPart.forces <hubbeam.system.ffr_part.FfrPart.forces>`
+computes (the same formulas; equal to round-off), :func:`ffr_load_stiffness` and
+:func:`ffr_spin_stiffness` the exact load and steady-rotation stiffness that
+:meth:`FfrPart.stiffness <hubbeam.system.ffr_part.FfrPart.stiffness>` obtains by central
+differences (:func:`static_stiffness` sums them with the elastic tangent). Coordinates of one beam: q = [r_C (3), Theta (3), p (nf)] (2-3-1
+Cardan angles, :mod:`hubbeam.elements.ffr.cardan`), v = H q' = [r_C', omega^b, p'],
+H = blockdiag(I, D(Theta), I).
+
+**Argument groups** (plain tuples of float64 arrays and floats, built by :func:`pack`):
+
+    inv  = (m, c0 (3,), Sbar (3, nf), I0 (3, 3), J (3, 3, nf), II (3, 3, nf, nf), Mff (nf, nf),
+            K (nf, nf), EAl, mean_stretch (n_el, nf), mean_slope2 (n_el, nf, nf), stiffening)
+    tip  = (tip_force (3,), tip_moment (3,), tip_rows (3, nf), tip_rotation_rows (3, nf), length)
+    drag = (N (npts, 3, nf), x (npts,), w (npts,), width, c1, c2)
+
+m, EAl, length, width, c1, c2 and stiffening (0.0 or 1.0) are floats. K is the stiffness
+of Eq. 61, or without its axial part when ``stiffening`` (the axial energy then uses the
+element-mean strain, :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>`).
+nf is taken from q (nf = q.shape[0] - 6): the arrays may be larger (zero-padded, for
+stacking beams of different meshes); only their leading nf entries are read, and padded
+elements (zero rows of mean_stretch / mean_slope2) or Gauss points (zero weights) add
+nothing.
+
+The kernels use three properties of the arrays as FfrBeam builds them: II[k, l, f, g] =
+II[l, k, g, f] (so one contraction of II with p serves both of its last indices); each
+mean_slope2[e] is a sum of outer products (a zero diagonal entry means a zero row: element e
+only touches the coordinates with a nonzero diagonal or mean_stretch entry); the drag's
+N[k] rows vanish outside the point's element (the damping matrix skips zero columns).
+The Cardan derivatives dA0/dTheta_i and dD/dTheta_i are analytic (:func:`cardan_derivatives`).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+
+# ---------------------------------------------------------------------------- Cardan angles
+@njit(cache=True, error_model="numpy")
+def cardan(t1, t2, t3, A, D):
+    """A0 = R_y(t1) R_z(t2) R_x(t3) (body to global) and D with omega^b = D Theta'."""
+    c1, s1 = math.cos(t1), math.sin(t1)
+    c2, s2 = math.cos(t2), math.sin(t2)
+    c3, s3 = math.cos(t3), math.sin(t3)
+    # R_y R_z
+    a00, a01, a02 = c1 * c2, -c1 * s2, s1
+    a10, a11, a12 = s2, c2, 0.0
+    a20, a21, a22 = -s1 * c2, s1 * s2, c1
+    # times R_x = [[1, 0, 0], [0, c3, -s3], [0, s3, c3]]
+    A[0, 0], A[0, 1], A[0, 2] = a00, a01 * c3 + a02 * s3, -a01 * s3 + a02 * c3
+    A[1, 0], A[1, 1], A[1, 2] = a10, a11 * c3 + a12 * s3, -a11 * s3 + a12 * c3
+    A[2, 0], A[2, 1], A[2, 2] = a20, a21 * c3 + a22 * s3, -a21 * s3 + a22 * c3
+    D[0, 0], D[0, 1], D[0, 2] = s2, 0.0, 1.0
+    D[1, 0], D[1, 1], D[1, 2] = c2 * c3, s3, 0.0
+    D[2, 0], D[2, 1], D[2, 2] = -c2 * s3, c3, 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _mat3(out, m00, m01, m02, m10, m11, m12, m20, m21, m22):
+    out[0, 0], out[0, 1], out[0, 2] = m00, m01, m02
+    out[1, 0], out[1, 1], out[1, 2] = m10, m11, m12
+    out[2, 0], out[2, 1], out[2, 2] = m20, m21, m22
+
+
+@njit(cache=True, error_model="numpy")
+def _triple(out, X, Y, Z):
+    """out = X Y Z for 3 x 3 matrices given as 9-tuples (row-major)."""
+    P = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            P[i, j] = X[3 * i] * Y[j] + X[3 * i + 1] * Y[3 + j] + X[3 * i + 2] * Y[6 + j]
+    for i in range(3):
+        for j in range(3):
+            out[i, j] = P[i, 0] * Z[j] + P[i, 1] * Z[3 + j] + P[i, 2] * Z[6 + j]
+
+
+@njit(cache=True, error_model="numpy")
+def cardan_derivatives(t1, t2, t3, dA, dD):
+    """dA[i] = dA0/dTheta_i and dD[i] = dD/dTheta_i (3, 3, 3 each), analytic:
+    A0 = R_y(t1) R_z(t2) R_x(t3), so dA0/dt1 = R_y' R_z R_x etc."""
+    c1, s1 = math.cos(t1), math.sin(t1)
+    c2, s2 = math.cos(t2), math.sin(t2)
+    c3, s3 = math.cos(t3), math.sin(t3)
+    Ry = (c1, 0.0, s1, 0.0, 1.0, 0.0, -s1, 0.0, c1)
+    dRy = (-s1, 0.0, c1, 0.0, 0.0, 0.0, -c1, 0.0, -s1)
+    Rz = (c2, -s2, 0.0, s2, c2, 0.0, 0.0, 0.0, 1.0)
+    dRz = (-s2, -c2, 0.0, c2, -s2, 0.0, 0.0, 0.0, 0.0)
+    Rx = (1.0, 0.0, 0.0, 0.0, c3, -s3, 0.0, s3, c3)
+    dRx = (0.0, 0.0, 0.0, 0.0, -s3, -c3, 0.0, c3, -s3)
+    _triple(dA[0], dRy, Rz, Rx)
+    _triple(dA[1], Ry, dRz, Rx)
+    _triple(dA[2], Ry, Rz, dRx)
+    # D = [[s2, 0, 1], [c2 c3, s3, 0], [-c2 s3, c3, 0]]
+    _mat3(dD[0], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    _mat3(dD[1], c2, 0.0, 0.0, -s2 * c3, 0.0, 0.0, s2 * s3, 0.0, 0.0)
+    _mat3(dD[2], 0.0, 0.0, 0.0, -c2 * s3, c3, 0.0, -c2 * c3, -s3, 0.0)
+
+
+@njit(cache=True, error_model="numpy")
+def cardan_rate(t2, t3, r1, r2, r3, h):
+    """h = D'(Theta, Theta') Theta' (Eq. 70), as
+    :func:`~hubbeam.elements.ffr.cardan.angular_velocity_matrix_rate`."""
+    s2, c2 = math.sin(t2), math.cos(t2)
+    s3, c3 = math.sin(t3), math.cos(t3)
+    h[0] = r1 * (c2 * r2)
+    h[1] = r1 * (-s2 * r2 * c3 - c2 * s3 * r3) + r2 * (c3 * r3)
+    h[2] = r1 * (s2 * r2 * s3 - c2 * c3 * r3) + r2 * (-s3 * r3)
+
+
+# ---------------------------------------------------------------------------- shared pieces
+@njit(cache=True, error_model="numpy")
+def _moments(inv, p, pd, with_rate, nf, St, Q2, Q2d, R2):
+    """St = c0 + Sbar p; Q2[k, l, g] = sum_f p_f II[k, l, f, g] (and, when ``with_rate``,
+    Q2d the same with p'); R2 = I0 + J p + (J p)^T + p II p (the second moment, body frame).
+    II is symmetric as built, II[k, l, f, g] = II[l, k, g, f], so Q2 also gives the
+    contractions on the last index: sum_g II[k, l, f, g] p_g = Q2[l, k, f]."""
+    c0, Sbar, I0, J, II = inv[1], inv[2], inv[3], inv[4], inv[5]
+    for k in range(3):
+        acc = 0.0
+        for f in range(nf):
+            acc += Sbar[k, f] * p[f]
+        St[k] = c0[k] + acc
+    for k in range(3):
+        for l in range(3):
+            for g in range(nf):
+                Q2[k, l, g] = 0.0
+            if with_rate:
+                for g in range(nf):
+                    Q2d[k, l, g] = 0.0
+            for f in range(nf):
+                pf = p[f]
+                if pf != 0.0:
+                    for g in range(nf):
+                        Q2[k, l, g] += pf * II[k, l, f, g]
+                if with_rate:
+                    pdf = pd[f]
+                    if pdf != 0.0:
+                        for g in range(nf):
+                            Q2d[k, l, g] += pdf * II[k, l, f, g]
+    Jp = np.empty((3, 3))
+    for k in range(3):
+        for l in range(3):
+            acc = 0.0
+            for f in range(nf):
+                acc += J[k, l, f] * p[f]
+            Jp[k, l] = acc
+    for k in range(3):
+        for l in range(3):
+            acc = 0.0
+            for g in range(nf):
+                acc += Q2[k, l, g] * p[g]
+            R2[k, l] = I0[k, l] + Jp[k, l] + Jp[l, k] + acc
+
+
+@njit(cache=True, error_model="numpy")
+def _elastic(inv, p, nf, want_tangent, f_el, K_el):
+    """Internal force f_el (nf) and (when ``want_tangent``) tangent K_el (nf, nf) of
+    :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>`."""
+    K, EAl, a, G, stiff = inv[7], inv[8], inv[9], inv[10], inv[11]
+    for i in range(nf):
+        acc = 0.0
+        for j in range(nf):
+            acc += K[i, j] * p[j]
+        f_el[i] = acc
+    if want_tangent:
+        for i in range(nf):
+            for j in range(nf):
+                K_el[i, j] = K[i, j]
+    if stiff == 0.0:
+        return
+    # element e only touches its own coordinates: those with a_e != 0 or (G_e)_ff != 0
+    # (G_e is a sum of outer products, so a zero diagonal entry means a zero row)
+    deps = np.empty(nf)
+    act = np.empty(nf, dtype=np.int64)
+    for e in range(a.shape[0]):
+        na = 0
+        for f in range(nf):
+            if G[e, f, f] != 0.0 or a[e, f] != 0.0:
+                act[na] = f
+                na += 1
+        eps = 0.0
+        quad = 0.0
+        for i in range(na):
+            f = act[i]
+            acc = 0.0
+            for j in range(na):
+                acc += G[e, f, act[j]] * p[act[j]]
+            deps[f] = a[e, f] + acc
+            eps += a[e, f] * p[f]
+            quad += acc * p[f]
+        eps += 0.5 * quad
+        for i in range(na):
+            f = act[i]
+            f_el[f] += EAl * deps[f] * eps
+        if want_tangent:
+            for i in range(na):
+                f = act[i]
+                for j in range(na):
+                    g = act[j]
+                    K_el[f, g] += EAl * (deps[f] * deps[g] + eps * G[e, f, g])
+
+
+@njit(cache=True, error_model="numpy")
+def _applied_loads(inv, tip, nf, A, St, gravity, Qa):
+    """Q_g + Q_tip (6 + nf) on v (Eq. 67 and FfrPart._tip_load)."""
+    m, Sbar = inv[0], inv[2]
+    F, Mo, T, R, length = tip
+    gb = np.empty(3)
+    fb = np.empty(3)
+    mb = np.empty(3)
+    for i in range(3):
+        gb[i] = A[0, i] * gravity[0] + A[1, i] * gravity[1] + A[2, i] * gravity[2]
+        fb[i] = A[0, i] * F[0] + A[1, i] * F[1] + A[2, i] * F[2]
+        mb[i] = A[0, i] * Mo[0] + A[1, i] * Mo[1] + A[2, i] * Mo[2]
+    for i in range(3):
+        Qa[i] = m * gravity[i] + F[i]
+    # St x gb + (L, 0, 0) x fb + mb
+    Qa[3] = St[1] * gb[2] - St[2] * gb[1] + mb[0]
+    Qa[4] = St[2] * gb[0] - St[0] * gb[2] - length * fb[2] + mb[1]
+    Qa[5] = St[0] * gb[1] - St[1] * gb[0] + length * fb[1] + mb[2]
+    for f in range(nf):
+        Qa[6 + f] = (Sbar[0, f] * gb[0] + Sbar[1, f] * gb[1] + Sbar[2, f] * gb[2]
+                     + T[0, f] * fb[0] + T[1, f] * fb[1] + T[2, f] * fb[2]
+                     + R[0, f] * mb[0] + R[1, f] * mb[1] + R[2, f] * mb[2])
+
+
+@njit(cache=True, error_model="numpy")
+def _mass_matrix(inv, nf, A, St, Q2, R2, Mv):
+    """M_v of Eq. 66 (6 + nf square) on v."""
+    m, Sbar, J, Mff = inv[0], inv[2], inv[4], inv[6]
+    n = 6 + nf
+    for i in range(3):
+        for j in range(3):
+            Mv[i, j] = 0.0
+        Mv[i, i] = m
+    # M[0:3, 3:6] = -A0 skew(St), M[0:3, 6:] = A0 Sbar, and their transposes
+    sk = np.empty((3, 3))
+    sk[0, 0], sk[0, 1], sk[0, 2] = 0.0, -St[2], St[1]
+    sk[1, 0], sk[1, 1], sk[1, 2] = St[2], 0.0, -St[0]
+    sk[2, 0], sk[2, 1], sk[2, 2] = -St[1], St[0], 0.0
+    for a in range(3):
+        for j in range(3):
+            val = -(A[a, 0] * sk[0, j] + A[a, 1] * sk[1, j] + A[a, 2] * sk[2, j])
+            Mv[a, 3 + j] = val
+            Mv[3 + j, a] = val
+        for f in range(nf):
+            val = A[a, 0] * Sbar[0, f] + A[a, 1] * Sbar[1, f] + A[a, 2] * Sbar[2, f]
+            Mv[a, 6 + f] = val
+            Mv[6 + f, a] = val
+    tr = R2[0, 0] + R2[1, 1] + R2[2, 2]
+    for i in range(3):
+        for j in range(3):
+            Mv[3 + i, 3 + j] = -R2[i, j]
+        Mv[3 + i, 3 + i] += tr
+    # P = J + Q2; rows (P[1,2] - P[2,1], P[2,0] - P[0,2], P[0,1] - P[1,0])
+    for f in range(nf):
+        v0 = (J[1, 2, f] + Q2[1, 2, f]) - (J[2, 1, f] + Q2[2, 1, f])
+        v1 = (J[2, 0, f] + Q2[2, 0, f]) - (J[0, 2, f] + Q2[0, 2, f])
+        v2 = (J[0, 1, f] + Q2[0, 1, f]) - (J[1, 0, f] + Q2[1, 0, f])
+        Mv[3, 6 + f] = v0
+        Mv[4, 6 + f] = v1
+        Mv[5, 6 + f] = v2
+        Mv[6 + f, 3] = v0
+        Mv[6 + f, 4] = v1
+        Mv[6 + f, 5] = v2
+    for f in range(nf):
+        for g in range(nf):
+            Mv[6 + f, 6 + g] = Mff[f, g]
+    return n
+
+
+@njit(cache=True, error_model="numpy")
+def _to_q(block, D, n):
+    """block <- H^T block H in place (H = blockdiag(I, D, I)), on the leading n x n."""
+    t = np.empty(3)
+    for j in range(n):
+        for a in range(3):
+            t[a] = block[3 + a, j]
+        for i in range(3):
+            block[3 + i, j] = D[0, i] * t[0] + D[1, i] * t[1] + D[2, i] * t[2]
+    for i in range(n):
+        for a in range(3):
+            t[a] = block[i, 3 + a]
+        for j in range(3):
+            block[i, 3 + j] = t[0] * D[0, j] + t[1] * D[1, j] + t[2] * D[2, j]
+
+
+# ---------------------------------------------------------------------------- the equations
+@njit(cache=True, error_model="numpy")
+def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, load_factor, want_matrix,
+                   force, block):
+    """The FFR beam's generalized force and iteration matrix (what FfrPart.forces computes).
+
+    q, v, acc: (6 + nf) coordinates, rates q' and accelerations q''; gravity (3,) m/s^2;
+    inv, tip, drag: see the module docstring. Writes ``force`` (6 + nf) =
+    H^T (M_v vdot - Q), vdot = H q'' + h, Q = Q_v + load_factor (Q_g + Q_tip) + Q_d
+    - [0, 0, f_elastic]; and, when ``want_matrix``, overwrites the leading (6 + nf) square of
+    ``block`` with coef_m H^T M_v H + coef_c H^T C_v H + coef_k K_el (K_el on the p block:
+    the elastic tangent with geometric stiffening; C_v = -dQ_d/dv). Returns the power
+    dissipated by the drag, -Q_d . v (W)."""
+    Sbar, J = inv[2], inv[4]
+    Npts, xpts, wpts, width, dc1, dc2 = drag
+    n = q.shape[0]
+    nf = n - 6
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    cardan(q[3], q[4], q[5], A, D)
+
+    # v-space rates and accelerations
+    vb = np.empty(n)
+    vdot = np.empty(n)
+    h = np.empty(3)
+    cardan_rate(q[4], q[5], v[3], v[4], v[5], h)
+    for i in range(3):
+        vb[i] = v[i]
+        vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
+        vdot[i] = acc[i]
+        vdot[3 + i] = D[i, 0] * acc[3] + D[i, 1] * acc[4] + D[i, 2] * acc[5] + h[i]
+    for f in range(nf):
+        vb[6 + f] = v[6 + f]
+        vdot[6 + f] = acc[6 + f]
+    p = q[6:]
+    pd = v[6:]
+    w0, w1, w2 = vb[3], vb[4], vb[5]
+
+    # body moments and the mass matrix
+    St = np.empty(3)
+    Q2 = np.empty((3, 3, nf))
+    Q2d = np.empty((3, 3, nf))
+    R2 = np.empty((3, 3))
+    _moments(inv, p, pd, True, nf, St, Q2, Q2d, R2)
+    Mv = np.empty((n, n))
+    _mass_matrix(inv, nf, A, St, Q2, R2, Mv)
+
+    # Q_v (Eq. 67)
+    Q = np.empty(n)
+    ud = np.empty(3)
+    for k in range(3):
+        s = 0.0
+        for f in range(nf):
+            s += Sbar[k, f] * pd[f]
+        ud[k] = s
+    W = np.empty((3, 3))
+    W[0, 0], W[0, 1], W[0, 2] = 0.0, -w2, w1
+    W[1, 0], W[1, 1], W[1, 2] = w2, 0.0, -w0
+    W[2, 0], W[2, 1], W[2, 2] = -w1, w0, 0.0
+    WW = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            WW[i, j] = W[i, 0] * W[0, j] + W[i, 1] * W[1, j] + W[i, 2] * W[2, j]
+    t = np.empty(3)
+    for i in range(3):
+        t[i] = (WW[i, 0] * St[0] + WW[i, 1] * St[1] + WW[i, 2] * St[2]
+                + 2.0 * (W[i, 0] * ud[0] + W[i, 1] * ud[1] + W[i, 2] * ud[2]))
+    for i in range(3):
+        Q[i] = -(A[i, 0] * t[0] + A[i, 1] * t[1] + A[i, 2] * t[2])
+    tr = R2[0, 0] + R2[1, 1] + R2[2, 2]
+    Iw = np.empty(3)
+    for i in range(3):
+        Iw[i] = tr * vb[3 + i] - (R2[i, 0] * w0 + R2[i, 1] * w1 + R2[i, 2] * w2)
+    G = np.empty((3, 3))
+    for j in range(3):
+        for k in range(3):
+            s = 0.0
+            for f in range(nf):
+                s += J[j, k, f] * pd[f]
+            s2 = 0.0
+            for g in range(nf):
+                s2 += Q2[j, k, g] * pd[g]
+            G[j, k] = s + s2
+    trG = G[0, 0] + G[1, 1] + G[2, 2]
+    for i in range(3):
+        GTw = G[0, i] * w0 + G[1, i] * w1 + G[2, i] * w2
+        Q[3 + i] = 0.0 - 2.0 * (vb[3 + i] * trG - GTw)
+    Q[3] -= w1 * Iw[2] - w2 * Iw[1]
+    Q[4] -= w2 * Iw[0] - w0 * Iw[2]
+    Q[5] -= w0 * Iw[1] - w1 * Iw[0]
+    # Q_v on p: -sum_kl WW_kl int rho N_kf r_l - 2 sum_kl W_kl int rho N_kf (N p')_l
+    for f in range(nf):
+        s = 0.0
+        s3 = 0.0
+        for k in range(3):
+            for l in range(3):
+                s += WW[k, l] * (J[l, k, f] + Q2[l, k, f])
+                s3 += W[k, l] * Q2d[l, k, f]
+        Q[6 + f] = -s - 2.0 * s3
+
+    # applied loads, elastic force
+    Qa = np.empty(n)
+    _applied_loads(inv, tip, nf, A, St, gravity, Qa)
+    for i in range(n):
+        Q[i] += load_factor * Qa[i]
+    f_el = np.empty(nf)
+    K_el = np.empty((nf, nf))
+    _elastic(inv, p, nf, want_matrix, f_el, K_el)
+    for f in range(nf):
+        Q[6 + f] -= f_el[f]
+
+    if want_matrix:
+        for i in range(n):
+            for j in range(n):
+                block[i, j] = coef_m * Mv[i, j]
+
+    # drag (Eq. 64) on the centre line
+    power = 0.0
+    if dc1 != 0.0 or dc2 != 0.0:
+        want_c = want_matrix and coef_c != 0.0
+        rb = np.empty(3)
+        ub = np.empty(3)
+        rd = np.empty(3)
+        yb = np.empty(3)
+        Qd = np.zeros(n)
+        Sb = np.empty((3, n))
+        Sr = np.empty(n)
+        Cv = np.zeros((n, n)) if want_c else np.zeros((0, 0))  # upper triangle of coef_c C_v
+        cols = np.empty(n, dtype=np.int64)
+        for i in range(6):
+            cols[i] = i
+        for k in range(Npts.shape[0]):
+            for i in range(3):
+                s = xpts[k] if i == 0 else 0.0
+                s2 = 0.0
+                for f in range(nf):
+                    s += Npts[k, i, f] * p[f]
+                    s2 += Npts[k, i, f] * pd[f]
+                rb[i] = s
+                ub[i] = s2
+            # u_b = omega x r + N p'; rdot = r_C' + A0 u_b
+            ub[0] += w1 * rb[2] - w2 * rb[1]
+            ub[1] += w2 * rb[0] - w0 * rb[2]
+            ub[2] += w0 * rb[1] - w1 * rb[0]
+            for i in range(3):
+                rd[i] = vb[i] + A[i, 0] * ub[0] + A[i, 1] * ub[1] + A[i, 2] * ub[2]
+            speed = math.sqrt(rd[0] * rd[0] + rd[1] * rd[1] + rd[2] * rd[2])
+            weight = width * wpts[k]
+            fac = weight * (dc1 + dc2 * speed)
+            power += fac * speed * speed
+            # Q_d -= S^T (fac rdot); S^T y = [y, r x (A0^T y), N^T A0^T y]
+            for i in range(3):
+                yb[i] = fac * (A[0, i] * rd[0] + A[1, i] * rd[1] + A[2, i] * rd[2])
+                Qd[i] -= fac * rd[i]
+            Qd[3] -= rb[1] * yb[2] - rb[2] * yb[1]
+            Qd[4] -= rb[2] * yb[0] - rb[0] * yb[2]
+            Qd[5] -= rb[0] * yb[1] - rb[1] * yb[0]
+            for f in range(nf):
+                Qd[6 + f] -= Npts[k, 0, f] * yb[0] + Npts[k, 1, f] * yb[1] + Npts[k, 2, f] * yb[2]
+            if want_c:
+                # body-frame S_b = A0^T S = [A0^T, -skew(r), N];  C += weight S_b^T G_b S_b with
+                # G_b = alpha I + beta r_b' r_b'^T, r_b' = A0^T rdot
+                alpha = dc1 + dc2 * speed
+                beta = dc2 / speed if speed > 0.0 else 0.0
+                for i in range(3):
+                    for j in range(3):
+                        Sb[i, j] = A[j, i]
+                Sb[0, 3], Sb[0, 4], Sb[0, 5] = 0.0, rb[2], -rb[1]
+                Sb[1, 3], Sb[1, 4], Sb[1, 5] = -rb[2], 0.0, rb[0]
+                Sb[2, 3], Sb[2, 4], Sb[2, 5] = rb[1], -rb[0], 0.0
+                # the columns of S_b that are not zero: r_C', omega and the point's element
+                nc = 6
+                for f in range(nf):
+                    Sb[0, 6 + f] = Npts[k, 0, f]
+                    Sb[1, 6 + f] = Npts[k, 1, f]
+                    Sb[2, 6 + f] = Npts[k, 2, f]
+                    if Sb[0, 6 + f] != 0.0 or Sb[1, 6 + f] != 0.0 or Sb[2, 6 + f] != 0.0:
+                        cols[nc] = 6 + f
+                        nc += 1
+                for i in range(3):
+                    yb[i] = A[0, i] * rd[0] + A[1, i] * rd[1] + A[2, i] * rd[2]
+                for j in range(n):
+                    Sr[j] = Sb[0, j] * yb[0] + Sb[1, j] * yb[1] + Sb[2, j] * yb[2]
+                ca = coef_c * weight * alpha
+                cb = coef_c * weight * beta
+                for ii in range(nc):
+                    i = cols[ii]
+                    for jj in range(ii, nc):
+                        j = cols[jj]
+                        Cv[i, j] += ca * (Sb[0, i] * Sb[0, j] + Sb[1, i] * Sb[1, j] + Sb[2, i] * Sb[2, j]) \
+                            + cb * Sr[i] * Sr[j]
+        if want_c:
+            for i in range(n):
+                block[i, i] += Cv[i, i]
+                for j in range(i + 1, n):
+                    block[i, j] += Cv[i, j]
+                    block[j, i] += Cv[i, j]
+        for i in range(n):
+            Q[i] += Qd[i]
+
+    # force = H^T (M_v vdot - Q)
+    r = np.empty(n)
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s += Mv[i, j] * vdot[j]
+        r[i] = s - Q[i]
+    for i in range(n):
+        force[i] = r[i]
+    for i in range(3):
+        force[3 + i] = D[0, i] * r[3] + D[1, i] * r[4] + D[2, i] * r[5]
+
+    if want_matrix:
+        _to_q(block, D, n)
+        if coef_k != 0.0:
+            for f in range(nf):
+                for g in range(nf):
+                    block[6 + f, 6 + g] += coef_k * K_el[f, g]
+    return power
+
+
+@njit(cache=True, error_model="numpy")
+def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
+    """The load stiffness at rest: overwrites the leading (6 + nf) square of ``out`` with
+    d/dq [-load_factor H(Theta)^T (Q_g + Q_tip)] (Q_g and Q_tip depend on Theta through A0,
+    Q_g on p through St; H^T on Theta through D). K_el + this is the exact static stiffness
+    (FfrPart.stiffness at rest without drag)."""
+    Sbar = inv[2]
+    F, Mo, T, R, length = tip
+    n = q.shape[0]
+    nf = n - 6
+    p = q[6:]
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    dA = np.empty((3, 3, 3))
+    dD = np.empty((3, 3, 3))
+    cardan(q[3], q[4], q[5], A, D)
+    cardan_derivatives(q[3], q[4], q[5], dA, dD)
+    St = np.empty(3)
+    for k in range(3):
+        s = 0.0
+        for f in range(nf):
+            s += Sbar[k, f] * p[f]
+        St[k] = inv[1][k] + s
+    Qa = np.empty(n)
+    _applied_loads(inv, tip, nf, A, St, gravity, Qa)
+    gb = np.empty(3)
+    for i in range(3):
+        gb[i] = A[0, i] * gravity[0] + A[1, i] * gravity[1] + A[2, i] * gravity[2]
+    for i in range(n):
+        for j in range(n):
+            out[i, j] = 0.0
+    s = -load_factor
+    dg = np.empty(3)
+    dfb = np.empty(3)
+    dmb = np.empty(3)
+    d3 = np.empty(3)
+    for c in range(3):  # d/dTheta_c
+        for i in range(3):
+            dg[i] = dA[c, 0, i] * gravity[0] + dA[c, 1, i] * gravity[1] + dA[c, 2, i] * gravity[2]
+            dfb[i] = dA[c, 0, i] * F[0] + dA[c, 1, i] * F[1] + dA[c, 2, i] * F[2]
+            dmb[i] = dA[c, 0, i] * Mo[0] + dA[c, 1, i] * Mo[1] + dA[c, 2, i] * Mo[2]
+        d3[0] = St[1] * dg[2] - St[2] * dg[1] + dmb[0]
+        d3[1] = St[2] * dg[0] - St[0] * dg[2] - length * dfb[2] + dmb[1]
+        d3[2] = St[0] * dg[1] - St[1] * dg[0] + length * dfb[1] + dmb[2]
+        for i in range(3):
+            out[3 + i, 3 + c] = s * (dD[c, 0, i] * Qa[3] + dD[c, 1, i] * Qa[4] + dD[c, 2, i] * Qa[5]
+                                     + D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2])
+        for f in range(nf):
+            out[6 + f, 3 + c] = s * (Sbar[0, f] * dg[0] + Sbar[1, f] * dg[1] + Sbar[2, f] * dg[2]
+                                     + T[0, f] * dfb[0] + T[1, f] * dfb[1] + T[2, f] * dfb[2]
+                                     + R[0, f] * dmb[0] + R[1, f] * dmb[1] + R[2, f] * dmb[2])
+    for g in range(nf):  # d/dp_g: (Sbar_g x gb) in the moment rows
+        d3[0] = Sbar[1, g] * gb[2] - Sbar[2, g] * gb[1]
+        d3[1] = Sbar[2, g] * gb[0] - Sbar[0, g] * gb[2]
+        d3[2] = Sbar[0, g] * gb[1] - Sbar[1, g] * gb[0]
+        for i in range(3):
+            out[3 + i, 6 + g] = s * (D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2])
+
+
+@njit(cache=True, error_model="numpy")
+def _cross(a0, a1, a2, b0, b1, b2, out):
+    out[0] = a1 * b2 - a2 * b1
+    out[1] = a2 * b0 - a0 * b2
+    out[2] = a0 * b1 - a1 * b0
+
+
+@njit(cache=True, error_model="numpy")
+def ffr_spin_stiffness(inv, q, w, out):
+    """The spin stiffness: overwrites the leading (6 + nf) square of ``out`` with d/dq of the
+    inertia force rows H^T (M_v vdot - Q_v) in steady rigid rotation at the global angular
+    velocity ``w`` (3,), the rates following q as in FfrPart.steady_rotation_rates:
+    v = [w x r_C, A0^T w, 0], vdot = [w x (w x r_C), 0, 0]. The force rows are then
+
+        g0 = [w]x^2 (m r_C + A0 St),   g3 = St x (W W b) + omega x (I(p) omega),
+        g6 = Sbar^T W W b + Nr(p, omega)
+
+    (omega = A0^T w, W = [omega]x, b = A0^T r_C, I = tr(R2) 1 - R2, Nr_f = sum_kl (W W)_kl
+    int rho N_kf r_l), and force = [g0, D^T g3, g6]. Drag is not included. With the hub turning
+    at ``spin`` and the load factor ``factor``, w = -sqrt(factor) spin j0, and
+    K_el + load stiffness + this = FfrPart.stiffness(q, gravity, (0, 0), factor, spin)."""
+    m, Sbar, J, II = inv[0], inv[2], inv[4], inv[5]
+    n = q.shape[0]
+    nf = n - 6
+    p = q[6:]
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    dA = np.empty((3, 3, 3))
+    dD = np.empty((3, 3, 3))
+    cardan(q[3], q[4], q[5], A, D)
+    cardan_derivatives(q[3], q[4], q[5], dA, dD)
+    St = np.empty(3)
+    Q2 = np.empty((3, 3, nf))
+    R2 = np.empty((3, 3))
+    _moments(inv, p, p, False, nf, St, Q2, Q2, R2)
+    for i in range(n):
+        for j in range(n):
+            out[i, j] = 0.0
+    # global (w x)^2
+    Wg = np.empty((3, 3))
+    Wg[0, 0], Wg[0, 1], Wg[0, 2] = 0.0, -w[2], w[1]
+    Wg[1, 0], Wg[1, 1], Wg[1, 2] = w[2], 0.0, -w[0]
+    Wg[2, 0], Wg[2, 1], Wg[2, 2] = -w[1], w[0], 0.0
+    WWg = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            WWg[i, j] = Wg[i, 0] * Wg[0, j] + Wg[i, 1] * Wg[1, j] + Wg[i, 2] * Wg[2, j]
+    om = np.empty(3)
+    b = np.empty(3)
+    for i in range(3):
+        om[i] = A[0, i] * w[0] + A[1, i] * w[1] + A[2, i] * w[2]
+        b[i] = A[0, i] * q[0] + A[1, i] * q[1] + A[2, i] * q[2]
+    W = np.empty((3, 3))
+    W[0, 0], W[0, 1], W[0, 2] = 0.0, -om[2], om[1]
+    W[1, 0], W[1, 1], W[1, 2] = om[2], 0.0, -om[0]
+    W[2, 0], W[2, 1], W[2, 2] = -om[1], om[0], 0.0
+    WW = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            WW[i, j] = W[i, 0] * W[0, j] + W[i, 1] * W[1, j] + W[i, 2] * W[2, j]
+    cvec = np.empty(3)  # W W b = A0^T (w x (w x r_C))
+    for i in range(3):
+        cvec[i] = WW[i, 0] * b[0] + WW[i, 1] * b[1] + WW[i, 2] * b[2]
+    tr = R2[0, 0] + R2[1, 1] + R2[2, 2]
+    Iw = np.empty(3)
+    for i in range(3):
+        Iw[i] = tr * om[i] - (R2[i, 0] * om[0] + R2[i, 1] * om[1] + R2[i, 2] * om[2])
+    g3 = np.empty(3)
+    t1 = np.empty(3)
+    t2 = np.empty(3)
+    _cross(St[0], St[1], St[2], cvec[0], cvec[1], cvec[2], t1)
+    _cross(om[0], om[1], om[2], Iw[0], Iw[1], Iw[2], t2)
+    for i in range(3):
+        g3[i] = t1[i] + t2[i]
+    # below, int rho r_l N_kf = J[l, k, f] + sum_g II[k, l, f, g] p_g = J[l, k, f] + Q2[l, k, f]
+    # (II[k, l, f, g] = II[l, k, g, f])
+    d3 = np.empty(3)
+    AS = np.empty(3)
+
+    # ---- d/dr_C (columns 0..2)
+    for j in range(3):
+        for i in range(3):
+            out[i, j] = m * WWg[i, j]
+        # A0^T e_j = row j of A0; e = W W A0^T e_j
+        e0 = WW[0, 0] * A[j, 0] + WW[0, 1] * A[j, 1] + WW[0, 2] * A[j, 2]
+        e1 = WW[1, 0] * A[j, 0] + WW[1, 1] * A[j, 1] + WW[1, 2] * A[j, 2]
+        e2 = WW[2, 0] * A[j, 0] + WW[2, 1] * A[j, 1] + WW[2, 2] * A[j, 2]
+        _cross(St[0], St[1], St[2], e0, e1, e2, d3)
+        for i in range(3):
+            out[3 + i, j] = D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2]
+        for f in range(nf):
+            out[6 + f, j] = Sbar[0, f] * e0 + Sbar[1, f] * e1 + Sbar[2, f] * e2
+
+    # ---- d/dTheta_c (columns 3..5)
+    dom = np.empty(3)
+    db = np.empty(3)
+    dc = np.empty(3)
+    dIw = np.empty(3)
+    dWW = np.empty((3, 3))
+    dW = np.empty((3, 3))
+    tmp = np.empty(3)
+    for c in range(3):
+        for i in range(3):
+            dom[i] = dA[c, 0, i] * w[0] + dA[c, 1, i] * w[1] + dA[c, 2, i] * w[2]
+            db[i] = dA[c, 0, i] * q[0] + dA[c, 1, i] * q[1] + dA[c, 2, i] * q[2]
+        # row 0: WWg dA_c St
+        for i in range(3):
+            AS[i] = dA[c, i, 0] * St[0] + dA[c, i, 1] * St[1] + dA[c, i, 2] * St[2]
+        for i in range(3):
+            out[i, 3 + c] = WWg[i, 0] * AS[0] + WWg[i, 1] * AS[1] + WWg[i, 2] * AS[2]
+        # dc = dom x (om x b) + om x (dom x b) + om x (om x db)
+        _cross(om[0], om[1], om[2], b[0], b[1], b[2], t1)
+        _cross(dom[0], dom[1], dom[2], t1[0], t1[1], t1[2], dc)
+        _cross(dom[0], dom[1], dom[2], b[0], b[1], b[2], t1)
+        _cross(om[0], om[1], om[2], t1[0], t1[1], t1[2], t2)
+        for i in range(3):
+            dc[i] += t2[i]
+        for i in range(3):
+            tmp[i] = WW[i, 0] * db[0] + WW[i, 1] * db[1] + WW[i, 2] * db[2]
+            dc[i] += tmp[i]
+        # d g3 = St x dc + dom x I om + om x I dom
+        for i in range(3):
+            dIw[i] = tr * dom[i] - (R2[i, 0] * dom[0] + R2[i, 1] * dom[1] + R2[i, 2] * dom[2])
+        _cross(St[0], St[1], St[2], dc[0], dc[1], dc[2], d3)
+        _cross(dom[0], dom[1], dom[2], Iw[0], Iw[1], Iw[2], t1)
+        _cross(om[0], om[1], om[2], dIw[0], dIw[1], dIw[2], t2)
+        for i in range(3):
+            d3[i] += t1[i] + t2[i]
+        for i in range(3):
+            out[3 + i, 3 + c] = (dD[c, 0, i] * g3[0] + dD[c, 1, i] * g3[1] + dD[c, 2, i] * g3[2]
+                                 + D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2])
+        # row 6: Sbar^T dc + sum_kl dWW_kl P2[k, l, f]
+        dW[0, 0], dW[0, 1], dW[0, 2] = 0.0, -dom[2], dom[1]
+        dW[1, 0], dW[1, 1], dW[1, 2] = dom[2], 0.0, -dom[0]
+        dW[2, 0], dW[2, 1], dW[2, 2] = -dom[1], dom[0], 0.0
+        for i in range(3):
+            for j in range(3):
+                dWW[i, j] = (dW[i, 0] * W[0, j] + dW[i, 1] * W[1, j] + dW[i, 2] * W[2, j]
+                             + W[i, 0] * dW[0, j] + W[i, 1] * dW[1, j] + W[i, 2] * dW[2, j])
+        for f in range(nf):
+            s = Sbar[0, f] * dc[0] + Sbar[1, f] * dc[1] + Sbar[2, f] * dc[2]
+            for k in range(3):
+                for l in range(3):
+                    s += dWW[k, l] * (J[l, k, f] + Q2[l, k, f])
+            out[6 + f, 3 + c] = s
+
+    # ---- d/dp_g (columns 6..)
+    dR2 = np.empty((3, 3))
+    for g in range(nf):
+        # row 0: WWg A0 Sbar_g
+        for i in range(3):
+            AS[i] = A[i, 0] * Sbar[0, g] + A[i, 1] * Sbar[1, g] + A[i, 2] * Sbar[2, g]
+        for i in range(3):
+            out[i, 6 + g] = WWg[i, 0] * AS[0] + WWg[i, 1] * AS[1] + WWg[i, 2] * AS[2]
+        # row 3: D^T (Sbar_g x c + om x (dI_g om)); dR2_g = J_g + J_g^T + d(p II p)/dp_g
+        for k in range(3):
+            for l in range(3):
+                dR2[k, l] = J[k, l, g] + J[l, k, g] + Q2[l, k, g] + Q2[k, l, g]
+        dtr = dR2[0, 0] + dR2[1, 1] + dR2[2, 2]
+        for i in range(3):
+            dIw[i] = dtr * om[i] - (dR2[i, 0] * om[0] + dR2[i, 1] * om[1] + dR2[i, 2] * om[2])
+        _cross(Sbar[0, g], Sbar[1, g], Sbar[2, g], cvec[0], cvec[1], cvec[2], t1)
+        _cross(om[0], om[1], om[2], dIw[0], dIw[1], dIw[2], t2)
+        for i in range(3):
+            d3[i] = t1[i] + t2[i]
+        for i in range(3):
+            out[3 + i, 6 + g] = D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2]
+    # row 6, d/dp: sum_kl WW_kl II[k, l, f, g]
+    for k in range(3):
+        for l in range(3):
+            wkl = WW[k, l]
+            if wkl != 0.0:
+                for f in range(nf):
+                    for g in range(nf):
+                        out[6 + f, 6 + g] += wkl * II[k, l, f, g]
+
+
+# ---------------------------------------------------------------------------- packing
+class FfrArrays(NamedTuple):
+    """An FFR part's constants as float64 arrays and floats (:func:`pack`)."""
+
+    m: float
+    c0: np.ndarray  # (3,)
+    Sbar: np.ndarray  # (3, nf)
+    I0: np.ndarray  # (3, 3)
+    J: np.ndarray  # (3, 3, nf)
+    II: np.ndarray  # (3, 3, nf, nf)
+    Mff: np.ndarray  # (nf, nf)
+    K: np.ndarray  # (nf, nf): Eq. 61, without its axial part when stiffening
+    EAl: float  # EA * element length
+    mean_stretch: np.ndarray  # (n_el, nf)
+    mean_slope2: np.ndarray  # (n_el, nf, nf)
+    stiffening: float  # 1.0 or 0.0
+    tip_force: np.ndarray  # (3,) global
+    tip_moment: np.ndarray  # (3,) global
+    tip_rows: np.ndarray  # (3, nf): displacement_row(L)
+    tip_rotation_rows: np.ndarray  # (3, nf): rotation_row(L)
+    length: float
+    N_pts: np.ndarray  # (npts, 3, nf): centre-line Gauss table
+    x_pts: np.ndarray  # (npts,)
+    w_pts: np.ndarray  # (npts,)
+    width: float  # frontal width b of the drag
+
+    @property
+    def inv(self) -> tuple:
+        return (self.m, self.c0, self.Sbar, self.I0, self.J, self.II, self.Mff, self.K, self.EAl,
+                self.mean_stretch, self.mean_slope2, self.stiffening)
+
+    @property
+    def tip(self) -> tuple:
+        return (self.tip_force, self.tip_moment, self.tip_rows, self.tip_rotation_rows, self.length)
+
+    def drag(self, damping=(0.0, 0.0)) -> tuple:
+        return (self.N_pts, self.x_pts, self.w_pts, self.width, float(damping[0]), float(damping[1]))
+
+
+def _f64(a) -> np.ndarray:
+    return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def pack(part) -> FfrArrays:
+    """The constants of an :class:`~hubbeam.system.ffr_part.FfrPart` (its FfrBeam, tip body
+    folded in the invariants, tip force and moment) for the kernels."""
+    beam = part.beam
+    inv = beam.invariants
+    stiff = bool(beam.geometric_stiffening)
+    K = beam.stiffness_matrix - beam._axial_stiffness if stiff else beam.stiffness_matrix
+    t = beam.centre_line_table
+    return FfrArrays(
+        m=float(inv["m"]), c0=_f64(inv["c0"]), Sbar=_f64(inv["Sbar"]), I0=_f64(inv["I0"]), J=_f64(inv["J"]),
+        II=_f64(inv["II"]), Mff=_f64(inv["Mff"]), K=_f64(K),
+        EAl=float(beam.section.stiffness[0] * beam.element_length),
+        mean_stretch=_f64(t["mean_stretch"]), mean_slope2=_f64(t["mean_slope2"]), stiffening=1.0 if stiff else 0.0,
+        tip_force=_f64(part.tip_force), tip_moment=_f64(part.tip_moment),
+        tip_rows=_f64(beam.displacement_row(beam.length)), tip_rotation_rows=_f64(beam.rotation_row(beam.length)),
+        length=float(beam.length), N_pts=_f64(t["N"]), x_pts=_f64(t["x"]), w_pts=_f64(t["w"]),
+        width=float(beam.section.width),
+    )
+
+
+# ---------------------------------------------------------------------------- Python front ends
+def forces(arrays: FfrArrays, q, v, acc, gravity, damping=(0.0, 0.0), tangent: bool = True, factor: float = 1.0):
+    """FfrPart.forces through the kernel: (force, (M, C, K) or None, dissipated power)."""
+    q, v, acc, g = (_f64(a) for a in (q, v, acc, gravity))
+    n = q.shape[0]
+    force = np.empty(n)
+    drag = arrays.drag(damping)
+    if not tangent:
+        power = ffr_body_terms(arrays.inv, q, v, acc, g, arrays.tip, drag, 0.0, 0.0, 0.0, float(factor), False,
+                               force, np.empty((0, 0)))
+        return force, None, power
+    mats = []
+    for cm, cc, ck in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)):
+        block = np.empty((n, n))
+        power = ffr_body_terms(arrays.inv, q, v, acc, g, arrays.tip, drag, cm, cc, ck, float(factor), True,
+                               force, block)
+        mats.append(block)
+    return force, tuple(mats), power
+
+
+def static_stiffness(arrays: FfrArrays, q, gravity, factor: float = 1.0, spin: float = 0.0,
+                     axis=(0.0, 1.0, 0.0)) -> np.ndarray:
+    """K_el + load stiffness (+ spin stiffness at ``spin`` rad/s about -axis, the hub's sense):
+    the exact FfrPart.stiffness(q, gravity, (0, 0), factor, spin)."""
+    q = _f64(q)
+    n = q.shape[0]
+    K = np.empty((n, n))
+    z = np.zeros(n)
+    ffr_body_terms(arrays.inv, q, z, z, _f64(gravity), arrays.tip, arrays.drag(), 0.0, 0.0, 1.0, float(factor),
+                   True, np.empty(n), K)
+    L = np.empty((n, n))
+    ffr_load_stiffness(arrays.inv, q, _f64(gravity), arrays.tip, float(factor), L)
+    K += L
+    if spin:
+        ffr_spin_stiffness(arrays.inv, q, -np.sqrt(factor) * spin * _f64(axis), L)
+        K += L
+    return K
