@@ -65,6 +65,7 @@ class FfrBeam:
     #: None: the nodal coordinates p; N: the N lowest clamped-free modes (:mod:`~hubbeam.elements.ffr.modal`)
     modes: int | None = None
     invariants: dict = field(init=False, repr=False)
+    _rows: dict = field(init=False, repr=False, compare=False, default_factory=dict)  # station rows, once each
 
     def __post_init__(self) -> None:
         #: p = basis @ eta for a modally reduced beam (nodal ndof x ndof); None: nodal
@@ -78,6 +79,7 @@ class FfrBeam:
             from hubbeam.elements.ffr.modal import reduce
 
             reduce(self, self.modes)
+        self._rows.clear()  # rows asked for while the invariants were built are over the nodal coordinates
 
     # ---------------------------------------------------------------- layout
     @property
@@ -227,14 +229,24 @@ class FfrBeam:
         U = 0.5 * p @ (K_rest @ p) + 0.5 * EAl * eps @ eps
         return U, f, Kt
 
+    def _station_rows(self, x: float, y: float = 0.0, z: float = 0.0):
+        """(element, row of u0', row of -y v0'' - z w0'') over the coordinates at the station x and
+        section point (y, z), computed once per station (sensors ask at every output time)."""
+        key = ("strain", float(x), float(y), float(z))
+        if key not in self._rows:
+            e, xi = self.locate(x)
+            sh = line_shapes(np.array([xi]), self.element_length)
+            self._rows[key] = (e, self._scatter(e, sh["N1x"][0]),
+                               self._scatter(e, -y * sh["N2xx"][0] - z * sh["N3xx"][0]))
+        return self._rows[key]
+
     def axial_strain(self, p: np.ndarray, x: float) -> float:
         """eps0 at station x: u0', or with geometric stiffening the element-mean strain
         including (v0'^2 + w0'^2) / 2 (the strain the energy uses)."""
-        e, xi = self.locate(x)
+        e, axial, _ = self._station_rows(x)
         if self.geometric_stiffening:
             return float(self._mean_axial_strain(p)[0][e])
-        sh = line_shapes(np.array([xi]), self.element_length)
-        return float(self._scatter(e, sh["N1x"][0]) @ p)
+        return float(axial @ p)
 
     # ---------------------------------------------------------------- inertia
     def first_moment(self, p: np.ndarray) -> np.ndarray:
@@ -302,9 +314,13 @@ class FfrBeam:
 
     # ---------------------------------------------------------------- stations
     def displacement_row(self, x: float, y: float = 0.0, z: float = 0.0) -> np.ndarray:
-        """N(x, y, z) over p (3 x ndof): u^b = N p at the point (Eq. 43)."""
-        e, xi = self.locate(x)
-        return self._scatter(e, displacement_matrix(line_shapes(np.array([xi]), self.element_length), 0, y, z))
+        """N(x, y, z) over p (3 x ndof): u^b = N p at the point (Eq. 43); computed once per point."""
+        key = ("displacement", float(x), float(y), float(z))
+        if key not in self._rows:
+            e, xi = self.locate(x)
+            self._rows[key] = self._scatter(e, displacement_matrix(line_shapes(np.array([xi]), self.element_length),
+                                                                   0, y, z))
+        return self._rows[key]
 
     def rotation_row(self, x: float) -> np.ndarray:
         """Rows (3 x ndof) of the section's small rotation (theta_tau, -w0', v0') in the body
@@ -315,9 +331,8 @@ class FfrBeam:
 
     def surface_strain(self, p: np.ndarray, x: float, y: float, z: float) -> float:
         """Fibre strain eps = eps0 - y v0'' - z w0'' at (x, y, z) (eps0 as in :meth:`axial_strain`)."""
-        e, xi = self.locate(x)
-        sh = line_shapes(np.array([xi]), self.element_length)
-        return self.axial_strain(p, x) + float(self._scatter(e, -y * sh["N2xx"][0] - z * sh["N3xx"][0]) @ p)
+        _, _, bending = self._station_rows(x, y, z)
+        return self.axial_strain(p, x) + float(bending @ p)
 
     def strain_row(self, x: float, y: float, z: float) -> np.ndarray:
         """The row of eps = u0' - y v0'' - z w0'' (the linear FFR fibre strain) over p."""
