@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.elements.section import Section, saint_venant_torsion_constant
-from hubbeam.io.scenario import Scenario
+from hubbeam.io.scenario import Scenario, ScenarioError
 from hubbeam.solvers.modal import Modes, modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import StaticSolution, solve_static
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
@@ -21,6 +21,46 @@ from hubbeam.system.hub import DriveProfile
 from hubbeam.system.model import HubSystem
 
 
+# --- issue 15: public functions take a Scenario or the path of a scenario file, and nothing else
+def load_scenario(source, overrides: list[str] | None = None) -> Scenario:
+    """Read, override (``--set``-style strings) and validate a scenario file; ScenarioError
+    for anything else (a path that is not a text file, overrides that are not a list of strings)."""
+    import os
+
+    from hubbeam.io import scenario as io_scenario
+    from hubbeam.io.targets import check_input_file
+
+    if overrides is not None and (isinstance(overrides, (str, bytes)) or not isinstance(overrides, (list, tuple))
+                                  or not all(isinstance(o, str) for o in overrides)):
+        raise ScenarioError(f"overrides: expected a list of 'KEY=VALUE' strings (got {type(overrides).__name__} "
+                            f"{overrides!r:.60})")
+    if not isinstance(source, (str, os.PathLike)):
+        raise ScenarioError(f"scenario: expected the path of a scenario file (got {type(source).__name__} {source!r:.60})")
+    return io_scenario.load_scenario(check_input_file(source), list(overrides or []))
+
+
+def as_scenario(scenario) -> Scenario:
+    """A Scenario validated again (``model_copy(update=...)`` skips validation) or a scenario file's path."""
+    import os
+    import warnings
+
+    from hubbeam.io.scenario import validate
+
+    if isinstance(scenario, Scenario):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # pydantic warns when model_copy put a wrong type in
+            try:
+                data = scenario.to_dict()
+            except Exception as exc:
+                raise ScenarioError(f"scenario: not a valid Scenario ({exc.__class__.__name__})") from None
+        return validate(data)
+    if isinstance(scenario, (str, os.PathLike)):
+        return load_scenario(scenario)
+    raise ScenarioError(f"scenario: expected a Scenario or the path of a scenario file (got {type(scenario).__name__} "
+                        f"{scenario!r:.60})")
+# --- end issue 15
+
+
 def section_of(scenario: Scenario) -> Section:
     b = scenario.beam
     jt = b.torsion_constant if b.torsion_constant is not None else saint_venant_torsion_constant(b.width, b.thickness)
@@ -28,7 +68,8 @@ def section_of(scenario: Scenario) -> Section:
 
 
 def build_system(scenario: Scenario) -> HubSystem:
-    """The hub-beam system a scenario describes."""
+    """The hub-beam system a scenario describes (a Scenario or a path)."""
+    scenario = as_scenario(scenario)  # issue 15
     b = scenario.beam
     if b.formulation == "ancf":
         beam, system_class = AncfBeam(b.length, b.elements, section_of(scenario), b.gauss_points or DEFAULT_GAUSS_POINTS), AncfHubSystem
@@ -100,6 +141,7 @@ class ModalResult:
 
 def static(scenario: Scenario) -> StaticResult:
     """Static equilibrium under gravity and loads, hub held at theta = 0 (load stepping)."""
+    scenario = as_scenario(scenario)  # issue 15
     system = build_system(scenario)
     return StaticResult(system, solve_static(system, load_steps=scenario.analysis.load_steps))
 
@@ -109,6 +151,7 @@ def modes(scenario: Scenario) -> ModalResult:
     or, for a hub driven at a constant omega_s, about the steadily rotating state
     (centrifugal pre-stress and gyroscopic terms; drag left out). Other prescribed profiles
     give the modes at rest with the hub held."""
+    scenario = as_scenario(scenario)  # issue 15
     system = build_system(scenario)
     count = scenario.analysis.count
     load_steps = scenario.analysis.load_steps
@@ -129,15 +172,21 @@ def modes(scenario: Scenario) -> ModalResult:
 def run(scenario: Scenario, progress=None):
     """Time integration of a scenario's dynamic analysis with all its settings (step,
     spectral radius, output step, Newton options). Returns (trajectory, failure): on a
-    ComputationError, failure is that error and the trajectory holds the results up to it."""
+    ComputationError, failure is that error and the trajectory holds the results up to it.
+    A run too large to do (steps, records' memory) is a ScenarioError before anything is built;
+    an interruption (KeyboardInterrupt, hubbeam.interrupt.Interrupted) carries the trajectory
+    so far in its ``partial``."""
+    from hubbeam.limits import check_run
     from hubbeam.simulation import simulate
     from hubbeam.solvers.errors import ComputationError
     from hubbeam.solvers.generalized_alpha import NewtonOptions
 
+    scenario = as_scenario(scenario)  # issue 15
+    check_run(scenario)  # issue 15
     a = scenario.analysis
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
         return simulate(build_system(scenario), scenario.sensors, a.t_end, a.dt, a.spectral_radius,
-                        scenario.output_dt, progress, newton), None
+                        min(scenario.output_dt, a.t_end), progress, newton), None  # issue 15: no overflow at 1e300
     except ComputationError as exc:
         return exc.partial, exc
