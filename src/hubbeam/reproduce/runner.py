@@ -43,11 +43,33 @@ def run_cases(cases: list[Case], jobs: int = 1, progress=None) -> dict[str, Outc
             if progress:
                 progress(k, len(cases), outcome)
         return results
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
+    pool = ProcessPoolExecutor(max_workers=jobs, initializer=_worker_start)
+    try:
         futures = [pool.submit(run_case, case) for case in cases]
         for k, fut in enumerate(as_completed(futures), 1):
             outcome = fut.result()
             results[outcome.case.key] = outcome
             if progress:
                 progress(k, len(cases), outcome)
+    except BaseException:  # interrupted (or a worker died): stop the workers now, not after their runs
+        _stop(pool)
+        raise
+    pool.shutdown()
     return results
+
+
+def _worker_start() -> None:
+    """Workers leave SIGINT to the parent (a Ctrl-C reaches the whole process group), which
+    stops them; no traceback from each of them."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _stop(pool: ProcessPoolExecutor) -> None:
+    processes = list(getattr(pool, "_processes", {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in processes:
+        p.terminate()
+    for p in processes:
+        p.join(timeout=5)
