@@ -451,8 +451,8 @@ def _cmd_sweep(args, scenario) -> dict:
         interrupt.take_pending()
         done = ds.attrs.get("points_done", 0)
         partial.detail = (f" after {done} of {total} points; " +
-                          (f"they are in {_written(written)} (marked partial, the others failed as not run)"
-                           if written else "nothing written") +
+                          (f"the results so far are in {_written(written)} (marked partial; the points not run "
+                           "are marked failed)" if written else "nothing written") +
                           (f"; could not write: {'; '.join(errors)}" if errors else ""))
         raise partial
     _write(jobs)

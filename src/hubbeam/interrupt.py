@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import contextlib
 import signal
+import threading
 
 #: the signals that interrupt a command
 SIGNALS = tuple(s for s in (getattr(signal, n, None) for n in ("SIGINT", "SIGTERM", "SIGHUP")) if s is not None)
@@ -107,3 +108,19 @@ def raise_pending(detail: str = " after the results were written") -> None:
             exc = Interrupted(signum)
             exc.detail = detail
             raise exc
+
+
+@contextlib.contextmanager
+def children_spared():
+    """Processes (and threads) started within the block have SIGINT blocked: a Ctrl-C, which a
+    terminal sends to the whole process group, then reaches only this process, which stops
+    them, instead of making every worker print a traceback. A SIGINT that arrives within the
+    block is delivered when it ends."""
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)

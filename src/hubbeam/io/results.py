@@ -40,14 +40,20 @@ def trajectory_table(trajectory, scenario, status: dict | None = None):
     kinds = {s.name: s.kind for s in scenario.sensors}
     n = min([len(trajectory.times)] + [len(v) for v in trajectory.records.values()])
     variables = {}
+
+    def add(column, data):
+        if column in variables or column == "time":  # never overwrite a column (the scenario check should
+            raise ValueError(f"sensors: two sensors make the column {column!r}")  # have refused such names)
+        variables[column] = data
+
     for name, values in trajectory.records.items():
         values = values[:n]
         attrs = {"units": UNITS[kinds[name]], "sensor": name}
         if values and isinstance(values[0], dict):
             for part in values[0]:
-                variables[f"{name}_{part}"] = (np.array([v[part] for v in values], dtype=float), attrs)
+                add(f"{name}_{part}", (np.array([v[part] for v in values], dtype=float), attrs))
         else:
-            variables[name] = (np.array(values, dtype=float), attrs)
+            add(name, (np.array(values, dtype=float), attrs))
     attrs = {"scenario": json.dumps(scenario.to_dict()), "name": scenario.name, "steps": trajectory.steps,
              "newton_iterations": trajectory.newton_iterations}
     attrs.update(status if status is not None else completion(trajectory))

@@ -43,9 +43,12 @@ def run_cases(cases: list[Case], jobs: int = 1, progress=None) -> dict[str, Outc
             if progress:
                 progress(k, len(cases), outcome)
         return results
+    from hubbeam import interrupt
+
     pool = ProcessPoolExecutor(max_workers=jobs, initializer=_worker_start)
     try:
-        futures = [pool.submit(run_case, case) for case in cases]
+        with interrupt.children_spared():  # the workers start here (see _worker_start)
+            futures = [pool.submit(run_case, case) for case in cases]
         for k, fut in enumerate(as_completed(futures), 1):
             outcome = fut.result()
             results[outcome.case.key] = outcome

@@ -160,9 +160,22 @@ def connect(scheduler: str | None, workers: int | None):
         except Exception as exc:  # OSError (timed out, refused), ValueError or TypeError (a malformed address)
             reason = (str(exc).splitlines() or [exc.__class__.__name__])[0][:200]
             raise ScenarioError(f"--scheduler {scheduler}: no Dask scheduler answers there ({reason})") from None
-    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=logging.CRITICAL)
-    return Client(cluster), cluster
+    from hubbeam import interrupt
+
+    cluster = client = None
+    try:
+        with interrupt.children_spared():  # a Ctrl-C to the process group stops us, and we stop the workers
+            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                                   dashboard_address=None, silence_logs=logging.CRITICAL)
+            client = Client(cluster)
+    except BaseException:
+        with interrupt.deferred():
+            if client is not None:
+                client.close()
+            if cluster is not None:
+                cluster.close()
+        raise
+    return client, cluster
 
 
 def sweep(scenario: Scenario, varied: dict[str, tuple[np.ndarray, bool]], scheduler: str | None = None,
