@@ -53,11 +53,16 @@ def as_scenario(scenario) -> Scenario:
                 data = scenario.to_dict()
             except Exception as exc:
                 raise ScenarioError(f"scenario: not a valid Scenario ({exc.__class__.__name__})") from None
-        return validate(data)
-    if isinstance(scenario, (str, os.PathLike)):
-        return load_scenario(scenario)
-    raise ScenarioError(f"scenario: expected a Scenario or the path of a scenario file (got {type(scenario).__name__} "
-                        f"{scenario!r:.60})")
+        scenario = validate(data)
+    elif isinstance(scenario, (str, os.PathLike)):
+        scenario = load_scenario(scenario)
+    else:
+        raise ScenarioError(f"scenario: expected a Scenario or the path of a scenario file (got "
+                            f"{type(scenario).__name__} {scenario!r:.60})")
+    from hubbeam.limits import check_magnitudes
+
+    check_magnitudes(scenario)  # no overflow or underflow inside the model
+    return scenario
 # --- end issue 15
 
 

@@ -36,9 +36,8 @@ def __getattr__(name):
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # argparse prints usage and exits 2: keep it to two lines
-        self.print_usage(sys.stderr)
-        print(f"hubbeam: error: {message}", file=sys.stderr)
+    def error(self, message):  # argparse prints a usage of several lines: one line instead
+        _say(f"hubbeam: error: {message} (usage: {self.prog} --help)")
         raise SystemExit(2)
 
 
@@ -405,12 +404,13 @@ def _cmd_sweep(args, scenario) -> dict:
         raise ScenarioError(f"--vary: {total} points; at most {MAX_SWEEP_POINTS}")
     # every corner of the ranges is validated here (first and last value of each key, so the
     # extremes of steps and memory too): a bad key or value is a clear error, not a sweep of failures
-    from hubbeam.limits import check_run
+    from hubbeam.limits import check_magnitudes, check_run
 
     for corner in itertools.product(*[sorted({0, len(v[0]) - 1}) for v in varied.values()]):
         overrides = [f"{k}={format_value(v[0][i], v[1])}" for (k, v), i in zip(varied.items(), corner)]
         try:
             point = validate(apply_overrides(scenario.to_dict(), overrides))
+            check_magnitudes(point)
             if point.analysis.kind == "dynamic":
                 check_run(point)
         except ScenarioError as exc:
@@ -634,6 +634,18 @@ def _progress_bar(t_end: float, label: str = "simulating", unit: str = "s"):
     return (lambda t: bar.update(task, completed=t)), bar.stop
 
 
+def _where(exc: BaseException) -> str:
+    """The function (and module) where an exception was raised."""
+    tb = exc.__traceback__
+    while tb is not None and tb.tb_next is not None:
+        tb = tb.tb_next
+    if tb is None:
+        return "an unknown place"
+    code = tb.tb_frame.f_code
+    module = tb.tb_frame.f_globals.get("__name__", "?")
+    return f"{module}.{code.co_name}"
+
+
 # ------------------------------------------------------------------------------ main
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status. SIGINT, SIGTERM and SIGHUP are handled
@@ -692,6 +704,12 @@ def _main(argv) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())  # so that Python's final flush does not fail again
         return 0
+    except ArithmeticError as exc:  # overflow, division by zero: a computation out of the range of doubles
+        if os.environ.get("HUBBEAM_DEBUG"):
+            raise
+        _say(f"hubbeam: computation failed: {exc.__class__.__name__} in {_where(exc)} ({exc}); the scenario's "
+             "numbers are out of the range the computation can hold: check its values and units (SI)")
+        return 1
     except MemoryError:
         _say("hubbeam: computation failed: out of memory; try a coarser model (beam.elements), a larger "
              "analysis.output_dt or a shorter analysis.t_end")

@@ -13,6 +13,11 @@ naming the key (exit status 2):
   while it is written).
 
 Above :data:`WARN_RECORD_BYTES` :func:`check_run` returns a one-line note to print.
+
+:func:`check_magnitudes` does the same for the model: each valid input alone may still make a
+derived quantity (a second moment of area, a stiffness, a mass) overflow or vanish in double
+precision (``beam.width = 1e102`` gives h b^3 / 12 = inf); such a scenario is refused naming
+its keys rather than failing somewhere inside the model.
 """
 
 from __future__ import annotations
@@ -84,3 +89,56 @@ def check_run(scenario) -> RunSize:
     """:func:`run_size` of a scenario's dynamic analysis."""
     a = scenario.analysis
     return run_size(a.t_end, a.dt, a.output_dt, columns(scenario.sensors))
+
+
+#: derived model quantities must lie in this range (positive ones), so that the products the
+#: model forms with them (stiffness times curvature squared, mass times length squared) stay finite
+MAGNITUDE_RANGE = (1e-150, 1e150)
+
+
+def check_magnitudes(scenario) -> None:
+    """ScenarioError naming the keys when a derived quantity of the model is not a finite
+    number within :data:`MAGNITUDE_RANGE` (see the module doc)."""
+    import numpy as np
+
+    b, h = scenario.beam, scenario.hub
+    low, high = MAGNITUDE_RANGE
+    with np.errstate(all="ignore"):
+        w, t, L = np.float64(b.width), np.float64(b.thickness), np.float64(b.length)
+        E, rho, G = np.float64(b.youngs_modulus), np.float64(b.density), np.float64(scenario.shear_modulus)
+        a, c = max(w, t), min(w, t)
+        J = np.float64(b.torsion_constant) if b.torsion_constant is not None else a * c**3 / 3.0 * (1.0 - 0.63 * c / a)
+        area, i_y, i_z = w * t, w * t**3 / 12.0, t * w**3 / 12.0
+        quantities = [
+            ("the section area", area, "m^2", ["beam.width", "beam.thickness"]),
+            ("the weak-axis second moment of area", i_y, "m^4", ["beam.thickness", "beam.width"]),
+            ("the strong-axis second moment of area", i_z, "m^4", ["beam.width", "beam.thickness"]),
+            ("the torsion constant", J, "m^4", ["beam.torsion_constant" if b.torsion_constant is not None
+                                                 else "beam.thickness", "beam.width"]),
+            ("the axial stiffness EA", E * area, "N", ["beam.youngs_modulus", "beam.width", "beam.thickness"]),
+            ("the bending stiffness EI", E * i_y, "N m^2", ["beam.youngs_modulus", "beam.thickness"]),
+            ("the bending stiffness EI", E * i_z, "N m^2", ["beam.youngs_modulus", "beam.width"]),
+            ("the torsional stiffness GJ", G * J, "N m^2", ["beam.youngs_modulus", "beam.thickness"]),
+            ("the beam's mass", rho * area * L, "kg", ["beam.density", "beam.length", "beam.width"]),
+            ("the section's rotary inertia", rho * (i_y + i_z), "kg m", ["beam.density", "beam.width"]),
+            ("the axial stiffness of an element EA / (L / n)", E * area * b.elements / L, "N/m",
+             ["beam.length", "beam.youngs_modulus"]),
+            ("the bending stiffness of an element EI / (L / n)^3", E * i_z * (b.elements / L) ** 3, "N/m",
+             ["beam.length", "beam.youngs_modulus"]),
+            ("the beam's moment of inertia about the hub", rho * area * L * (L + h.radius) ** 2, "kg m^2",
+             ["beam.length", "hub.radius", "beam.density"]),
+        ]
+        if h.motion == "free":
+            quantities.append(("the hub's inertia", np.float64(h.inertia), "kg m^2", ["hub.inertia"]))
+    for what, value, unit, keys in quantities:
+        if not (np.isfinite(value) and low < value < high):
+            given = ", ".join(f"{k} = {_value(scenario, k):g}" for k in keys if _value(scenario, k) is not None)
+            raise ScenarioError(f"{keys[0]}: with {given}, {what} is {float(value):.3g} {unit}, outside the range "
+                                f"hubbeam computes with ({low:g} to {high:g}); check the values and their units (SI)")
+
+
+def _value(scenario, key: str):
+    node = scenario
+    for part in key.split("."):
+        node = getattr(node, part, None)
+    return node if isinstance(node, (int, float)) and not isinstance(node, bool) else None
