@@ -222,10 +222,28 @@ def _cmd_static(args, scenario) -> dict:
     return d
 
 
-def _cmd_modes(args, scenario) -> dict:
-    from hubbeam import api
+def _numerical_failure(what: str, exc: BaseException):
+    """A ComputationError for a linear-algebra failure (a matrix with NaN, not positive
+    definite) inside ``what``."""
+    from hubbeam.solvers.errors import ComputationError
 
-    d = api.modes(scenario).to_dict()
+    reason = (str(exc).splitlines() or [""])[0][:160]
+    return ComputationError(f"{what} failed ({exc.__class__.__name__}: {reason}); try more analysis.load_steps or "
+                            "beam.elements, and check the scenario's values and units (SI)")
+
+
+def _cmd_modes(args, scenario) -> dict:
+    import numpy as np
+
+    from hubbeam import api
+    from hubbeam.io.scenario import ScenarioError
+
+    try:
+        d = api.modes(scenario).to_dict()
+    except ScenarioError:
+        raise
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise _numerical_failure("modal analysis", exc) from exc
     if not args.json:
         print(f"natural frequencies (Hz) about the {d['about']}, {d['rigid_modes']} rigid mode(s) left out:")
         for i, f in enumerate(d["frequencies_hz"], 1):
