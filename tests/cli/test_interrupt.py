@@ -107,3 +107,41 @@ def test_in_process_interruption_keeps_the_trajectory(monkeypatch):
     traj = info.value.partial
     assert traj is not None and 0 < traj.times[-1] < 2.0
     assert all(len(v) == len(traj.times) for v in traj.records.values())
+
+
+class FakeCase:
+    """A stand-in for a reproduction case: sleeps ``seconds`` in the worker."""
+
+    def __init__(self, key, seconds):
+        self.key, self.seconds = key, seconds
+
+
+def fake_run_case(case):
+    from hubbeam.reproduce.runner import Outcome
+
+    time.sleep(case.seconds)
+    return Outcome(case, None, None, case.seconds)
+
+
+def test_reproduce_workers_stop_at_once_when_interrupted(monkeypatch):
+    """An interruption while the pool runs stops the worker processes now (they inherit the
+    CLI's handlers by fork, which must not keep SIGTERM from ending them), not after their runs."""
+    import multiprocessing
+
+    from hubbeam import interrupt
+    from hubbeam.reproduce import runner
+
+    monkeypatch.setattr(runner, "run_case", fake_run_case)
+    cases = [FakeCase("quick", 0.1)] + [FakeCase(f"slow{k}", 60) for k in range(3)]
+
+    raised = []
+
+    def progress(done, total, outcome):
+        raised.append(time.perf_counter())
+        raise interrupt.Interrupted(signal.SIGINT)
+
+    with interrupt.handling(), pytest.raises(interrupt.Interrupted):
+        runner.run_cases(cases, jobs=2, progress=progress)
+    assert time.perf_counter() - raised[0] < 1.5  # terminate() works: no 2 s wait before kill()
+    time.sleep(0.2)
+    assert not [p for p in multiprocessing.active_children() if p.is_alive()]
