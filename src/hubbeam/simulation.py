@@ -198,15 +198,15 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
              state: ga.AlphaState | None = None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
 
-    Steps run in compiled code, in chunks of about 1/100 of the run (and of at most about
-    CHUNK_SECONDS of computing), when the system has a
-    compiled model (:class:`CompiledSteps`), else step by step in Python
-    (:class:`PythonSteps`); sensors are evaluated at the output times from the states the
-    steps kept, output time k being the double nearest the decimal t0 + k output_dt.
-    ``progress(t)`` is called after every chunk when given. On failure a
+    Steps run in compiled code, in chunks of about 1/100 of the run and of at most about
+    CHUNK_SECONDS of computing, when the system has a compiled model (:class:`CompiledSteps`),
+    else step by step in Python (:class:`PythonSteps`); sensors are evaluated at the output
+    times from the states the steps kept, output time k being the double nearest the decimal
+    t0 + k output_dt. ``progress(t)`` is called after every chunk when given. On failure a
     ComputationError names the time and step and carries the trajectory so far in
-    ``partial``; so does any other exception out of the loop (an interruption). When a
-    beam tangent comes within 60 deg of the chart's singular direction the state is moved to a better chart (counted in ``Trajectory.chart_switches``).
+    ``partial``; so does any other exception out of the loop (an interruption). When a beam
+    tangent comes within 60 deg of the chart's singular direction the state is moved to a
+    better chart (counted in ``Trajectory.chart_switches``).
     """
     params = ga.AlphaParameters.from_spectral_radius(spectral_radius)
     if state is None:
