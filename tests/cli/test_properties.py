@@ -21,7 +21,7 @@ from tests.cli.helpers import EXAMPLES, assert_contract, cli, no_temporary_files
 
 pytestmark = pytest.mark.filterwarnings("ignore")
 
-SETTINGS = settings(max_examples=int(os.environ.get("HUBBEAM_EXAMPLES", 150)), deadline=None,
+SETTINGS = settings(max_examples=int(os.environ.get("HUBBEAM_EXAMPLES", "150")), deadline=None,
                     derandomize=not os.environ.get("HUBBEAM_EXAMPLES"),
                     suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 
