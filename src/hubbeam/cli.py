@@ -268,6 +268,8 @@ def _cmd_run(args, scenario) -> dict:
 
     targets = _check([Target("-o", args.output), Target("--csv", args.csv), Target("--plot", args.plot, "figure")],
                      args)
+    if args.plot is not None and not scenario.sensors:
+        raise ScenarioError(f"--plot {args.plot}: the scenario has no sensors, so there is nothing to draw")
     size = limits.check_run(scenario)
     if size.note:
         _say(f"hubbeam: note: {size.note}")

@@ -27,6 +27,7 @@ SHORT = ["--set", "analysis.t_end=0.05", "--set", "beam.elements=2"]
     (["-o", "{d}/plain/x.nc"], "-o", "is not a directory"),
     (["-o", str(EXP1)], "-o", "is the scenario file"),
     (["--csv", ""], "--csv", "empty file name"),
+    (["-o", "{d}/" + "x" * 240 + ".nc"], "-o", "file name too long"),
 ])
 def test_run_targets_are_checked_before_computing(tmp_path, args, option, text):
     (tmp_path / "sub").mkdir()
@@ -179,3 +180,11 @@ def test_run_of_a_static_scenario_draws_its_plot(tmp_path):
                          "--set", "beam.elements=3", "--plot", tmp_path / "s.png", "--json")
     assert code == 0, err
     assert (tmp_path / "s.png").stat().st_size > 1000
+
+
+def test_a_symbolic_link_target_is_written_through(tmp_path):
+    real = tmp_path / "real.csv"
+    real.write_text("old")
+    (tmp_path / "link.csv").symlink_to(real)
+    write_one(Target("--csv", str(tmp_path / "link.csv")), lambda p: open(p, "w").write("new"))
+    assert (tmp_path / "link.csv").is_symlink() and real.read_text() == "new"

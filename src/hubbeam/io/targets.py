@@ -30,6 +30,8 @@ from hubbeam.io.scenario import ScenarioError
 
 #: a scenario or measured file larger than this is not read (a scenario is a few kB)
 MAX_INPUT_BYTES = 4 * 2**20
+#: longest output file name: 255 bytes (NAME_MAX) less what the temporary file's name adds
+MAX_NAME_BYTES = 230
 
 
 class OutputError(Exception):
@@ -159,6 +161,10 @@ def check_outputs(targets: list[Target], inputs: list[tuple[str, object]] = ()) 
                 raise ScenarioError(f"{label}: is a directory (give a file name)")
             if p.exists() and not p.is_file():
                 raise ScenarioError(f"{label}: exists and is not a regular file (a device or pipe is not a result file)")
+            if p.exists() and not os.access(p, os.W_OK):
+                raise ScenarioError(f"{label}: the file exists and is read-only")
+            if len(os.fsencode(Path(os.path.realpath(p)).name)) > MAX_NAME_BYTES:
+                raise ScenarioError(f"{label}: file name too long (at most {MAX_NAME_BYTES} bytes)")
             parent = p.absolute().parent
             if not parent.exists():
                 raise ScenarioError(f"{label}: directory {parent} does not exist")
@@ -178,8 +184,9 @@ def check_outputs(targets: list[Target], inputs: list[tuple[str, object]] = ()) 
 @contextlib.contextmanager
 def atomic_path(path):
     """A temporary path next to ``path`` (with the same extension, for writers that choose
-    the format from it); moved over ``path`` when the block ends normally, removed otherwise."""
-    path = Path(path)
+    the format from it); moved over ``path`` when the block ends normally, removed otherwise.
+    A symbolic link is followed: the file it points to is replaced, the link stays."""
+    path = Path(os.path.realpath(path))
     fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".part{path.suffix}", dir=path.absolute().parent)
     os.close(fd)
     try:
