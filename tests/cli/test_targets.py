@@ -188,3 +188,33 @@ def test_a_symbolic_link_target_is_written_through(tmp_path):
     (tmp_path / "link.csv").symlink_to(real)
     write_one(Target("--csv", str(tmp_path / "link.csv")), lambda p: open(p, "w").write("new"))
     assert (tmp_path / "link.csv").is_symlink() and real.read_text() == "new"
+
+
+def test_reproduce_moves_a_complete_report_into_place(tmp_path, monkeypatch):
+    """reproduce writes into a scratch directory inside DIR and moves the files at the end;
+    a failure while writing leaves DIR without half a report."""
+    from pathlib import Path
+
+    from hubbeam.reproduce import pipeline
+
+    def fake(directory, quick=False, jobs=None, progress=None):
+        directory = Path(directory)
+        (directory / "tables.json").write_text("{}")
+        (directory / "report.md").write_text("# report\n")
+        return directory / "report.md", {}
+
+    monkeypatch.setattr(pipeline, "reproduce", fake)
+    code, out, err = cli("reproduce", "-o", tmp_path / "rep")
+    assert code == 0, err
+    assert sorted(p.name for p in (tmp_path / "rep").iterdir()) == ["report.md", "tables.json"]
+    assert out.strip() == f"report: {tmp_path / 'rep' / 'report.md'}"
+
+    def failing(directory, quick=False, jobs=None, progress=None):
+        (Path(directory) / "tables.json").write_text("{}")
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(pipeline, "reproduce", failing)
+    code, out, err = cli("reproduce", "-o", tmp_path / "rep2")
+    assert code == 1 and "No space left on device" in err, err
+    assert_contract(code, out, err)
+    assert list((tmp_path / "rep2").iterdir()) == []
