@@ -373,7 +373,7 @@ def _cmd_campbell(args, scenario) -> dict:
     progress, finish = _progress_bar(len(forms) * speeds.size, label="campbell", unit="points")
     try:
         ds = campbell(scenario, speeds, count=args.count, formulations=forms,
-                      progress=(lambda done, total: progress(done)) if progress else None)
+                      progress=lambda done, total: progress(done))
     finally:
         finish()
 
@@ -440,7 +440,7 @@ def _cmd_sweep(args, scenario) -> dict:
     partial = None
     try:
         ds = sweep(scenario, varied, scheduler=args.scheduler, workers=args.workers,
-                   progress=(lambda done, n: progress(done)) if progress else None)
+                   progress=lambda done, n: progress(done))
     except Interrupted as exc:
         ds, partial = exc.partial, exc
     finally:
@@ -520,7 +520,9 @@ def _cmd_identify(args, scenario) -> dict:
 
     targets = _check([Target("-o", args.output, "figure")], args, ("measured file", args.measured))
     times, measured = _read_measured(args.measured, args.signal)
-    fit = identify(scenario, times, measured, args.fit, signal=args.signal)
+    from hubbeam import interrupt
+
+    fit = identify(scenario, times, measured, args.fit, signal=args.signal, progress=lambda n: interrupt.check())
     d = fit.to_dict()
     if targets:
         from hubbeam import plots
@@ -559,7 +561,7 @@ def _cmd_applicability(args) -> dict:
     start = time.perf_counter()
     try:
         ds = applicability_map(scenario, thickness, ratio, scheduler=args.scheduler, workers=args.workers,
-                               progress=(lambda done, n: progress(done)) if progress else None)
+                               progress=lambda done, n: progress(done))
     finally:
         finish()
     wall = time.perf_counter() - start
@@ -641,9 +643,12 @@ def _cmd_reproduce(args) -> int:
 
 
 def _progress_bar(t_end: float, label: str = "simulating", unit: str = "s"):
-    """A rich progress bar on a terminal, nothing otherwise: (update(t), finish())."""
+    """(update(t), finish()): a rich progress bar on a terminal; in any case ``update`` is
+    where a signal whose exception a library swallowed is raised again (interrupt.check)."""
+    from hubbeam import interrupt
+
     if not sys.stderr.isatty():
-        return None, lambda: None
+        return (lambda t: interrupt.check()), lambda: None
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
     done = "t = {task.completed:.2f} s" if unit == "s" else "{task.completed:.0f} / {task.total:.0f} " + unit
@@ -651,7 +656,12 @@ def _progress_bar(t_end: float, label: str = "simulating", unit: str = "s"):
                    TimeRemainingColumn(), transient=True)
     task = bar.add_task("run", total=t_end)
     bar.start()
-    return (lambda t: bar.update(task, completed=t)), bar.stop
+
+    def update(t):
+        interrupt.check()
+        bar.update(task, completed=t)
+
+    return update, bar.stop
 
 
 def _where(exc: BaseException) -> str:

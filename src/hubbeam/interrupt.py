@@ -21,7 +21,7 @@ import threading
 #: the signals that interrupt a command
 SIGNALS = tuple(s for s in (getattr(signal, n, None) for n in ("SIGINT", "SIGTERM", "SIGHUP")) if s is not None)
 
-_state = {"defer": 0, "pending": None}
+_state = {"defer": 0, "pending": None, "received": None}
 
 
 class Interrupted(BaseException):
@@ -45,6 +45,7 @@ class Interrupted(BaseException):
 
 
 def _handler(signum, frame):
+    _state["received"] = signum
     if _state["defer"]:
         if _state["pending"] is None:
             _state["pending"] = signum
@@ -70,11 +71,19 @@ def handling():
     except BaseException:
         _restore(previous)
         raise
-    _state["pending"] = None
+    _state["pending"] = _state["received"] = None
     try:
         yield
     finally:
         _restore(previous)
+        _state["pending"] = _state["received"] = None
+
+
+def check() -> None:
+    """Raise :class:`Interrupted` again if a signal came and its exception was swallowed on
+    the way (a bare ``except:`` in some library): called between chunks of work."""
+    if _state["received"] is not None and not _state["defer"]:
+        raise Interrupted(_state["received"])
 
 
 def _restore(previous: dict) -> None:

@@ -31,9 +31,27 @@ def hubbeam(*args, **kwargs) -> subprocess.CompletedProcess:
                           timeout=kwargs.pop("timeout", 600), **kwargs)
 
 
+def _default_signals():
+    # a test run started in the background of a shell ignores SIGINT, and so would the child:
+    # hubbeam keeps a signal ignored that was ignored when it started (as nohup expects)
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def popen(*args, **kwargs) -> subprocess.Popen:
     return subprocess.Popen([sys.executable, "-m", "hubbeam.cli", *map(str, args)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, **kwargs)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_default_signals, **kwargs)
+
+
+def finish(proc: subprocess.Popen, timeout: float = 120) -> tuple[str, str]:
+    """stdout and stderr of a process that should end by itself; killed if it does not."""
+    try:
+        return proc.communicate(timeout=timeout)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
 
 
 def assert_contract(code, stdout: str, stderr: str, json_out: bool = False) -> None:

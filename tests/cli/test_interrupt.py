@@ -8,7 +8,7 @@ import time
 import numpy as np
 import pytest
 
-from tests.cli.helpers import EXAMPLES, assert_contract, hubbeam, no_temporary_files, popen
+from tests.cli.helpers import EXAMPLES, assert_contract, finish, hubbeam, no_temporary_files, popen
 
 LONG = ["--set", "analysis.t_end=2000.0"]  # minutes of integration: always stopped before the end
 
@@ -30,7 +30,7 @@ def stopped_run(tmp_path, sig, start_up, extra=()):
         time.sleep(delay)
         sent = time.perf_counter()
         proc.send_signal(sig)
-        stdout, stderr = proc.communicate(timeout=120)
+        stdout, stderr = finish(proc)
         stopped = time.perf_counter() - sent
         if "before the time integration started" not in stderr:
             return proc.returncode, stdout, stderr, stopped
@@ -80,7 +80,7 @@ def test_sigint_during_start_up_is_one_line(tmp_path, delay):
     proc = popen("run", EXAMPLES / "exp1.toml", *LONG, "-o", tmp_path / "r.nc")
     time.sleep(delay)
     proc.send_signal(signal.SIGINT)
-    stdout, stderr = proc.communicate(timeout=120)
+    stdout, stderr = finish(proc)
     assert proc.returncode == 130, stderr
     assert_contract(proc.returncode, stdout, stderr)
     assert "interrupted by SIGINT" in stderr
@@ -145,3 +145,22 @@ def test_reproduce_workers_stop_at_once_when_interrupted(monkeypatch):
     assert time.perf_counter() - raised[0] < 1.5  # terminate() works: no 2 s wait before kill()
     time.sleep(0.2)
     assert not [p for p in multiprocessing.active_children() if p.is_alive()]
+
+
+def test_a_swallowed_interruption_is_raised_again():
+    """A library's bare ``except:`` may swallow the exception a signal raised; the signal is
+    remembered and raised again at the next check (between chunks of work)."""
+    import os
+
+    from hubbeam import interrupt
+
+    with interrupt.handling():
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(1)  # the handler raises here
+        except BaseException:  # noqa: S110 - what a careless library does
+            pass
+        with pytest.raises(interrupt.Interrupted) as info:
+            interrupt.check()
+    assert info.value.exit_code == 143
+    interrupt.check()  # outside handling(): nothing pending
