@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.elements.ffr.body import FfrBeam
-from hubbeam.io.scenario import Scenario
+from hubbeam.io.scenario import Scenario, ScenarioError
 from hubbeam.solvers.modal import Modes, modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import StaticSolution, solve_static
 from hubbeam.system.ancf_part import AncfPart
@@ -21,6 +21,52 @@ from hubbeam.system.tip_body import TipBody
 
 #: analysis.newton of a scenario -> NewtonOptions.update (when the iteration matrix is rebuilt)
 NEWTON_UPDATES = {"full": "iteration", "step": "step", "modified": "adaptive"}
+
+
+def load_scenario(source, overrides: list[str] | None = None) -> Scenario:
+    """Read, override (``--set``-style strings) and validate a scenario file; ScenarioError
+    for anything else (a path that is not a text file, overrides that are not a list of strings)."""
+    import os
+
+    from hubbeam.io import scenario as io_scenario
+    from hubbeam.io.targets import check_input_file
+
+    if overrides is not None and (isinstance(overrides, (str, bytes)) or not isinstance(overrides, (list, tuple))
+                                  or not all(isinstance(o, str) for o in overrides)):
+        raise ScenarioError(f"overrides: expected a list of 'KEY=VALUE' strings (got {type(overrides).__name__} "
+                            f"{overrides!r:.60})")
+    if not isinstance(source, (str, os.PathLike)):
+        raise ScenarioError(f"scenario: expected the path of a scenario file (got {type(source).__name__} {source!r:.60})")
+    return io_scenario.load_scenario(check_input_file(source), list(overrides or []))
+
+
+def as_scenario(scenario) -> Scenario:
+    """A Scenario validated again (``model_copy(update=...)`` skips validation) or a scenario file's path."""
+    import os
+    import warnings
+
+    from hubbeam.io.scenario import validate
+
+    if isinstance(scenario, Scenario):
+        unknown = [k for k in vars(scenario) if k not in type(scenario).model_fields]
+        if unknown:  # model_copy(update=...) with a name that is not a field (e.g. "beam" for "single_beam")
+            raise ScenarioError(f"{unknown[0]}: not a field of Scenario (fields: {', '.join(type(scenario).model_fields)})")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # pydantic warns when model_copy put a wrong type in
+            try:
+                data = scenario.to_dict()
+            except Exception as exc:
+                raise ScenarioError(f"scenario: not a valid Scenario ({exc.__class__.__name__})") from None
+        scenario = validate(data)
+    elif isinstance(scenario, (str, os.PathLike)):
+        scenario = load_scenario(scenario)
+    else:
+        raise ScenarioError(f"scenario: expected a Scenario or the path of a scenario file (got "
+                            f"{type(scenario).__name__} {scenario!r:.60})")
+    from hubbeam.limits import check_magnitudes
+
+    check_magnitudes(scenario)  # no overflow or underflow inside the model
+    return scenario
 
 
 def beam_part(spec):
@@ -68,7 +114,8 @@ def torque_law(law) -> TorqueLaw:
 def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> HubSystem:
     """The hub system a scenario describes. ``torque``: a torque law that replaces the
     scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function torque(t, theta, omega),
-    which integrates step by step in Python)."""
+    which integrates step by step in Python). ``scenario``: a Scenario or a scenario file's path."""
+    scenario = as_scenario(scenario)
     hub = scenario.hub
     drive = drive_profile(hub.drive, "hub.drive") if hub.drive is not None else DriveProfile("rest")
     law = torque if torque is not None else torque_law(hub.torque_law)
@@ -132,6 +179,7 @@ class ModalResult:
 
 def static(scenario: Scenario) -> StaticResult:
     """Static equilibrium under gravity and loads, hub held at theta = 0 (load stepping)."""
+    scenario = as_scenario(scenario)
     system = build_system(scenario)
     return StaticResult(system, solve_static(system, load_steps=scenario.analysis.load_steps))
 
@@ -141,6 +189,7 @@ def modes(scenario: Scenario) -> ModalResult:
     or, for a hub driven at a constant omega_s, about the steadily rotating state
     (centrifugal pre-stress and gyroscopic terms; drag left out). Other prescribed profiles
     give the modes at rest with the hub held."""
+    scenario = as_scenario(scenario)
     system = build_system(scenario)
     count = scenario.analysis.count
     load_steps = scenario.analysis.load_steps
@@ -163,17 +212,22 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     spectral radius, output step, Newton options). ``torque`` replaces the scenario's torque
     law (e.g. ``TorqueLaw.callable(f)``: the slower Python step path); ``sensors`` its
     sensors. Returns (trajectory, failure): on a ComputationError, failure is that error and
-    the trajectory holds the results up to it."""
-    from hubbeam.simulation import initial_state, simulate
+    the trajectory holds the results up to it. A run too large to do (steps, records' memory)
+    is a ScenarioError before anything is built; an interruption (KeyboardInterrupt,
+    hubbeam.interrupt.Interrupted) carries the trajectory so far in its ``partial``."""
     from hubbeam.errors import ComputationError
+    from hubbeam.limits import check_run
+    from hubbeam.simulation import initial_state, simulate
     from hubbeam.solvers.generalized_alpha import NewtonOptions
 
+    scenario = as_scenario(scenario)
+    check_run(scenario)
     a = scenario.analysis
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
         system = build_system(scenario, torque)
         state = initial_state(system, a.load_steps, a.start)
         return simulate(system, scenario.sensors if sensors is None else sensors, a.t_end, a.dt, a.spectral_radius,
-                        scenario.output_dt, progress, newton, state), None
+                        min(scenario.output_dt, a.t_end), progress, newton, state), None
     except ComputationError as exc:
         return exc.partial, exc

@@ -1,31 +1,49 @@
-"""The ``hubbeam`` command line (see ../shared/interface.md).
+"""The ``hubbeam`` command line (see ../shared/interface.md and docs/reliability.md).
 
-Exit status: 0 success, 2 bad input (one line naming the key), 1 failed computation
-(a message saying where and what to try). No traceback reaches the user unless the
-environment variable HUBBEAM_DEBUG is set.
+Exit status: 0 success, 2 bad input (one line naming the key or option), 1 failed
+computation or failed write (a line saying where and what to try; the results so far are
+written), 128 + N when stopped by signal N (130 SIGINT, 143 SIGTERM, 129 SIGHUP; a run
+writes its partial trajectory). Output targets are checked before any computation. No
+traceback reaches the user unless the environment variable HUBBEAM_DEBUG is set.
+
+Only the standard library is imported at module level: the signal handlers are in place
+before numpy, numba or xarray load, so an early Ctrl-C is one line, not a traceback.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 
-import numpy as np
+#: a measured file may be larger than a scenario file
+MAX_MEASURED_BYTES = 256 * 2**20
 
-from hubbeam.io.scenario import EXAMPLES, ScenarioError, example_text, load_scenario
-from hubbeam.errors import ComputationError
+#: names this module used to import at its top, still importable from it (loaded on first use)
+_LAZY = {"EXAMPLES": "hubbeam.io.scenario", "example_text": "hubbeam.io.scenario",
+         "load_scenario": "hubbeam.io.scenario", "ScenarioError": "hubbeam.errors",
+         "ComputationError": "hubbeam.errors"}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'hubbeam.cli' has no attribute {name!r}")
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # argparse prints usage and exits 2: keep it to two lines
-        self.print_usage(sys.stderr)
-        print(f"hubbeam: error: {message}", file=sys.stderr)
+    def error(self, message):  # argparse prints a usage of several lines: one line instead
+        _say(f"hubbeam: error: {message} (usage: {self.prog} --help)")
         raise SystemExit(2)
 
 
 def _parser() -> argparse.ArgumentParser:
+    from hubbeam.io.scenario import EXAMPLES
+
     p = _Parser(prog="hubbeam", description="Rotating hub with a 3D flexible beam: ANCF with torsion and FFR, side by side.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
@@ -40,14 +58,14 @@ def _parser() -> argparse.ArgumentParser:
     run = scenario_cmd("run", "run the scenario's analysis")
     run.add_argument("-o", "--output", help="NetCDF result file")
     run.add_argument("--csv", help="CSV result file")
-    run.add_argument("--plot", help="PNG figure")
+    run.add_argument("--plot", help="figure (PNG, PDF, SVG, ...)")
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
-    st.add_argument("--plot", help="PNG figure of the deformed beam")
+    st.add_argument("--plot", help="figure of the deformed beam")
     scenario_cmd("modes", "natural frequencies about the static equilibrium (steady rotation for a constant drive)")
     camp = scenario_cmd("campbell", "natural frequencies about the steadily rotating state against hub speed")
     camp.add_argument("--omega", required=True, metavar="START:STOP:N", help="hub speeds (rad/s)")
     camp.add_argument("--count", type=int, default=6, help="modes per speed (default 6)")
-    camp.add_argument("-o", "--output", help="PNG figure")
+    camp.add_argument("-o", "--output", help="figure")
     camp.add_argument("--data", help="NetCDF file of the frequencies")
     camp.add_argument("--formulations", default="ancf,ffr,ffr+", help="comma-separated: ancf, ffr, ffr+ (default all)")
     sw = scenario_cmd("sweep", "run the scenario over the cartesian product of varied keys, on Dask")
@@ -56,12 +74,12 @@ def _parser() -> argparse.ArgumentParser:
     sw.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster here)")
     sw.add_argument("--workers", type=int, default=None, help="LocalCluster worker processes (default: all cores)")
     sw.add_argument("-o", "--output", required=True, help="NetCDF file of the merged results")
-    sw.add_argument("--plot", help="PNG figure of the results (up to four variables)")
+    sw.add_argument("--plot", help="figure of the results (up to four variables)")
     idf = scenario_cmd("identify", "fit scenario parameters to a measured time series (least squares)")
     idf.add_argument("measured", help="CSV with a header row: a 'time' column (s) and the signal's column")
     idf.add_argument("--fit", nargs="+", required=True, metavar="KEY", help="scenario keys to fit (e.g. damping.linear)")
     idf.add_argument("--signal", default="strain_P1", help="the sensor (column) to match (default strain_P1)")
-    idf.add_argument("-o", "--output", help="PNG figure of fit and data")
+    idf.add_argument("-o", "--output", help="figure of fit and data")
     app = sub.add_parser("applicability", help="map FFR's error against ANCF over deflection and hub speed")
     app.add_argument("scenario", nargs="?", default=None, help="scenario file (default: the bundled exp1)")
     app.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
@@ -80,6 +98,96 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+# ------------------------------------------------------------------------------ helpers
+def _say(text: str) -> None:
+    """One line on stderr (a closed terminal, after SIGHUP, is not an error)."""
+    try:
+        print(" ".join(str(text).split()), file=sys.stderr, flush=True)
+    except (OSError, ValueError):
+        pass
+
+
+def _load(args):
+    """The scenario of a command: the file checked (a regular text file of sane size), then
+    read, overridden and validated."""
+    from hubbeam.io.scenario import load_scenario
+    from hubbeam.io.targets import check_input_file
+
+    return load_scenario(check_input_file(args.scenario, "scenario file"), args.overrides)
+
+
+def _check(targets, args, *inputs):
+    """Check the output targets before computing (ScenarioError naming the option)."""
+    from hubbeam.io.targets import check_outputs
+
+    files = [("scenario file", getattr(args, "scenario", None))] + list(inputs)
+    return check_outputs(targets, files)
+
+
+def _written(paths) -> str:
+    return ", ".join(str(p) for p in paths)
+
+
+def _write(jobs) -> list[str]:
+    """Write (target, writer) jobs; OutputError (exit 1) naming the ones that failed and the
+    ones written; a signal during the writes takes effect after them."""
+    from hubbeam import interrupt
+    from hubbeam.io.targets import OutputError, write_all
+
+    written, errors = write_all(jobs)
+    if errors:
+        also = f" (written: {_written(written)})" if written else ""
+        raise OutputError("; ".join(errors) + also)
+    interrupt.raise_pending()
+    return written
+
+
+def _limit_workers(value, option: str) -> None:
+    from hubbeam.io.scenario import ScenarioError
+
+    if value is None:
+        return
+    cores = os.cpu_count() or 1
+    if value < 1:
+        raise ScenarioError(f"{option}: must be >= 1 (got {value})")
+    if value > 4 * cores:
+        raise ScenarioError(f"{option}: {value} processes on {cores} cores; at most {4 * cores}")
+
+
+def _json_safe(obj, path: str = "", bad: list | None = None):
+    """``obj`` with every non-finite float replaced by None (JSON has no NaN); their paths
+    are appended to ``bad``."""
+    import numpy as np
+
+    if isinstance(obj, dict):
+        return {k: _json_safe(v, f"{path}.{k}" if path else str(k), bad) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_json_safe(v, f"{path}[{i}]", bad) for i, v in enumerate(obj)]
+    if isinstance(obj, np.ndarray):
+        return _json_safe(obj.tolist(), path, bad)
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        if not math.isfinite(obj):
+            if bad is not None:
+                bad.append(path)
+            return None
+        return float(obj)
+    return obj
+
+
+def _print_json(result: dict) -> None:
+    bad: list[str] = []
+    safe = _json_safe(result, "", bad)
+    if bad:
+        safe["non_finite"] = {"paths": bad, "reason": "these values are not finite numbers (NaN or infinity); "
+                                                      "JSON has none, so they are null"}
+    print(json.dumps(safe, allow_nan=False))
+
+
+# ------------------------------------------------------------------------------ commands
 def _print_static(d: dict) -> None:
     t = d["tip_displacement"]
     print(f"tip displacement (hub frame): radial {t['radial']:+.6g} m, vertical {t['vertical']:+.6g} m, "
@@ -91,24 +199,51 @@ def _print_static(d: dict) -> None:
 
 def _cmd_static(args, scenario) -> dict:
     from hubbeam import api
+    from hubbeam.io.targets import Target
+    from hubbeam.errors import ComputationError
 
-    result = api.static(scenario)
+    targets = _check([Target("--plot", getattr(args, "plot", None), "figure")], args)
+    try:
+        result = api.static(scenario)
+    except ComputationError as exc:
+        if not str(exc).startswith("static"):
+            raise ComputationError(f"static equilibrium: {exc}", partial=exc.partial) from exc
+        raise
     d = result.to_dict()
-    if getattr(args, "plot", None):
+    if targets:
         from hubbeam import plots
 
         x0, F0 = result.system.initial_state(0.0)
         sol = result.solution
-        plots.plot_deformed(result.system, x0, F0, sol.x, sol.chart, args.plot, title=f"{scenario.name}: static equilibrium")
+        _write([(targets[0], lambda p: plots.plot_deformed(result.system, x0, F0, sol.x, sol.chart, p,
+                                                          title=f"{scenario.name}: static equilibrium"))])
     if not args.json:
         _print_static(d)
     return d
 
 
-def _cmd_modes(args, scenario) -> dict:
-    from hubbeam import api
+def _numerical_failure(what: str, exc: BaseException):
+    """A ComputationError for a linear-algebra failure (a matrix with NaN, not positive
+    definite) inside ``what``."""
+    from hubbeam.errors import ComputationError
 
-    d = api.modes(scenario).to_dict()
+    reason = (str(exc).splitlines() or [""])[0][:160]
+    return ComputationError(f"{what} failed ({exc.__class__.__name__}: {reason}); try more analysis.load_steps or "
+                            "beam.elements, and check the scenario's values and units (SI)")
+
+
+def _cmd_modes(args, scenario) -> dict:
+    import numpy as np
+
+    from hubbeam import api
+    from hubbeam.io.scenario import ScenarioError
+
+    try:
+        d = api.modes(scenario).to_dict()
+    except ScenarioError:
+        raise
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise _numerical_failure("modal analysis", exc) from exc
     if not args.json:
         print(f"natural frequencies (Hz) about the {d['about']}, {d['rigid_modes']} rigid mode(s) left out:")
         for i, f in enumerate(d["frequencies_hz"], 1):
@@ -117,32 +252,35 @@ def _cmd_modes(args, scenario) -> dict:
 
 
 def _cmd_run(args, scenario) -> dict:
-    kind = scenario.analysis.kind
-    if kind == "static":
-        return _cmd_static(args, scenario)
-    if kind == "modes":
-        return _cmd_modes(args, scenario)
-    from hubbeam import api
-    from hubbeam.io import results
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import Target
 
+    kind = scenario.analysis.kind
+    if kind != "dynamic":
+        refused = [("-o", args.output), ("--csv", args.csv)] + ([("--plot", args.plot)] if kind == "modes" else [])
+        for option, value in refused:
+            if value is not None:
+                raise ScenarioError(f"{option}: analysis.kind = {kind!r} gives no time series to write (only a dynamic "
+                                    f"analysis does); for the {kind} result use --json")
+        return _cmd_static(args, scenario) if kind == "static" else _cmd_modes(args, scenario)
+    from hubbeam import api, limits
+    from hubbeam.interrupt import Interrupted
+
+    targets = _check([Target("-o", args.output), Target("--csv", args.csv), Target("--plot", args.plot, "figure")],
+                     args)
+    if args.plot is not None and not scenario.sensors:
+        raise ScenarioError(f"--plot {args.plot}: the scenario has no sensors, so there is nothing to draw")
+    size = limits.check_run(scenario)
+    if size.note:
+        _say(f"hubbeam: note: {size.note}")
     progress, finish = _progress_bar(scenario.analysis.t_end)
     try:
         traj, failure = api.run(scenario, progress)
+    except Interrupted as exc:
+        traj, failure = exc.partial, exc
     finally:
         finish()
-    if traj is not None and traj.times:
-        if args.output:
-            results.write_trajectory_netcdf(traj, scenario, args.output)
-        if args.csv or args.plot:
-            ds = results.to_dataset(traj, scenario)
-            if args.csv:
-                results.write_csv(ds, args.csv)
-            if args.plot:
-                from hubbeam import plots
-
-                plots.plot_timeseries(ds, args.plot, title=scenario.name)
-    if failure is not None:
-        raise failure
+    _finish_run(targets, scenario, traj, failure)
     final = {name: values[-1] for name, values in traj.records.items()}
     summary = {"steps": traj.steps, "newton_iterations": traj.newton_iterations,
                "newton_iterations_per_step": traj.newton_iterations / max(traj.steps, 1),
@@ -160,7 +298,63 @@ def _cmd_run(args, scenario) -> dict:
     return summary
 
 
+def _finish_run(targets, scenario, traj, failure) -> None:
+    """Write a run's results (complete or partial) and raise its failure with one line that
+    says how far it got and what was written."""
+    from hubbeam import interrupt
+    from hubbeam.interrupt import Interrupted
+    from hubbeam.io import results
+    from hubbeam.io.targets import OutputError, write_all
+    from hubbeam.errors import ComputationError
+
+    has_data = traj is not None and len(traj.times) > 0
+    status = None
+    if failure is not None and has_data:
+        reason = f"interrupted by {failure.name}" if isinstance(failure, Interrupted) else f"computation failed: {failure}"
+        status = results.completion(traj, scenario.analysis.t_end, reason)
+    cache = {}
+
+    def dataset():
+        if "ds" not in cache:
+            cache["ds"] = results.to_dataset(traj, scenario, status)
+        return cache["ds"]
+
+    def plot(path):
+        from hubbeam import plots
+
+        plots.plot_timeseries(dataset(), path, title=scenario.name + (" (partial)" if status else ""))
+
+    writers = {"-o": lambda p: results.write_trajectory_netcdf(traj, scenario, p, status),
+               "--csv": lambda p: results.write_csv(dataset(), p), "--plot": plot}
+    jobs = [(t, writers[t.option]) for t in targets] if has_data else []
+    written, errors = write_all(jobs)
+    t_reached = float(traj.times[-1]) if has_data else None
+    not_written = f"; could not write: {'; '.join(errors)}" if errors else ""
+    if isinstance(failure, Interrupted):
+        interrupt.take_pending()  # a second signal while writing: we are stopping anyway
+        if t_reached is None:
+            failure.detail = " before the time integration started; nothing written"
+        else:
+            where = f" at t = {t_reached:g} s of {scenario.analysis.t_end:g} s"
+            what = (f"; the results so far are in {_written(written)} (marked partial)" if written
+                    else "; no output file was requested, nothing written" if not targets else "")
+            failure.detail = where + what + not_written
+        raise failure
+    if failure is not None:
+        text = str(failure)
+        if has_data and " at t = " not in text:
+            text = f"time integration after t = {t_reached:g} s: {text}"
+        if written:
+            text += f" Results up to t = {t_reached:g} s are in {_written(written)} (marked partial)."
+        raise ComputationError(text + not_written, partial=traj) from failure
+    if errors:
+        raise OutputError("; ".join(errors) + (f" (written: {_written(written)})" if written else ""))
+    interrupt.raise_pending()
+
+
 def _cmd_campbell(args, scenario) -> dict:
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import Target
     from hubbeam.studies.campbell import campbell
     from hubbeam.studies.variants import FORMULATIONS, parse_range
 
@@ -173,20 +367,27 @@ def _cmd_campbell(args, scenario) -> dict:
     unknown = [f for f in forms if f not in FORMULATIONS]
     if unknown:
         raise ScenarioError(f"--formulations: unknown {', '.join(unknown)} (use {', '.join(FORMULATIONS)})")
+    if len(set(forms)) != len(forms):
+        raise ScenarioError(f"--formulations: a formulation is given twice ({args.formulations})")
+    targets = _check([Target("-o", args.output, "figure"), Target("--data", args.data)], args)
     progress, finish = _progress_bar(len(forms) * speeds.size, label="campbell", unit="points")
     try:
         ds = campbell(scenario, speeds, count=args.count, formulations=forms,
-                      progress=(lambda done, total: progress(done)) if progress else None)
+                      progress=lambda done, total: progress(done))
     finally:
         finish()
-    if args.output:
+
+    def figure(path):
         from hubbeam import plots
 
-        plots.plot_campbell(ds, args.output, title=f"Campbell diagram: {scenario.name}")
-    if args.data:
+        plots.plot_campbell(ds, path, title=f"Campbell diagram: {scenario.name}")
+
+    def data(path):
         from hubbeam.io.results import write_netcdf
 
-        write_netcdf(ds, args.data)
+        write_netcdf(ds, path)
+
+    _write([(t, figure if t.option == "-o" else data) for t in targets])
     result = {"omega": speeds.tolist(),
               "frequencies_hz": {str(f): ds["frequency_hz"].sel(formulation=f).values.tolist() for f in forms}}
     if not args.json:
@@ -196,35 +397,85 @@ def _cmd_campbell(args, scenario) -> dict:
     return result
 
 
+#: a sweep has at most this many points
+MAX_SWEEP_POINTS = 100_000
+
+
 def _cmd_sweep(args, scenario) -> dict:
-    from hubbeam.io.results import write_netcdf
+    import itertools
+
+    import numpy as np
+
+    from hubbeam.interrupt import Interrupted
+    from hubbeam.io.scenario import ScenarioError, apply_overrides, validate
+    from hubbeam.io.targets import Target
     from hubbeam.studies.sweep import format_value, sweep
     from hubbeam.studies.variants import parse_vary
 
     varied = {}
     for text in args.vary:
         key, values, integral = parse_vary(text)
+        if key in varied:
+            raise ScenarioError(f"--vary {key}: given twice (give one range per key)")
         varied[key] = (values, integral)
-    if args.workers is not None and args.workers < 1:
-        raise ScenarioError(f"--workers: must be >= 1 (got {args.workers})")
-    # check the first point here, so that a bad key is a clear error and not a sweep of failures
-    first = [f"{k}={format_value(v[0][0], v[1])}" for k, v in varied.items()]
-    from hubbeam.io.scenario import apply_overrides, validate
+    _limit_workers(args.workers, "--workers")
+    total = int(np.prod([len(v[0]) for v in varied.values()], dtype=float))
+    if total > MAX_SWEEP_POINTS:
+        raise ScenarioError(f"--vary: {total} points; at most {MAX_SWEEP_POINTS}")
+    # every corner of the ranges is validated here (first and last value of each key, so the
+    # extremes of steps and memory too): a bad key or value is a clear error, not a sweep of failures
+    from hubbeam.limits import check_magnitudes, check_run
 
-    validate(apply_overrides(scenario.to_dict(), first))
-    total = int(np.prod([len(v[0]) for v in varied.values()]))
+    for corner in itertools.product(*[sorted({0, len(v[0]) - 1}) for v in varied.values()]):
+        overrides = [f"{k}={format_value(v[0][i], v[1])}" for (k, v), i in zip(varied.items(), corner)]
+        try:
+            point = validate(apply_overrides(scenario.to_dict(), overrides))
+            check_magnitudes(point)
+            if point.analysis.kind == "dynamic":
+                check_run(point)
+        except ScenarioError as exc:
+            raise ScenarioError(f"--vary {', '.join(overrides)}: {exc}") from None
+    targets = _check([Target("-o", args.output), Target("--plot", args.plot, "figure")], args)
     progress, finish = _progress_bar(total, label="sweep", unit="points")
+    partial = None
     try:
         ds = sweep(scenario, varied, scheduler=args.scheduler, workers=args.workers,
-                   progress=(lambda done, n: progress(done)) if progress else None)
+                   progress=lambda done, n: progress(done))
+    except Interrupted as exc:
+        ds, partial = exc.partial, exc
     finally:
         finish()
+    if ds is None:
+        partial.detail = "; no point had finished, nothing written"
+        raise partial
     ds.attrs["scenario_toml"] = json.dumps(scenario.to_dict())
-    write_netcdf(ds, args.output)
-    if args.plot:
+
+    def data(path):
+        from hubbeam.io.results import write_netcdf
+
+        write_netcdf(ds, path)
+
+    def figure(path):
         from hubbeam import plots
 
-        plots.plot_sweep(ds, args.plot, title=f"sweep of {scenario.name} over {', '.join(varied)}")
+        if not [n for n in ds.data_vars if n not in ("failed", "message") and ds[n].dtype.kind == "f"]:
+            raise ValueError("nothing to plot: no point produced a result")
+        plots.plot_sweep(ds, path, title=f"sweep of {scenario.name} over {', '.join(varied)}")
+
+    jobs = [(t, data if t.option == "-o" else figure) for t in targets]
+    if partial is not None:
+        from hubbeam import interrupt
+        from hubbeam.io.targets import write_all
+
+        written, errors = write_all(jobs)
+        interrupt.take_pending()
+        done = ds.attrs.get("points_done", 0)
+        partial.detail = (f" after {done} of {total} points; " +
+                          (f"the results so far are in {_written(written)} (marked partial; the points not run "
+                           "are marked failed)" if written else "nothing written") +
+                          (f"; could not write: {'; '.join(errors)}" if errors else ""))
+        raise partial
+    _write(jobs)
     failed = int(ds["failed"].sum())
     if not args.json:
         print(f"{total} points ({failed} failed) -> {args.output}")
@@ -232,38 +483,61 @@ def _cmd_sweep(args, scenario) -> dict:
 
 
 def _read_measured(path: str, signal: str):
+    """(times, values) of the measured file's 'time' and ``signal`` columns; ScenarioError
+    naming the file, column and row for anything that is not a clean, increasing series."""
     import pandas as pd
 
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import check_input_file
+    from hubbeam.studies.identify import check_measured
+
+    check_input_file(path, "measured file", MAX_MEASURED_BYTES)
     try:
         table = pd.read_csv(path)
-    except FileNotFoundError:
-        raise ScenarioError(f"{path}: no such file") from None
     except Exception as exc:
-        raise ScenarioError(f"{path}: cannot read as CSV ({exc.__class__.__name__})") from None
+        reason = (str(exc).splitlines() or [exc.__class__.__name__])[0][:160]
+        raise ScenarioError(f"{path}: cannot read as CSV ({reason})") from None
     for column in ("time", signal):
         if column not in table.columns:
             raise ScenarioError(f"{path}: no column {column!r} (columns: {', '.join(map(str, table.columns))})")
-    data = table[["time", signal]].apply(pd.to_numeric, errors="coerce").dropna()
-    return data["time"].to_numpy(float), data[signal].to_numpy(float)
+    arrays = []
+    for column in ("time", signal):
+        raw = table[column]
+        values = pd.to_numeric(raw, errors="coerce")
+        bad = values.isna().to_numpy()
+        if bad.any():
+            i = int(bad.argmax())
+            raise ScenarioError(f"{path}: column {column!r}, row {i + 2}: not a number ({raw.iloc[i]!r})")
+        arrays.append(values.to_numpy(float))
+    return check_measured(arrays[0], arrays[1], what=path, labels=("time", signal), first_row=2)
 
 
 def _cmd_identify(args, scenario) -> dict:
+    import numpy as np
+
+    from hubbeam.io.targets import Target
     from hubbeam.studies.identify import identify
 
+    targets = _check([Target("-o", args.output, "figure")], args, ("measured file", args.measured))
     times, measured = _read_measured(args.measured, args.signal)
-    fit = identify(scenario, times, measured, args.fit, signal=args.signal)
-    if args.output:
+    from hubbeam import interrupt
+
+    fit = identify(scenario, times, measured, args.fit, signal=args.signal, progress=lambda n: interrupt.check())
+    d = fit.to_dict()
+    if targets:
         from hubbeam import plots
 
-        plots.plot_fit(fit.times, fit.measured, fit.fitted, args.output, args.signal,
-                       title=f"{scenario.name}: fit of {', '.join(args.fit)}")
-    d = fit.to_dict()
+        _write([(targets[0], lambda p: plots.plot_fit(fit.times, fit.measured, fit.fitted, p, args.signal,
+                                                      title=f"{scenario.name}: fit of {', '.join(args.fit)}"))])
     if not args.json:
         for name, p in d["parameters"].items():
-            print(f"{name} = {p['value']:.6g} +- {p['ci95']:.3g} (95 %), from {p['initial']:.6g}")
+            ci = "n/a" if p["ci95"] is None else f"{p['ci95']:.3g}"
+            print(f"{name} = {p['value']:.6g} +- {ci} (95 %), from {p['initial']:.6g}")
         if len(args.fit) > 1:
-            print(f"correlation: {np.array2string(np.array(d['correlation']), precision=3)}")
+            print(f"correlation: {np.array2string(np.array(fit.correlation), precision=3)}")
         print(f"rms residual {d['rms_residual']:.3g}, {d['simulations']} simulations")
+        for note in d["notes"]:
+            print(f"note: {note}")
     return d
 
 
@@ -271,38 +545,57 @@ def _cmd_applicability(args) -> dict:
     import time
     from pathlib import Path
 
-    from hubbeam import plots
-    from hubbeam.io.results import write_netcdf
-    from hubbeam.io.scenario import load_example
+    from hubbeam.io.scenario import ScenarioError, load_example
+    from hubbeam.io.targets import Target
     from hubbeam.studies.applicability import applicability_map
     from hubbeam.studies.variants import parse_range
 
-    scenario = load_scenario(args.scenario, args.overrides) if args.scenario else load_example("exp1", args.overrides)
+    scenario = _load(args) if args.scenario else load_example("exp1", args.overrides)
     thickness, ratio = parse_range(args.thickness, "--thickness"), parse_range(args.ratio, "--ratio")
     if (thickness <= 0).any() or (ratio < 0).any() or (ratio >= 1).any():
         raise ScenarioError("--thickness must be > 0 and --ratio in [0, 1)")
+    _limit_workers(args.workers, "--workers")
+    _check([Target("-o", args.output, "directory")], args)
     total = thickness.size * (ratio.size + 1)
     progress, finish = _progress_bar(total, label="applicability", unit="tasks")
     start = time.perf_counter()
     try:
         ds = applicability_map(scenario, thickness, ratio, scheduler=args.scheduler, workers=args.workers,
-                               progress=(lambda done, n: progress(done)) if progress else None)
+                               progress=lambda done, n: progress(done))
     finally:
         finish()
     wall = time.perf_counter() - start
     out = Path(args.output)
-    out.mkdir(parents=True, exist_ok=True)
-    write_netcdf(ds, out / "applicability.nc")
-    plots.plot_applicability(ds, out / "applicability.png", title=f"FFR against ANCF: {scenario.name}")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        from hubbeam.io.targets import OutputError
+
+        raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
     lines = ["| h (mm) | w_m/L | " + " | ".join(f"ω/ω1 = {r:.2f}" for r in ratio) + " |",
              "|---|---|" + "---|" * ratio.size]
     for i, h in enumerate(thickness):
         cells = [f"{ds['frequency_error_pct'].values[i, j]:+.1f} / {ds['deflection_error_pct'].values[i, j]:+.1f}"
                  for j in range(ratio.size)]
         lines.append(f"| {1000 * h:.2f} | {ds['w_m_over_L'].values[i]:.2f} | " + " | ".join(cells) + " |")
-    (out / "applicability.md").write_text(
-        f"# FFR's error against ANCF ({scenario.name})\n\nEach cell: first-frequency error / tip-deflection error "
-        f"of FFR in percent. {total} tasks, {wall:.0f} s.\n\n" + "\n".join(lines) + "\n")
+    text = (f"# FFR's error against ANCF ({scenario.name})\n\nEach cell: first-frequency error / tip-deflection error "
+            f"of FFR in percent. {total} tasks, {wall:.0f} s.\n\n" + "\n".join(lines) + "\n")
+
+    def data(path):
+        from hubbeam.io.results import write_netcdf
+
+        write_netcdf(ds, path)
+
+    def figure(path):
+        from hubbeam import plots
+
+        plots.plot_applicability(ds, path, title=f"FFR against ANCF: {scenario.name}")
+
+    def table(path):
+        Path(path).write_text(text, encoding="utf-8")
+
+    _write([(Target("-o", str(out / "applicability.nc")), data), (Target("-o", str(out / "applicability.png")), figure),
+            (Target("-o", str(out / "applicability.md")), table)])
     failed = int((ds["message"] != "").sum())
     if not args.json:
         print(f"{total} tasks ({failed} failed) in {wall:.0f} s -> {out}/applicability.png, .nc, .md")
@@ -310,24 +603,52 @@ def _cmd_applicability(args) -> dict:
 
 
 def _cmd_reproduce(args) -> int:
+    import shutil
+    import tempfile
+    from pathlib import Path
+
+    from hubbeam.io.targets import OutputError, Target
     from hubbeam.reproduce.pipeline import reproduce
 
-    if args.jobs is not None and args.jobs < 1:
-        raise ScenarioError(f"--jobs: must be >= 1 (got {args.jobs})")
+    _limit_workers(args.jobs, "--jobs")
+    _check([Target("-o", args.output, "directory")], args)
 
     def progress(done, total, outcome):
         state = "failed" if outcome.failure else "done"
-        print(f"[{done}/{total}] {outcome.case.key}: {state} in {outcome.wall_time_s:.0f} s", file=sys.stderr)
+        _say(f"[{done}/{total}] {outcome.case.key}: {state} in {outcome.wall_time_s:.0f} s")
 
-    path, _ = reproduce(args.output, quick=args.quick, jobs=args.jobs, progress=progress)
-    print(f"report: {path}")
+    out = Path(args.output)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        work = Path(tempfile.mkdtemp(prefix=".reproduce-", dir=out))
+    except OSError as exc:
+        raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
+    try:
+        # the report is written into a scratch directory inside DIR and each file moved into DIR
+        # when all are complete, so that a failed write leaves no half report
+        try:
+            path, _ = reproduce(work, quick=args.quick, jobs=args.jobs, progress=progress)
+        except OSError as exc:
+            raise OutputError(f"-o {out}: cannot write the report ({exc.strerror or exc})") from None
+        from hubbeam import interrupt
+
+        with interrupt.deferred():
+            for item in sorted(work.iterdir()):
+                os.replace(item, out / item.name)
+        interrupt.raise_pending()
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    print(f"report: {out / path.name}")
     return 0
 
 
 def _progress_bar(t_end: float, label: str = "simulating", unit: str = "s"):
-    """A rich progress bar on a terminal, nothing otherwise: (update(t), finish())."""
+    """(update(t), finish()): a rich progress bar on a terminal; in any case ``update`` is
+    where a signal whose exception a library swallowed is raised again (interrupt.check)."""
+    from hubbeam import interrupt
+
     if not sys.stderr.isatty():
-        return None, lambda: None
+        return (lambda t: interrupt.check()), lambda: None
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
     done = "t = {task.completed:.2f} s" if unit == "s" else "{task.completed:.0f} / {task.total:.0f} " + unit
@@ -335,11 +656,48 @@ def _progress_bar(t_end: float, label: str = "simulating", unit: str = "s"):
                    TimeRemainingColumn(), transient=True)
     task = bar.add_task("run", total=t_end)
     bar.start()
-    return (lambda t: bar.update(task, completed=t)), bar.stop
+
+    def update(t):
+        interrupt.check()
+        bar.update(task, completed=t)
+
+    return update, bar.stop
 
 
+def _where(exc: BaseException) -> str:
+    """The function (and module) where an exception was raised."""
+    tb = exc.__traceback__
+    while tb is not None and tb.tb_next is not None:
+        tb = tb.tb_next
+    if tb is None:
+        return "an unknown place"
+    code = tb.tb_frame.f_code
+    module = tb.tb_frame.f_globals.get("__name__", "?")
+    return f"{module}.{code.co_name}"
+
+
+# ------------------------------------------------------------------------------ main
 def main(argv: list[str] | None = None) -> int:
+    """Run one command; returns the exit status. SIGINT, SIGTERM and SIGHUP are handled
+    (see :mod:`hubbeam.interrupt`) from here on; the previous handlers come back after it."""
+    from hubbeam import interrupt
+
+    try:
+        with interrupt.handling():
+            return _main(argv)
+    except interrupt.Interrupted as exc:  # during start-up (imports), before _main could catch it
+        _say(f"hubbeam: interrupted by {exc.name}{exc.detail or '; nothing written'}")
+        return exc.exit_code
+
+
+def _main(argv) -> int:
+    from hubbeam.interrupt import Interrupted, raise_pending
+
     args = _parser().parse_args(argv)
+    from hubbeam.io.scenario import ScenarioError, example_text
+    from hubbeam.io.targets import OutputError
+    from hubbeam.errors import ComputationError
+
     try:
         if args.command == "example":
             sys.stdout.write(example_text(args.name))
@@ -348,34 +706,48 @@ def main(argv: list[str] | None = None) -> int:
             return _cmd_reproduce(args)
         if args.command == "applicability":
             result = _cmd_applicability(args)
-            if args.json:
-                print(json.dumps(result))
-            return 0
-        scenario = load_scenario(args.scenario, args.overrides)
-        handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
-                   "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]
-        result = handler(args, scenario)
+        else:
+            scenario = _load(args)
+            handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
+                       "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]
+            result = handler(args, scenario)
+        raise_pending()
         if args.json:
-            print(json.dumps(result))
+            _print_json(result)
         return 0
     except ScenarioError as exc:
-        print(f"hubbeam: error: {exc}", file=sys.stderr)
+        _say(f"hubbeam: error: {exc}")
         return 2
-    except ComputationError as exc:
-        print(f"hubbeam: computation failed: {exc}", file=sys.stderr)
+    except OutputError as exc:
+        _say(f"hubbeam: cannot write results: {exc}")
         return 1
+    except ComputationError as exc:
+        _say(f"hubbeam: computation failed: {exc}")
+        return 1
+    except Interrupted as exc:
+        _say(f"hubbeam: interrupted by {exc.name}{exc.detail or '; nothing written'}")
+        return exc.exit_code
     except KeyboardInterrupt:
-        print("hubbeam: interrupted", file=sys.stderr)
+        _say("hubbeam: interrupted")
         return 130
     except BrokenPipeError:  # the reader went away (`hubbeam run ... | head`): stop quietly
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())  # so that Python's final flush does not fail again
         return 0
+    except ArithmeticError as exc:  # overflow, division by zero: a computation out of the range of doubles
+        if os.environ.get("HUBBEAM_DEBUG"):
+            raise
+        _say(f"hubbeam: computation failed: {exc.__class__.__name__} in {_where(exc)} ({exc}); the scenario's "
+             "numbers are out of the range the computation can hold: check its values and units (SI)")
+        return 1
+    except MemoryError:
+        _say("hubbeam: computation failed: out of memory; try a coarser model (beam.elements), a larger "
+             "analysis.output_dt or a shorter analysis.t_end")
+        return 1
     except Exception as exc:  # the last line of defence: never a traceback for users
         if os.environ.get("HUBBEAM_DEBUG"):
             raise
-        print(f"hubbeam: internal error: {exc.__class__.__name__}: {exc} (set HUBBEAM_DEBUG=1 for a traceback)",
-              file=sys.stderr)
+        _say(f"hubbeam: internal error: {exc.__class__.__name__}: {exc} (set HUBBEAM_DEBUG=1 for a traceback)")
         return 1
 
 

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field, replace
+from decimal import Decimal
 
 import numpy as np
 
+from hubbeam import interrupt
 from hubbeam.sensors import measure
 from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers import generalized_alpha as ga
@@ -165,10 +167,11 @@ class CompiledSteps(PythonSteps):
         power = np.array(self.power, dtype=float)
         counters = np.zeros(4, dtype=np.int64)
         chart = np.ascontiguousarray(state.chart)
-        status, size, t = compiled_alpha.advance(
-            self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
-            self.system.mass_scale, CHART_LIMIT, self.matrix, self.reuse, self.work_done, power,
-            counters, (step0, every, total), records)
+        with interrupt.deferred():  # a signal handler must not raise inside compiled code; see simulate
+            status, size, t = compiled_alpha.advance(
+                self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
+                self.system.mass_scale, CHART_LIMIT, self.matrix, self.reuse, self.work_done, power,
+                counters, (step0, every, total), records)
         steps, its, factorisations, n_rec = (int(c) for c in counters)
         self.power = (power[0], power[1])
         self.factorisations += factorisations
@@ -190,6 +193,8 @@ class CompiledSteps(PythonSteps):
 
 #: a run reports progress (and takes a chunk of compiled steps) about this many times
 PROGRESS_UPDATES = 100
+#: ... and returns to Python at least about this often (s), so that a signal is noticed
+CHUNK_SECONDS = 0.25
 
 
 def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
@@ -197,13 +202,15 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
              state: ga.AlphaState | None = None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
 
-    Steps run in compiled code, in chunks of about 1/100 of the run, when the system has a
-    compiled model (:class:`CompiledSteps`), else step by step in Python
-    (:class:`PythonSteps`); sensors are evaluated at the output times from the states the
-    steps kept. ``progress(t)`` is called after every chunk when given. On failure a
+    Steps run in compiled code, in chunks of about 1/100 of the run and of at most about
+    CHUNK_SECONDS of computing, when the system has a compiled model (:class:`CompiledSteps`),
+    else step by step in Python (:class:`PythonSteps`); sensors are evaluated at the output
+    times from the states the steps kept, output time k being the double nearest the decimal
+    t0 + k output_dt. ``progress(t)`` is called after every chunk when given. On failure a
     ComputationError names the time and step and carries the trajectory so far in
-    ``partial``. When a beam tangent comes within 60 deg of the chart's singular direction
-    the state is moved to a better chart (counted in ``Trajectory.chart_switches``).
+    ``partial``; so does any other exception out of the loop (an interruption). When a beam
+    tangent comes within 60 deg of the chart's singular direction the state is moved to a
+    better chart (counted in ``Trajectory.chart_switches``).
     """
     params = ga.AlphaParameters.from_spectral_radius(spectral_radius)
     if state is None:
@@ -211,37 +218,61 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
     n_steps = int(round((t_end - state.t) / dt))
     every = max(1, int(round((output_dt or dt) / dt)))
     traj = Trajectory()
+    # exact time axis: record r is the state after step min(r * every, n_steps); its time is
+    # the double nearest the decimal t0 + step * dt (not the sum of steps, which drifts: 20.00000000000146)
+    t0_decimal, dt_decimal = Decimal(repr(float(state.t))), Decimal(repr(float(dt)))
 
     def record(st, work):
+        st = replace(st, t=float(t0_decimal + dt_decimal * min(len(traj.times) * every, n_steps)))
         traj.append(st.t, {s.name: measure(s, system, st, work) for s in sensors})
 
     record(state, {"dissipated": 0.0, "drive": 0.0})
     steps_class = CompiledSteps if system.compiled else PythonSteps
     stepper = steps_class(system, params, newton, dt, state)
     chunk_size = max(1, -(-n_steps // PROGRESS_UPDATES))
+    chunk = min(chunk_size, 8)  # the first chunks are short; later ones last about CHUNK_SECONDS
     start = time.perf_counter()
     k = 0
-    while k < n_steps:
-        state, done, its, chart_limit, error, records = stepper.advance(state, min(chunk_size, n_steps - k), k,
-                                                                        every, n_steps)
-        for st, work in records:
-            record(st, work)
-        k += done
-        traj.steps = k
-        traj.newton_iterations += its
-        if error is not None:
-            traj.wall_time_s = time.perf_counter() - start
-            raise ComputationError(
-                f"time integration failed at t = {state.t + dt:.6g} s (step {k + 1}): {error}. "
-                f"Try a smaller analysis.dt (now {dt:g} s), more beam.elements or a smaller analysis.spectral_radius.",
-                partial=traj,
-            ) from error
-        if chart_limit:
-            state = change_chart(system, state, system.better_chart(state.x, state.chart, CHART_LIMIT))
-            stepper.chart_changed()
-            traj.chart_switches += 1
-        if progress is not None:
-            progress(state.t)
+    try:  # interruption: see the except clause below
+        while k < n_steps:
+            chunk_start = time.perf_counter()
+            state, done, its, chart_limit, error, records = stepper.advance(state, min(chunk, n_steps - k), k,
+                                                                            every, n_steps)
+            # control comes back to Python at least every ~2 CHUNK_SECONDS (a signal is noticed
+            # between chunks); the chunk boundaries do not change the steps, so runs stay bit-for-bit repeatable
+            seconds = time.perf_counter() - chunk_start
+            if done:
+                chunk = max(1, min(chunk_size, 2 * chunk, int(CHUNK_SECONDS * done / max(seconds, 1e-9))))
+            for st, work in records:
+                record(st, work)
+            k += done
+            traj.steps = k
+            traj.newton_iterations += its
+            interrupt.raise_pending(detail="")  # a signal held during the compiled chunk
+            if error is not None:
+                traj.wall_time_s = time.perf_counter() - start
+                raise ComputationError(
+                    f"time integration failed at t = {state.t + dt:.6g} s (step {k + 1}): {error}. "
+                    f"Try a smaller analysis.dt (now {dt:g} s), more beam.elements or a smaller analysis.spectral_radius.",
+                    partial=traj,
+                ) from error
+            if chart_limit:
+                state = change_chart(system, state, system.better_chart(state.x, state.chart, CHART_LIMIT))
+                stepper.chart_changed()
+                traj.chart_switches += 1
+            if progress is not None:
+                progress(state.t)
+    # interruption: any exception out of the loop (a signal raised as an exception, a failed
+    # chart change, KeyboardInterrupt) carries the trajectory so far in ``partial``
+    except BaseException as exc:
+        traj.wall_time_s = time.perf_counter() - start
+        traj.factorisations = stepper.factorisations
+        if getattr(exc, "partial", None) is None:
+            try:
+                exc.partial = traj
+            except AttributeError:
+                pass
+        raise
     traj.wall_time_s = time.perf_counter() - start
     traj.factorisations = stepper.factorisations
     return traj

@@ -43,11 +43,44 @@ def run_cases(cases: list[Case], jobs: int = 1, progress=None) -> dict[str, Outc
             if progress:
                 progress(k, len(cases), outcome)
         return results
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
-        futures = [pool.submit(run_case, case) for case in cases]
+    from hubbeam import interrupt
+
+    pool = ProcessPoolExecutor(max_workers=jobs, initializer=_worker_start)
+    try:
+        with interrupt.children_spared():  # the workers start here (see _worker_start)
+            futures = [pool.submit(run_case, case) for case in cases]
         for k, fut in enumerate(as_completed(futures), 1):
             outcome = fut.result()
             results[outcome.case.key] = outcome
             if progress:
                 progress(k, len(cases), outcome)
+    except BaseException:  # interrupted (or a worker died): stop the workers now, not after their runs
+        _stop(pool)
+        raise
+    pool.shutdown()
     return results
+
+
+def _worker_start() -> None:
+    """Workers leave SIGINT to the parent (a Ctrl-C reaches the whole process group), which
+    stops them; no traceback from each of them. A forked worker inherits the parent's
+    handlers (hubbeam.interrupt's turn SIGTERM into an exception a worker would catch and
+    go on): SIGTERM and SIGHUP get their default action back, so that terminate() stops it."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_DFL)
+
+
+def _stop(pool: ProcessPoolExecutor) -> None:
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in processes:
+        p.terminate()
+    for p in processes:
+        p.join(timeout=2)
+        if p.is_alive():
+            p.kill()
+            p.join(timeout=2)

@@ -7,6 +7,7 @@ import xarray as xr
 
 from hubbeam import api
 from hubbeam.io.scenario import Scenario
+from hubbeam.errors import ComputationError
 from hubbeam.solvers.modal import rotating_modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.studies.variants import FORMULATIONS, variant
@@ -29,10 +30,13 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=("ancf", "
                 'hub.motion="prescribed"', 'hub.drive.profile="constant"', f"hub.drive.omega_s={max(omega, 1e-12)}",
                 "damping.linear=0.0", "damping.quadratic=0.0"])
             system = api.build_system(sc)
-            steady = solve_static(system, load_steps=sc.analysis.load_steps if x0 is None else 2, x0=x0, chart=chart,
-                                  spin=omega)
-            x0, chart = steady.x, steady.chart
-            f = rotating_modal_analysis(system, steady, omega, count=count).frequencies_hz
+            try:
+                steady = solve_static(system, load_steps=sc.analysis.load_steps if x0 is None else 2, x0=x0,
+                                      chart=chart, spin=omega)
+                x0, chart = steady.x, steady.chart
+                f = rotating_modal_analysis(system, steady, omega, count=count).frequencies_hz
+            except (ComputationError, np.linalg.LinAlgError) as exc:  # say where: which speed, which formulation
+                raise ComputationError(f"Campbell diagram, {form} at omega = {omega:g} rad/s: {exc}") from exc
             out[i, j, : f.size] = f
             done += 1
             if progress:

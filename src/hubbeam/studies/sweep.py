@@ -119,17 +119,14 @@ def run_on_dask(func, arguments: list[tuple], scheduler: str | None = None, work
     scheduler or a LocalCluster (one single-threaded worker process per core). Results come
     back in the order of ``arguments``; a task that raises gives ``{"failure": message}``.
     ``progress(done, total)`` after each task."""
-    from dask.distributed import Client, LocalCluster, as_completed
+    from dask.distributed import as_completed
 
-    if scheduler:
-        client, cluster = Client(scheduler), None
-    else:
-        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.CRITICAL)
-        client = Client(cluster)
+    from hubbeam import interrupt
+
+    client, cluster = connect(scheduler, workers)
+    results = [None] * len(arguments)
     try:
         futures = {client.submit(func, *args, pure=False): k for k, args in enumerate(arguments)}
-        results = [None] * len(arguments)
         for done, fut in enumerate(as_completed(futures), 1):
             try:
                 results[futures[fut]] = fut.result()
@@ -137,11 +134,48 @@ def run_on_dask(func, arguments: list[tuple], scheduler: str | None = None, work
                 results[futures[fut]] = {"failure": f"{exc.__class__.__name__}: {exc}"}
             if progress:
                 progress(done, len(arguments))
+    except BaseException as exc:  # interrupted: the finished tasks' results go with the exception
+        exc.partial = list(results)
+        raise
     finally:
-        if cluster is not None:
-            cluster.close()
-        client.close()
+        with interrupt.deferred():  # a second signal must not leave worker processes behind
+            if cluster is not None:
+                cluster.close()
+            client.close()
     return results
+
+
+#: seconds to wait for a Dask scheduler given by address
+SCHEDULER_TIMEOUT = 5
+
+
+def connect(scheduler: str | None, workers: int | None):
+    """(client, cluster): a client of the scheduler at ``scheduler`` (ScenarioError naming
+    --scheduler when none answers within SCHEDULER_TIMEOUT s), or of a new LocalCluster."""
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        try:
+            return Client(scheduler, timeout=SCHEDULER_TIMEOUT), None
+        except Exception as exc:  # OSError (timed out, refused), ValueError or TypeError (a malformed address)
+            reason = (str(exc).splitlines() or [exc.__class__.__name__])[0][:200]
+            raise ScenarioError(f"--scheduler {scheduler}: no Dask scheduler answers there ({reason})") from None
+    from hubbeam import interrupt
+
+    cluster = client = None
+    try:
+        with interrupt.children_spared():  # a Ctrl-C to the process group stops us, and we stop the workers
+            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                                   dashboard_address=None, silence_logs=logging.CRITICAL)
+            client = Client(cluster)
+    except BaseException:
+        with interrupt.deferred():
+            if client is not None:
+                client.close()
+            if cluster is not None:
+                cluster.close()
+        raise
+    return client, cluster
 
 
 def sweep(scenario: Scenario, varied: dict[str, tuple[np.ndarray, bool]], scheduler: str | None = None,
@@ -151,13 +185,30 @@ def sweep(scenario: Scenario, varied: dict[str, tuple[np.ndarray, bool]], schedu
     and 'failed' / 'message' per point. ``progress(done, total)`` after each point."""
     points = grid(varied)
     data = scenario.to_dict()
-    outcomes = run_on_dask(evaluate, [(data, overrides) for _, overrides in points], scheduler, workers, progress)
+    try:
+        outcomes = run_on_dask(evaluate, [(data, overrides) for _, overrides in points], scheduler, workers, progress)
+    except BaseException as exc:  # interrupted: the points done so far, the others failed as not run
+        done = getattr(exc, "partial", None)
+        if isinstance(done, list) and any(r is not None for r in done):
+            exc.partial = _dataset(scenario, varied, points, done, partial=f"{exc}")
+        else:
+            exc.partial = None
+        raise
+    return _dataset(scenario, varied, points, outcomes)
+
+
+def _dataset(scenario, varied, points, outcomes, partial: str | None = None) -> xr.Dataset:
     results = {}
     for (idx, _), res in zip(points, outcomes):
+        res = {"failure": "not run: the sweep was stopped before this point"} if res is None else res
         res.setdefault("values", {})
         res.setdefault("failure", None)
         results[idx] = res
     ds = _merge(varied, points, results)
     ds.attrs["scenario"] = scenario.name
     ds.attrs["varied"] = ", ".join(varied)
+    ds.attrs["partial"] = int(partial is not None)
+    if partial is not None:
+        ds.attrs["partial_reason"] = partial
+        ds.attrs["points_done"] = int(sum(r is not None for r in outcomes))
     return ds

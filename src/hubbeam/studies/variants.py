@@ -40,19 +40,26 @@ def single_beam(scenario: Scenario, study: str) -> ResolvedBeam:
     return beams[0]
 
 
+#: at most this many values in one range
+MAX_RANGE = 10_000
+
+
 def parse_range(text: str, what: str) -> np.ndarray:
     """'START:STOP:N' -> N values from START to STOP (numpy.linspace); one number -> itself."""
     parts = text.split(":")
     try:
+        values = [float(parts[0])] if len(parts) == 1 else [float(parts[0]), float(parts[1]), int(parts[2])]
+    except (ValueError, IndexError):
+        values = None
+    if values is not None and len(parts) in (1, 3) and all(np.isfinite(values)):
         if len(parts) == 1:
-            return np.array([float(parts[0])])
-        if len(parts) == 3:
-            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
-            if n >= 1 and np.isfinite(start) and np.isfinite(stop):
-                return np.linspace(start, stop, n)
-    except ValueError:
-        pass
-    raise ScenarioError(f"{what}: expected START:STOP:N with N >= 1 (got {text!r})")
+            return np.array(values)
+        start, stop, n = values
+        if n > MAX_RANGE:
+            raise ScenarioError(f"{what}: {n} values; at most {MAX_RANGE}")
+        if n >= 1:
+            return np.linspace(start, stop, n)
+    raise ScenarioError(f"{what}: expected START:STOP:N with finite START and STOP and N >= 1 (got {text!r})")
 
 
 def parse_vary(text: str) -> tuple[str, np.ndarray, bool]:

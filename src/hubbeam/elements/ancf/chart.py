@@ -17,6 +17,10 @@ from __future__ import annotations
 import numpy as np
 
 from hubbeam.elements.ancf.frame import section_frame
+from hubbeam.errors import ConvergenceError
+
+#: a nodal slope |r'| = 1 + axial strain below this is a crushed, unphysical state (no frame)
+SLOPE_FLOOR = 1.0e-3
 
 
 def frame_from_director(d: np.ndarray, hint: np.ndarray | None = None) -> np.ndarray:
@@ -76,6 +80,13 @@ def remap_chart(nodes: np.ndarray, node_dtau: np.ndarray, F_old: np.ndarray, F_n
     torsion at every node are unchanged.
     """
     out = np.array(nodes, dtype=float, copy=True)
+    lengths = np.linalg.norm(out[:, 3:6], axis=1)
+    bad = np.flatnonzero(~(lengths > SLOPE_FLOOR))  # also NaN
+    if bad.size:
+        raise ConvergenceError(
+            f"the slope r' at node {int(bad[0])} of the beam has collapsed to length {lengths[bad[0]]:.2g} "
+            "(Newton converged to a crushed, unphysical state, which has no section frame): the load is too large "
+            "for the mesh or the steps; try more beam.elements, more analysis.load_steps or a smaller analysis.dt")
     deltas = np.array([twist_offset(F_old, F_new, nd[3:6]) for nd in nodes])
     # keep the offset continuous along the beam (it is defined modulo 2 pi)
     deltas = np.unwrap(deltas)

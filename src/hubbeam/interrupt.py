@@ -1,0 +1,135 @@
+"""Interruption of a command by SIGINT, SIGTERM or SIGHUP.
+
+:func:`handling` (used by the command line around a whole command) turns these signals
+into an :class:`Interrupted` exception raised where the program is, so every command stops
+the same way: what it has is written where that is natural (``run`` writes its partial
+trajectory), one line goes to stderr and the exit status is 128 + the signal number (130
+for SIGINT, 143 for SIGTERM, 129 for SIGHUP). Compiled code cannot be interrupted, so the
+time integration returns to Python at least every half second (see
+:func:`hubbeam.simulation.simulate`).
+
+Inside :func:`deferred` (writing results) a signal is only noted; it takes effect after the
+block, so a result file is never left half written.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+
+#: the signals that interrupt a command
+SIGNALS = tuple(s for s in (getattr(signal, n, None) for n in ("SIGINT", "SIGTERM", "SIGHUP")) if s is not None)
+
+_state = {"defer": 0, "pending": None, "received": None}
+
+
+class Interrupted(BaseException):
+    """A command was stopped by a signal. A BaseException, like KeyboardInterrupt, so that
+    ``except Exception`` clauses do not swallow it. ``partial`` holds results so far when
+    the interrupted computation had any; ``detail`` what the command did about it."""
+
+    def __init__(self, signum: int):
+        self.signum = int(signum)
+        try:
+            self.name = signal.Signals(self.signum).name
+        except ValueError:
+            self.name = f"signal {self.signum}"
+        super().__init__(f"interrupted by {self.name}")
+        self.partial = None
+        self.detail = ""
+
+    @property
+    def exit_code(self) -> int:
+        return 128 + self.signum
+
+
+def _handler(signum, frame):
+    _state["received"] = signum
+    if _state["defer"]:
+        if _state["pending"] is None:
+            _state["pending"] = signum
+        return
+    raise Interrupted(signum)
+
+
+@contextlib.contextmanager
+def handling():
+    """Within the block SIGINT, SIGTERM and SIGHUP raise :class:`Interrupted`; the previous
+    handlers come back after it. A signal that was ignored when the program started stays
+    ignored (``nohup`` ignores SIGHUP, a shell's background job SIGINT). Does nothing
+    outside the main thread."""
+    previous = {}
+    try:
+        for s in SIGNALS:
+            try:
+                if signal.getsignal(s) is signal.SIG_IGN:
+                    continue
+                previous[s] = signal.signal(s, _handler)
+            except (ValueError, OSError):  # not the main thread, or not settable here
+                pass
+    except BaseException:
+        _restore(previous)
+        raise
+    _state["pending"] = _state["received"] = None
+    try:
+        yield
+    finally:
+        _restore(previous)
+        _state["pending"] = _state["received"] = None
+
+
+def check() -> None:
+    """Raise :class:`Interrupted` again if a signal came and its exception was swallowed on
+    the way (a bare ``except:`` in some library): called between chunks of work."""
+    if _state["received"] is not None and not _state["defer"]:
+        raise Interrupted(_state["received"])
+
+
+def _restore(previous: dict) -> None:
+    for s, h in previous.items():
+        with contextlib.suppress(ValueError, OSError, TypeError):
+            signal.signal(s, h)
+
+
+@contextlib.contextmanager
+def deferred():
+    """Signals within the block are held, not raised: :func:`raise_pending` (or
+    :func:`take_pending`) deals with them after it."""
+    _state["defer"] += 1
+    try:
+        yield
+    finally:
+        _state["defer"] -= 1
+
+
+def take_pending() -> int | None:
+    """The signal held by :func:`deferred`, if any (and forget it)."""
+    signum, _state["pending"] = _state["pending"], None
+    return signum
+
+
+def raise_pending(detail: str = " after the results were written") -> None:
+    """Raise :class:`Interrupted` for a signal held by :func:`deferred`, if there is one."""
+    if not _state["defer"]:
+        signum = take_pending()
+        if signum is not None:
+            exc = Interrupted(signum)
+            exc.detail = detail
+            raise exc
+
+
+@contextlib.contextmanager
+def children_spared():
+    """Processes (and threads) started within the block have SIGINT blocked: a Ctrl-C, which a
+    terminal sends to the whole process group, then reaches only this process, which stops
+    them, instead of making every worker print a traceback. A SIGINT that arrives within the
+    block is delivered when it ends."""
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)

@@ -1,0 +1,144 @@
+"""Up-front size of a time integration: steps, output records and their memory.
+
+A scenario may ask for more than any run can give (``t_end = 1e6`` at ``dt = 1e-6`` is
+10^12 steps; ``output_dt = dt`` over a long run fills the memory with records). These
+are found before anything is built, from the scenario alone, and refused as bad input
+naming the key (exit status 2):
+
+- ``analysis.dt`` below :data:`MIN_DT` (the integrator's h^2 terms lose all precision or
+  underflow);
+- more than :data:`MAX_STEPS` steps (t_end / dt);
+- output records estimated to need more than :data:`MAX_RECORD_BYTES` of memory (each
+  record holds every sensor column as Python objects until the run ends, then as arrays
+  while it is written).
+
+Above :data:`WARN_RECORD_BYTES` :func:`check_run` returns a one-line note to print.
+
+:func:`check_magnitudes` does the same for the model: each valid input alone may still make a
+derived quantity (a second moment of area, a stiffness, a mass) overflow or vanish in double
+precision (``beam.width = 1e102`` gives h b^3 / 12 = inf); such a scenario is refused naming
+its keys rather than failing somewhere inside the model.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from hubbeam.io.scenario import ScenarioError
+
+MIN_DT = 1.0e-9  # s
+MAX_STEPS = 10**8
+MAX_RECORD_BYTES = 4 * 2**30
+WARN_RECORD_BYTES = 2**30
+#: memory per sensor column and output record while a run is kept and written (B):
+#: a Python float in a list or dict (about 65 B measured) and the arrays written from them
+BYTES_PER_VALUE = 100
+#: sensor kinds with several parts (columns NAME_PART)
+PART_NAMES = {"tip_deflection": ("radial", "vertical", "tangential"),
+              "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive")}
+PARTS = {kind: len(parts) for kind, parts in PART_NAMES.items()}
+
+
+@dataclass(frozen=True)
+class RunSize:
+    steps: int
+    records: int
+    columns: int
+    record_bytes: int
+    note: str | None = None
+
+
+def columns(sensors) -> int:
+    """Columns of a run's result (time and one per sensor part)."""
+    return 1 + sum(PARTS.get(s.kind, 1) for s in sensors)
+
+
+def _gib(n: float) -> str:
+    return f"{n / 2**30:.3g} GiB" if n >= 2**30 else f"{n / 2**20:.3g} MiB"
+
+
+def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int) -> RunSize:
+    """Steps, records and record memory of a run; ScenarioError when it cannot be done."""
+    if not (math.isfinite(dt) and dt > 0 and math.isfinite(t_end) and t_end > 0):
+        raise ScenarioError(f"analysis.dt: needs finite positive analysis.dt and analysis.t_end (got {dt!r}, {t_end!r})")
+    if dt < MIN_DT:
+        raise ScenarioError(f"analysis.dt: {dt:g} s is below the smallest supported time step, {MIN_DT:g} s")
+    steps = t_end / dt
+    if steps > MAX_STEPS:
+        raise ScenarioError(
+            f"analysis.dt: analysis.t_end / analysis.dt = {t_end:g} s / {dt:g} s = {steps:.3g} steps, more than the "
+            f"{MAX_STEPS:.0e} a run may take; use a larger analysis.dt or a shorter analysis.t_end")
+    out = dt if output_dt is None else min(output_dt, t_end)  # longer than the run: the start and the end
+    every = max(1, round(out / dt))
+    n_steps = max(1, round(steps))
+    records = n_steps // every + 2
+    need = records * n_columns * BYTES_PER_VALUE
+    if need > MAX_RECORD_BYTES:
+        raise ScenarioError(
+            f"analysis.output_dt: {records:.3g} output records of {n_columns} columns would need about {_gib(need)} of "
+            f"memory (at most {_gib(MAX_RECORD_BYTES)}); use a larger analysis.output_dt or a shorter analysis.t_end")
+    note = None
+    if need > WARN_RECORD_BYTES:
+        note = (f"{records} output records of {n_columns} columns will need about {_gib(need)} of memory "
+                "(a larger analysis.output_dt needs less)")
+    return RunSize(n_steps, records, n_columns, need, note)
+
+
+def check_run(scenario) -> RunSize:
+    """:func:`run_size` of a scenario's dynamic analysis."""
+    a = scenario.analysis
+    return run_size(a.t_end, a.dt, a.output_dt, columns(scenario.sensors))
+
+
+#: derived model quantities must lie in this range (positive ones), so that the products the
+#: model forms with them (stiffness times curvature squared, mass times length squared) stay finite
+MAGNITUDE_RANGE = (1e-150, 1e150)
+
+
+def check_magnitudes(scenario) -> None:
+    """ScenarioError naming the keys when a derived quantity of the model is not a finite
+    number within :data:`MAGNITUDE_RANGE` (see the module doc)."""
+    import numpy as np
+
+    b, h = scenario.beam, scenario.hub
+    low, high = MAGNITUDE_RANGE
+    with np.errstate(all="ignore"):
+        w, t, L = np.float64(b.width), np.float64(b.thickness), np.float64(b.length)
+        E, rho, G = np.float64(b.youngs_modulus), np.float64(b.density), np.float64(scenario.shear_modulus)
+        a, c = max(w, t), min(w, t)
+        J = np.float64(b.torsion_constant) if b.torsion_constant is not None else a * c**3 / 3.0 * (1.0 - 0.63 * c / a)
+        area, i_y, i_z = w * t, w * t**3 / 12.0, t * w**3 / 12.0
+        quantities = [
+            ("the section area", area, "m^2", ["beam.width", "beam.thickness"]),
+            ("the weak-axis second moment of area", i_y, "m^4", ["beam.thickness", "beam.width"]),
+            ("the strong-axis second moment of area", i_z, "m^4", ["beam.width", "beam.thickness"]),
+            ("the torsion constant", J, "m^4", ["beam.torsion_constant" if b.torsion_constant is not None
+                                                 else "beam.thickness", "beam.width"]),
+            ("the axial stiffness EA", E * area, "N", ["beam.youngs_modulus", "beam.width", "beam.thickness"]),
+            ("the bending stiffness EI", E * i_y, "N m^2", ["beam.youngs_modulus", "beam.thickness"]),
+            ("the bending stiffness EI", E * i_z, "N m^2", ["beam.youngs_modulus", "beam.width"]),
+            ("the torsional stiffness GJ", G * J, "N m^2", ["beam.youngs_modulus", "beam.thickness"]),
+            ("the beam's mass", rho * area * L, "kg", ["beam.density", "beam.length", "beam.width"]),
+            ("the section's rotary inertia", rho * (i_y + i_z), "kg m", ["beam.density", "beam.width"]),
+            ("the axial stiffness of an element EA / (L / n)", E * area * b.elements / L, "N/m",
+             ["beam.length", "beam.youngs_modulus"]),
+            ("the bending stiffness of an element EI / (L / n)^3", E * i_z * (b.elements / L) ** 3, "N/m",
+             ["beam.length", "beam.youngs_modulus"]),
+            ("the beam's moment of inertia about the hub", rho * area * L * (L + h.radius) ** 2, "kg m^2",
+             ["beam.length", "hub.radius", "beam.density"]),
+        ]
+        if h.motion == "free":
+            quantities.append(("the hub's inertia", np.float64(h.inertia), "kg m^2", ["hub.inertia"]))
+    for what, value, unit, keys in quantities:
+        if not (np.isfinite(value) and low < value < high):
+            given = ", ".join(f"{k} = {_value(scenario, k):g}" for k in keys if _value(scenario, k) is not None)
+            raise ScenarioError(f"{keys[0]}: with {given}, {what} is {float(value):.3g} {unit}, outside the range "
+                                f"hubbeam computes with ({low:g} to {high:g}); check the values and their units (SI)")
+
+
+def _value(scenario, key: str):
+    node = scenario
+    for part in key.split("."):
+        node = getattr(node, part, None)
+    return node if isinstance(node, (int, float)) and not isinstance(node, bool) else None
