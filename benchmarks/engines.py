@@ -43,6 +43,41 @@ def _run_hubbeam_scenario(name: str, elements: int, t_end: float, dt: float, par
             "tip_end": float(values[-1]), "tip_min": float(values.min())}
 
 
+def _run_exp1(elements: int, t_end: float, dt: float, overrides: list[str]) -> dict:
+    """The paper's experiment 1 (the bundled exp1: free hub, drag, release under gravity) with
+    ``overrides``; reports the P1 strain's peak and end value."""
+    import numpy as np
+
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+
+    base = overrides + [f"beam.elements={elements}", f"analysis.dt={dt}"]
+    api.run(load_example("exp1", base + [f"analysis.t_end={2 * dt}"]))  # loads the compiled code
+    traj, failure = api.run(load_example("exp1", base + [f"analysis.t_end={t_end}"]))
+    if failure is not None:
+        raise failure
+    p1 = np.array(traj.records["strain_P1"])
+    return {"integration_s": traj.wall_time_s, "steps": traj.steps,
+            "newton_per_step": traj.newton_iterations / traj.steps,
+            "factorisations_per_step": traj.factorisations / traj.steps,
+            "peak": float(p1.max()), "end": float(p1[-1])}
+
+
+def run_exp1_ancf(elements: int, t_end: float, dt: float) -> dict:
+    """Case F: exp1 with the ANCF beam."""
+    return _run_exp1(elements, t_end, dt, [])
+
+
+def run_exp1_ffr(elements: int, t_end: float, dt: float) -> dict:
+    """Case F: exp1 with the nodal FFR beam (the paper's)."""
+    return _run_exp1(elements, t_end, dt, ['beam.formulation="ffr"'])
+
+
+def run_exp1_ffr_modal(elements: int, t_end: float, dt: float) -> dict:
+    """Case F: exp1 with the FFR beam reduced to its 4 lowest clamped modes."""
+    return _run_exp1(elements, t_end, dt, ['beam.formulation="ffr"', "beam.modes=4"])
+
+
 def run_hubbeam(elements: int, t_end: float, dt: float) -> dict:
     """Case A with hubbeam (benchmarks/case_a.toml); reports the vertical tip deflection."""
     return _run_hubbeam_scenario("case_a.toml", elements, t_end, dt, "vertical")
@@ -189,7 +224,8 @@ def _solve_exudyn(mbs, sensor, t_end: float, dt: float, component: int | None = 
 
 
 ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge": run_exudyn_ge,
-           "hubbeam-kane": run_hubbeam_kane, "exudyn-cable-kane": run_exudyn_cable_kane}
+           "hubbeam-kane": run_hubbeam_kane, "exudyn-cable-kane": run_exudyn_cable_kane,
+           "exp1-ancf": run_exp1_ancf, "exp1-ffr": run_exp1_ffr, "exp1-ffr-modal4": run_exp1_ffr_modal}
 
 if __name__ == "__main__":
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])

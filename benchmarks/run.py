@@ -19,6 +19,9 @@ Case B (benchmarks/case_b.toml): Kane's spin-up, 20 elements. Peer: ObjectANCFCa
 clamp whose slope is driven by coordinate constraints (Python user functions).
 Case C: case A with 4 .. 64 elements, hubbeam's cost per step (it should grow linearly).
 Case P: the whole ``hubbeam run benchmarks/case_a.toml -o OUT.nc`` (wall clock).
+Case F: the three formulations on the same model, experiment 1 (6 elements, 20 s at 1 ms):
+ANCF, the paper's nodal FFR and FFR reduced to 4 modes, with the P1 strain's peak and end
+value for their accuracy (no peer needed).
 """
 
 from __future__ import annotations
@@ -85,19 +88,40 @@ def compare(title: str, engines: list[str], elements: int, reps: int, t_end: flo
               f"{100 * abs(ours[0]['tip_end'] / peer['tip_end'] - 1):.3f} %")
 
 
+def formulations(reps: int, t_end: float, dt: float) -> None:
+    """Case F: ANCF, nodal FFR and modal FFR on experiment 1, alternating, medians."""
+    engines = ["exp1-ancf", "exp1-ffr", "exp1-ffr-modal4"]
+    runs = {e: [] for e in engines}
+    for _ in range(reps):
+        for e in engines:
+            runs[e].append(one_run(e, 6, t_end, dt))
+    print(f"\nCase F (exp1, three formulations): 6 elements, {t_end:g} s at dt = {dt:g} s; median of {reps}, "
+          f"{os.cpu_count()} cores")
+    print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'Newton/step':>11s} {'LU/step':>8s} "
+          f"{'P1 peak':>11s} {'P1 end':>11s}")
+    for e in engines:
+        first = runs[e][0]
+        print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {median(runs[e], 'process_s'):10.3f} "
+              f"{first['newton_per_step']:11.2f} {first['factorisations_per_step']:8.2f} {first['peak']:11.4e} "
+              f"{first['end']:11.4e}")
+    base = median(runs["exp1-ancf"], "integration_s")
+    for e in engines[1:]:
+        print(f"{e} / exp1-ancf: integration {median(runs[e], 'integration_s') / base:.2f}")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--t-end", type=float, default=10.0)
     p.add_argument("--dt", type=float, default=1e-3)
-    p.add_argument("--cases", default="A,B,C,P", help="comma-separated subset of A, B, C, P")
+    p.add_argument("--cases", default="A,B,C,P,F", help="comma-separated subset of A, B, C, P, F")
     p.add_argument("--quick", action="store_true", help="1 s simulated, one repetition")
     a = p.parse_args()
-    if importlib.util.find_spec("exudyn") is None:
-        sys.exit("benchmarks/run.py: the peer is missing; install it with: pip install \".[peer]\"")
     if a.quick:
         a.reps, a.t_end = 1, 1.0
     cases = {c.strip().upper() for c in a.cases.split(",")}
+    if cases & {"A", "B"} and importlib.util.find_spec("exudyn") is None:
+        sys.exit("benchmarks/run.py: the peer is missing; install it with: pip install \".[peer]\"")
     one_run("hubbeam", 8, 2 * a.dt, a.dt)  # warm the numba cache
     if "A" in cases:
         compare("Case A (plate under gravity)", ["hubbeam", "exudyn-ge", "exudyn-cable"], 8, a.reps, a.t_end, a.dt,
@@ -113,6 +137,8 @@ def main() -> None:
             base = per if n == 8 else base
             print(f"  {n:3d} elements: {1e3 * per:.3f} ms per step"
                   + (f" ({per / base:.1f}x the 8-element cost)" if base else ""))
+    if "F" in cases:
+        formulations(a.reps, 20.0 if not a.quick else 1.0, a.dt)
     if "P" in cases:
         times = [cli_run(a.t_end) for _ in range(a.reps)]
         print(f"\nCase P: `hubbeam run benchmarks/case_a.toml -o OUT.nc` ({a.t_end:g} s simulated), whole process: "

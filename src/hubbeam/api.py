@@ -125,6 +125,25 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> HubSyst
                                                                               scenario.damping.quadratic))
 
 
+def reduction_warnings(scenario: Scenario, system: HubSystem | None = None) -> list[str]:
+    """One line for each thing the kept modes of a modally reduced FFR beam (``modes = N``)
+    may miss in the scenario: a share of the static deflection under gravity above 1 %, or a
+    drive or PD reference (spin_up, slew, exponential over T s: up to about 2 / T Hz) that
+    excites frequencies near the highest kept mode."""
+    from hubbeam.elements.ffr.modal import coverage_warnings
+
+    system = build_system(scenario) if system is None else system
+    hub = scenario.hub
+    law = hub.torque_law
+    drive = hub.drive if hub.drive is not None else (law.reference if law is not None and law.law == "pd" else None)
+    excitation = 2.0 / drive.T if drive is not None and drive.profile in ("spin_up", "slew", "exponential") else None
+    out = []
+    for part in system.beams:
+        if isinstance(part, FfrPart):
+            out += coverage_warnings(part.beam, part.mount.frame(0.0).T @ system.gravity, excitation, name=part.name)
+    return out
+
+
 def tip_displacement(system: HubSystem, x: np.ndarray, beam: int = 0) -> dict[str, float]:
     """Tip centroid displacement of a beam from its undeformed place, in its hub frame (m)."""
     return system.tip_displacement(x, beam)

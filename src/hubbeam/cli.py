@@ -273,6 +273,8 @@ def _cmd_run(args, scenario) -> dict:
     size = limits.check_run(scenario)
     if size.note:
         _say(f"hubbeam: note: {size.note}")
+    for line in api.reduction_warnings(scenario):
+        _say(f"hubbeam: warning: {line}")
     progress, finish = _progress_bar(scenario.analysis.t_end)
     try:
         traj, failure = api.run(scenario, progress)
