@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.io.scenario import Scenario, ScenarioError
-from hubbeam.solvers.modal import Modes, modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import StaticSolution, solve_static
 from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
@@ -18,6 +18,9 @@ from hubbeam.system.hub_system import Hub, HubSystem
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
+
+if TYPE_CHECKING:  # the modal analysis is imported where it is used: scipy.linalg is slow to load
+    from hubbeam.solvers.modal import Modes
 
 #: analysis.newton of a scenario -> NewtonOptions.update (when the iteration matrix is rebuilt)
 NEWTON_UPDATES = {"full": "iteration", "step": "step", "modified": "adaptive"}
@@ -132,6 +135,8 @@ def reduction_warnings(scenario: Scenario, system: HubSystem | None = None) -> l
     excites frequencies near the highest kept mode."""
     from hubbeam.elements.ffr.modal import coverage_warnings
 
+    if not any(getattr(b, "modes", None) for b in scenario.resolved_beams()):
+        return []
     system = build_system(scenario) if system is None else system
     hub = scenario.hub
     law = hub.torque_law
@@ -208,6 +213,8 @@ def modes(scenario: Scenario) -> ModalResult:
     or, for a hub driven at a constant omega_s, about the steadily rotating state
     (centrifugal pre-stress and gyroscopic terms; drag left out). Other prescribed profiles
     give the modes at rest with the hub held."""
+    from hubbeam.solvers.modal import modal_analysis, rotating_modal_analysis
+
     scenario = as_scenario(scenario)
     system = build_system(scenario)
     count = scenario.analysis.count

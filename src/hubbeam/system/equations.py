@@ -236,14 +236,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         for i in range(6):
             lam_k[i] = lam[l0 + i]
         clamp_equations(c, model.mount[k], Fk, lam_k, phi, jac, hess)
-        for j in range(7):
-            acc_j = 0.0
-            for i in range(6):
-                acc_j += jac[i, 1 + j] * lam_k[i]
-            fq[j] += acc_j
-        for i in range(6):
-            hub_row += jac[i, 0] * lam_k[i]
-            res[zl[l0 + i]] = scale * phi[i]
+        hub_row += clamp_residual(lam_k, phi, jac, 7, scale, zl, l0, fq, res)
         for j in range(nq):
             res[zx[x0 + j]] = coef_k * fq[j]
         if not want_matrix:
@@ -256,13 +249,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         q_start = zx[x0]  # z index of the beam's first coordinate
         add_element_blocks_banded(ab, blocks, q_start - nb_border, ku, 1.0)
         # clamp: Jacobian in the multiplier rows and columns, Hessian on [theta, root coordinates]
-        for i in range(6):
-            ri = zl[l0 + i]
-            add_entry(ab, brow, bcol, bb, ku, ri, 0, scale * jac[i, 0])
-            add_entry(ab, brow, bcol, bb, ku, 0, ri, scale * jac[i, 0])
-            for j in range(7):
-                add_entry(ab, brow, bcol, bb, ku, ri, q_start + j, scale * jac[i, 1 + j])
-                add_entry(ab, brow, bcol, bb, ku, q_start + j, ri, scale * jac[i, 1 + j])
+        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 7, scale, zl, l0, q_start)
         add_entry(ab, brow, bcol, bb, ku, 0, 0, coef_k * hess[0, 0])
         for a in range(7):
             add_entry(ab, brow, bcol, bb, ku, 0, q_start + a, coef_k * hess[0, 1 + a])
@@ -285,14 +272,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         for i in range(6):
             lam_k[i] = lam[l0 + i]
         ffr_clamp(ff.mount[k], x[0], q, lam_k, phi, jac, hess)
-        for j in range(6):
-            acc_j = 0.0
-            for i in range(6):
-                acc_j += jac[i, 1 + j] * lam_k[i]
-            force[j] += acc_j
-        for i in range(6):
-            hub_row += jac[i, 0] * lam_k[i]
-            res[zl[l0 + i]] = scale * phi[i]
+        hub_row += clamp_residual(lam_k, phi, jac, 6, scale, zl, l0, force, res)
         for j in range(n):
             res[zx[x0 + j]] = coef_k * force[j]
         if not want_matrix:
@@ -307,16 +287,40 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         for i in range(n):
             for j in range(n):
                 add_entry(ab, brow, bcol, bb, ku, q_start + i, q_start + j, block[i, j])
-        for i in range(6):
-            ri = zl[l0 + i]
-            add_entry(ab, brow, bcol, bb, ku, ri, 0, scale * jac[i, 0])
-            add_entry(ab, brow, bcol, bb, ku, 0, ri, scale * jac[i, 0])
-            for j in range(6):
-                add_entry(ab, brow, bcol, bb, ku, ri, q_start + j, scale * jac[i, 1 + j])
-                add_entry(ab, brow, bcol, bb, ku, q_start + j, ri, scale * jac[i, 1 + j])
+        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 6, scale, zl, l0, q_start)
         add_entry(ab, brow, bcol, bb, ku, 0, 0, coef_k * hess[0, 0])
     res[0] = coef_k * hub_row
     return margin, power
+
+
+@njit(cache=True)
+def clamp_residual(lam_k, phi, jac, n_root, scale, zl, l0, force, res):
+    """A clamp's part of the residual: Phi_q^T lambda added to the first ``n_root`` entries of
+    the beam's ``force``, scale Phi into its multiplier rows of ``res``; returns Phi_theta . lambda
+    (its part of the hub row). ``jac`` (6 x (1 + n_root)) is on [theta, q_root]."""
+    for j in range(n_root):
+        acc_j = 0.0
+        for i in range(6):
+            acc_j += jac[i, 1 + j] * lam_k[i]
+        force[j] += acc_j
+    hub = 0.0
+    for i in range(6):
+        hub += jac[i, 0] * lam_k[i]
+        res[zl[l0 + i]] = scale * phi[i]
+    return hub
+
+
+@njit(cache=True)
+def add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, n_root, scale, zl, l0, q_start):
+    """scale times a clamp's Jacobian (6 x (1 + n_root), on [theta, q_root]) in its multiplier rows
+    and, transposed, in their columns."""
+    for i in range(6):
+        ri = zl[l0 + i]
+        add_entry(ab, brow, bcol, bb, ku, ri, 0, scale * jac[i, 0])
+        add_entry(ab, brow, bcol, bb, ku, 0, ri, scale * jac[i, 0])
+        for j in range(n_root):
+            add_entry(ab, brow, bcol, bb, ku, ri, q_start + j, scale * jac[i, 1 + j])
+            add_entry(ab, brow, bcol, bb, ku, q_start + j, ri, scale * jac[i, 1 + j])
 
 
 @njit(cache=True)
