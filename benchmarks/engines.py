@@ -2,7 +2,7 @@
 
     python benchmarks/engines.py ENGINE ELEMENTS T_END DT
 
-Case A (issue 6): the reference plate (conventions.md) clamped, gravity along its weak
+Case A (issue 6): the reference plate (README, "Beam properties") clamped, gravity along its weak
 axis, released from straight, generalized-alpha rho_inf = 0.8, no damping. Engines:
 hubbeam (benchmarks/case_a.toml: ANCF with torsion, the product), exudyn-ge (Exudyn's
 ObjectBeamGeometricallyExact, 3D with torsion) and exudyn-cable (ObjectANCFCable, 3D ANCF

@@ -1,4 +1,4 @@
-"""The ``hubbeam`` command line (see ../shared/interface.md and docs/reliability.md).
+"""The ``hubbeam`` command line (see docs/scenario.md and docs/reliability.md).
 
 Exit status: 0 success, 2 bad input (one line naming the key or option), 1 failed
 computation or failed write (a line saying where and what to try; the results so far are

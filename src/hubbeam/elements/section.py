@@ -1,4 +1,4 @@
-"""Rectangular cross-section properties (conventions.md: width b along y, thickness h along z)."""
+"""Rectangular cross-section properties (docs/scenario.md: width b along y, thickness h along z)."""
 
 from __future__ import annotations
 

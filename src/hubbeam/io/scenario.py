@@ -174,7 +174,7 @@ class ResolvedBeam:
 
     Placement: its own hub frame is A_h(theta + azimuth); the root is at radius * i_k; the axis
     is i_k turned by precone towards +j0; the section is turned about the axis by -twist
-    (conventions.md). tip_force (N) and tip_moment (N m) are the ``[loads]`` on this beam, in
+    (docs/scenario.md). tip_force (N) and tip_moment (N m) are the ``[loads]`` on this beam, in
     global directions (zeros when [loads] applies to another beam)."""
 
     name: str

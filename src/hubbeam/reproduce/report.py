@@ -14,7 +14,7 @@ from hubbeam.reproduce.plan import Plan
 PROPERTIES_NOTE = (
     "**The beam properties are inferred, not read from the paper.** Its Tables 1 and 4 (material "
     "and geometry of the beams of experiments 1 and 2) are images missing from its text. hubbeam uses "
-    "the reference set of `conventions.md`: L = 1.45 m (0.55 m is 38 % of it), b = 0.05 m (assumed), "
+    "the reference set of the README (\"Beam properties\"): L = 1.45 m (0.55 m is 38 % of it), b = 0.05 m (assumed), "
     "h = 2.5 mm (gives a 0.978 Hz clamped first frequency against 0.9766 Hz measured), aluminium "
     "E = 70 GPa, nu = 0.33, rho = 2700 kg/m^3, for both experiments. Nothing (properties, damping, "
     "meshes) is adjusted to meet the paper's numbers.")

@@ -4,7 +4,7 @@ Beam k with azimuth psi, radius R, twist beta and precone p has its own hub fram
 A_h(theta + psi) (Eq. 74): i_k = i_h(theta + psi), j0, k_k = k_h(theta + psi). Its root is at
 R i_k. Its undeformed axis is i_k tilted out of the hub plane by p towards +j0 (a rotation
 by p about k_k), and its section is turned about that axis by -beta exactly as a single
-beam's is (conventions.md, Eq. 79): with beta = 0 the width (m) lies in the plane of the
+beam's is (docs/scenario.md, Eq. 79): with beta = 0 the width (m) lies in the plane of the
 axis and j0. So the clamped root section frame [tau m n] is
 
     a = A_h(theta + psi) R_k(p),   tau = a_1,   m = cos(beta) a_2 - sin(beta) a_3,
