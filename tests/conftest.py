@@ -57,3 +57,31 @@ def assert_compiled_steps_are_python_steps(system, update, dt=2e-3, steps=40, ev
     assert fast.work["dissipated"] == pytest.approx(slow.work["dissipated"], rel=1e-9)
     assert fast.work["drive"] == pytest.approx(slow.work["drive"], rel=1e-9)
     return a, b, fast, slow
+
+
+#: beta h^2, gamma', beta' of generalized-alpha at h = 1 ms (rho_inf about 0.8)
+ALPHA_COEFS = (0.3e-6, 1.1e3, 3.3e6)
+
+
+def newton_matrix_and_differences(system, seed=3, perturbation=0.02, stiffness="dynamic", theta=0.3, t=0.3):
+    """A system's Newton matrix at a perturbed state at rest and the central differences of its
+    residual along the generalized-alpha correction (z moves x by dz, v by gamma' dz, xdd by
+    beta' dz, lambda by s/ck dmu). Returns (matrix, differences, residual, residual of the
+    difference function at z = 0), dense, on z."""
+    ck, gp, bp = ALPHA_COEFS
+    s = system.mass_scale
+    x0, F = system.initial_state(theta)
+    rng = np.random.default_rng(seed)
+    x0[1:] += perturbation * rng.normal(size=x0.size - 1)
+    layout = system.layout
+    lam0 = rng.normal(size=layout.n_lambda)
+    zero = np.zeros_like(x0)
+
+    def residual(z):
+        dx, dmu = layout.split_z(z)
+        return system.equations(x0 + dx, gp * dx, bp * dx, lam0 + s / ck * dmu, F, t, 0.0, 0.0, ck, s,
+                                want_matrix=False)[0]
+
+    res, matrix = system.equations(x0, zero, zero, lam0, F, t, ck * bp, ck * gp, ck, s, stiffness=stiffness)
+    A = matrix.to_dense()
+    return A, central_difference(residual, np.zeros(A.shape[0]), 1e-7), res, residual(np.zeros(A.shape[0]))

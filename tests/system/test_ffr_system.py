@@ -14,7 +14,7 @@ from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
 from hubbeam.system.mount import Mount
 from hubbeam.system.hub_system import single_beam_system
-from tests.conftest import L, central_difference, plate
+from tests.conftest import L, central_difference, newton_matrix_and_differences, plate
 
 THICK = plate(thickness=0.01)
 
@@ -153,25 +153,11 @@ def test_exact_newton_matrix_with_ffr_beams_is_the_derivative_of_the_residual(mo
                         AncfPart(AncfBeam(L, 3, THICK), Mount(0.35, -0.4, np.pi, 0.0), tip_body=body, name="ancf")],
                        Hub(motion, 9.5, drive=DriveProfile("spin_up", 2.0, 1.0)), gravity=(0.0, -9.81, 0.0),
                        damping=(1.73, 1.4))
-    x0, F = system.initial_state(0.3)
-    rng = np.random.default_rng(5)
-    x0[1:] += 0.01 * rng.normal(size=x0.size - 1)
-    layout = system.layout
-    lam0 = rng.normal(size=layout.n_lambda)
-    ck, gp, bp, s = 0.3e-6, 1.1e3, 3.3e6, system.mass_scale
-    zero = np.zeros_like(x0)
-
-    def residual(z):
-        dx, dmu = layout.split_z(z)
-        return system.equations(x0 + dx, gp * dx, bp * dx, lam0 + s / ck * dmu, F, 0.3, 0.0, 0.0, ck, s,
-                                want_matrix=False)[0]
-
-    res, matrix = system.equations(x0, zero, zero, lam0, F, 0.3, ck * bp, ck * gp, ck, s, stiffness="exact")
-    A = matrix.to_dense()
-    A_fd = central_difference(residual, np.zeros(A.shape[0]), 1e-7)
-    assert np.allclose(res, residual(np.zeros(A.shape[0])), rtol=0, atol=1e-14 * np.max(np.abs(res)))
-    ffr = layout.z_of_x[layout.beam_x(0)]
+    A, A_fd, res, res_fd = newton_matrix_and_differences(system, seed=5, perturbation=0.01, stiffness="exact")
+    assert np.allclose(res, res_fd, rtol=0, atol=1e-14 * np.max(np.abs(res)))
     assert np.max(np.abs(A - A_fd)) < 1e-6 * np.max(np.abs(A))
+    layout = system.layout
+    ffr = layout.z_of_x[layout.beam_x(0)]
     # the FFR block on its own scale (its load stiffness is small against its elastic stiffness)
     block, block_fd = A[np.ix_(ffr, ffr)], A_fd[np.ix_(ffr, ffr)]
     assert np.max(np.abs(block - block_fd)) < 1e-6 * np.max(np.abs(block))

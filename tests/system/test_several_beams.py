@@ -24,7 +24,7 @@ from hubbeam.system.hub_system import Hub, HubSystem, single_beam_system
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
-from tests.conftest import assert_compiled_steps_are_python_steps, L, central_difference, plate
+from tests.conftest import (ALPHA_COEFS, L, assert_compiled_steps_are_python_steps, newton_matrix_and_differences, plate)
 from tests.system.conftest import parts_of, rigid_axis_inertia, tips
 
 GRAVITY = (0.0, -9.81, 0.0)
@@ -226,31 +226,16 @@ def test_newton_matrix_of_two_beams_is_the_derivative_of_the_residual(motion, to
     At rest every term the matrix leaves out vanishes, so it must equal the central
     differences of the residual; for the free hub the PD law enters the hub row as
     -ck (dT/dtheta + gamma' dT/domega) = ck (kp + gamma' kd)."""
-    system = loaded_pair(motion, torque)
-    x0, F = system.initial_state(0.3)
-    rng = np.random.default_rng(3)
-    x0[1:] += 0.02 * rng.normal(size=x0.size - 1)
-    layout = system.layout
-    lam0 = rng.normal(size=layout.n_lambda)
-    ck, gp, bp, s = 0.3e-6, 1.1e3, 3.3e6, system.mass_scale
-    zero = np.zeros_like(x0)
-
-    def residual(z):
-        dx, dmu = layout.split_z(z)
-        return system.dynamic_residual(x0 + dx, gp * dx, bp * dx, lam0 + s / ck * dmu, F, 0.3, ck, s)
-
-    res, matrix = system.dynamic_equations(x0, zero, zero, lam0, F, 0.3, ck * bp, ck * gp, ck, s)
-    A = matrix.to_dense()
-    A_fd = central_difference(residual, np.zeros(A.shape[0]), 1e-7)
-    assert np.allclose(res, residual(np.zeros(A.shape[0])), rtol=0, atol=1e-14 * np.max(np.abs(res)))
+    A, A_fd, res, res_fd = newton_matrix_and_differences(loaded_pair(motion, torque))
+    assert np.allclose(res, res_fd, rtol=0, atol=1e-14 * np.max(np.abs(res)))
     assert np.max(np.abs(A - A_fd)) < 1e-6 * np.max(np.abs(A))  # measured: 1e-9
     # the hub's own entry, to a small fraction of the torque law's share of it (which is only
     # 2.5e-4 of the entry, below the whole-matrix tolerance above)
+    ck, gp, _ = ALPHA_COEFS
     law_share = ck * (KP + gp * KD)
     assert abs(A[0, 0] - A_fd[0, 0]) < 1e-3 * law_share  # measured: 3e-13 of 2.3e-3
     if motion == "free":  # the law does enter: the differences see it too
-        free_of_law = loaded_pair(motion, TorqueLaw())
-        A0 = free_of_law.dynamic_equations(x0, zero, zero, lam0, F, 0.3, ck * bp, ck * gp, ck, s)[1].to_dense()
+        A0 = newton_matrix_and_differences(loaded_pair(motion, TorqueLaw()))[0]  # the same state
         assert A_fd[0, 0] - A0[0, 0] == pytest.approx(law_share, rel=1e-6)
 
 
