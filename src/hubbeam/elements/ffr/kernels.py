@@ -512,6 +512,18 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
 
 
 @njit(cache=True, error_model="numpy")
+def _frame_and_derivatives(q):
+    """A0, D and their derivatives dA0/dTheta_i, dD/dTheta_i at the Cardan angles q[3:6]."""
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    dA = np.empty((3, 3, 3))
+    dD = np.empty((3, 3, 3))
+    cardan(q[3], q[4], q[5], A, D)
+    cardan_derivatives(q[3], q[4], q[5], dA, dD)
+    return A, D, dA, dD
+
+
+@njit(cache=True, error_model="numpy")
 def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
     """The load stiffness at rest: overwrites the leading (6 + nf) square of ``out`` with
     d/dq [-load_factor H(Theta)^T (Q_g + Q_tip)] (Q_g and Q_tip depend on Theta through A0,
@@ -522,12 +534,7 @@ def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
     n = q.shape[0]
     nf = n - 6
     p = q[6:]
-    A = np.empty((3, 3))
-    D = np.empty((3, 3))
-    dA = np.empty((3, 3, 3))
-    dD = np.empty((3, 3, 3))
-    cardan(q[3], q[4], q[5], A, D)
-    cardan_derivatives(q[3], q[4], q[5], dA, dD)
+    A, D, dA, dD = _frame_and_derivatives(q)
     St = np.empty(3)
     for k in range(3):
         s = 0.0
@@ -595,12 +602,7 @@ def ffr_spin_stiffness(inv, q, w, out):
     n = q.shape[0]
     nf = n - 6
     p = q[6:]
-    A = np.empty((3, 3))
-    D = np.empty((3, 3))
-    dA = np.empty((3, 3, 3))
-    dD = np.empty((3, 3, 3))
-    cardan(q[3], q[4], q[5], A, D)
-    cardan_derivatives(q[3], q[4], q[5], dA, dD)
+    A, D, dA, dD = _frame_and_derivatives(q)
     St = np.empty(3)
     Q2 = np.empty((3, 3, nf))
     R2 = np.empty((3, 3))
