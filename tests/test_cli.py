@@ -117,3 +117,8 @@ def test_identify_reads_a_csv_and_fits(tmp_path):
     assert (tmp_path / "fit.png").stat().st_size > 10000
     bad = hubbeam("identify", str(scen), str(tmp_path / "m.csv"), "--fit", "damping.linear", "--signal", "nope")
     assert bad.returncode == 2 and "no column 'nope'" in bad.stderr
+
+
+def test_version():
+    out = hubbeam("--version")
+    assert out.returncode == 0 and out.stdout.strip() == "hubbeam 0.1.0" and not out.stderr

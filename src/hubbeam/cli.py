@@ -44,7 +44,15 @@ class _Parser(argparse.ArgumentParser):
 def _parser() -> argparse.ArgumentParser:
     from hubbeam.io.scenario import EXAMPLES
 
-    p = _Parser(prog="hubbeam", description="Rotating hub with a 3D flexible beam: ANCF with torsion and FFR, side by side.")
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        installed = version("hubbeam")
+    except PackageNotFoundError:  # run from a source tree that is not installed
+        from hubbeam import __version__ as installed
+    p = _Parser(prog="hubbeam", description="Rotating hub with flexible 3D beams: ANCF with torsion and FFR, "
+                                            "several beams, tip bodies, torque laws.")
+    p.add_argument("--version", action="version", version=f"hubbeam {installed}")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     def scenario_cmd(name, help_):
