@@ -31,7 +31,7 @@ from scipy import stats
 from scipy.optimize import least_squares
 
 from hubbeam import api
-from hubbeam.io.scenario import Scenario, ScenarioError
+from hubbeam.io.scenario import Scenario, ScenarioError, value_at
 from hubbeam.errors import ComputationError
 from hubbeam.studies.variants import variant
 
@@ -146,11 +146,13 @@ def signal_columns(scenario: Scenario) -> list[str]:
 
 
 def _lookup(data: dict, key: str) -> float:
-    node = data
-    for part in key.split("."):
-        if not isinstance(node, dict) or part not in node:
-            raise ScenarioError(f"--fit {key}: not a key of the scenario (or not set in it)")
-        node = node[part]
+    """The number a --fit key addresses (the --set addressing: beam.x, beams[1].x, beams.NAME.x)."""
+    try:
+        node = value_at(data, key)
+    except ScenarioError as exc:
+        raise ScenarioError(f"--fit {exc}") from None
+    if node is None:
+        raise ScenarioError(f"--fit {key}: not a key of the scenario (or not set in it)")
     if isinstance(node, bool) or not isinstance(node, (int, float)):
         raise ScenarioError(f"--fit {key}: not a number ({node!r})")
     return float(node)

@@ -119,11 +119,14 @@ class AncfPart(ChartedBeamPart):
 
     def energies(self, q, v, chart, gravity) -> dict[str, float]:
         beam = self.beam
-        kinetic = 0.5 * v @ self.apply_mass(q, chart, v)
+        kinetic = 0.5 * v @ beam.apply_mass(beam.mass_blocks(q, chart), v)
         strain = beam.elastic(q, chart, tangent=False)[0]
         grav = -beam.distributed_load(beam.section.mass_per_length * np.asarray(gravity, dtype=float)) @ q
-        if self.tip_body is not None:
-            grav += self._tip_body_terms(q, v, chart, gravity)[4]
+        if self.tip_body is not None:  # one evaluation of the tip body gives its mass and potential
+            t = self.tip
+            _, M, _, _, V = self._tip_body_terms(q, v, chart, gravity)
+            kinetic += 0.5 * v[t] @ M @ v[t]
+            grav += V
         return {"kinetic": float(kinetic), "strain": float(strain), "gravity": float(grav)}
 
     # ------------------------------------------------------------ measured quantities

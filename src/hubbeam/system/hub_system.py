@@ -22,7 +22,6 @@ from hubbeam.elements.ffr.kernels import ffr_spin_stiffness, pack
 from hubbeam.system.equations import (CHART_SINGULAR, FFR_FIELD_NDIM, FfrStack, SystemModel, bandwidth_for, dissipated_power,
                                       hub_power, system_equations)
 from hubbeam.system.ffr_part import FfrPart
-from hubbeam.system.hub import hub_frame
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.layout import CLAMP_EQUATIONS, Layout
 from hubbeam.system.parts import BeamPart, ChartedBeamPart
@@ -99,14 +98,6 @@ class HubSystem:
             if b.name == name:
                 return k
         raise KeyError(name)
-
-    def drive_angle(self, t: float, held: bool | None = None) -> float | None:
-        """theta_p(t) of the driving constraint, or None for a free hub."""
-        if held is None:
-            held = self.hub.held
-        if not held:
-            return None
-        return self.hub.drive(t)[0] if self.motion == "prescribed" else 0.0
 
     @property
     def length_scale(self) -> float:
@@ -488,8 +479,6 @@ class HubSystem:
     def centre_line(self, x, F, beam: int = 0, points_per_element: int = 8) -> np.ndarray:
         return self.beams[beam].centre_line(x[self.layout.beam_x(beam)], F[beam], points_per_element)
 
-    def hub_frame(self, x) -> np.ndarray:
-        return hub_frame(x[0])
 
 
 def single_beam_system(beam, radius: float = 0.0, twist: float = 0.0, motion: str = "fixed",

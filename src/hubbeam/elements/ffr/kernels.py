@@ -585,6 +585,20 @@ def _cross(a0, a1, a2, b0, b1, b2, out):
 
 
 @njit(cache=True, error_model="numpy")
+def _skew_and_square(v):
+    """[v]x and [v]x [v]x (3 x 3)."""
+    W = np.empty((3, 3))
+    W[0, 0], W[0, 1], W[0, 2] = 0.0, -v[2], v[1]
+    W[1, 0], W[1, 1], W[1, 2] = v[2], 0.0, -v[0]
+    W[2, 0], W[2, 1], W[2, 2] = -v[1], v[0], 0.0
+    WW = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            WW[i, j] = W[i, 0] * W[0, j] + W[i, 1] * W[1, j] + W[i, 2] * W[2, j]
+    return W, WW
+
+
+@njit(cache=True, error_model="numpy")
 def ffr_spin_stiffness(inv, q, w, out):
     """The spin stiffness: overwrites the leading (6 + nf) square of ``out`` with d/dq of the
     inertia force rows H^T (M_v vdot - Q_v) in steady rigid rotation at the global angular
@@ -610,28 +624,13 @@ def ffr_spin_stiffness(inv, q, w, out):
     for i in range(n):
         for j in range(n):
             out[i, j] = 0.0
-    # global (w x)^2
-    Wg = np.empty((3, 3))
-    Wg[0, 0], Wg[0, 1], Wg[0, 2] = 0.0, -w[2], w[1]
-    Wg[1, 0], Wg[1, 1], Wg[1, 2] = w[2], 0.0, -w[0]
-    Wg[2, 0], Wg[2, 1], Wg[2, 2] = -w[1], w[0], 0.0
-    WWg = np.empty((3, 3))
-    for i in range(3):
-        for j in range(3):
-            WWg[i, j] = Wg[i, 0] * Wg[0, j] + Wg[i, 1] * Wg[1, j] + Wg[i, 2] * Wg[2, j]
+    _, WWg = _skew_and_square(w)  # global (w x)^2
     om = np.empty(3)
     b = np.empty(3)
     for i in range(3):
         om[i] = A[0, i] * w[0] + A[1, i] * w[1] + A[2, i] * w[2]
         b[i] = A[0, i] * q[0] + A[1, i] * q[1] + A[2, i] * q[2]
-    W = np.empty((3, 3))
-    W[0, 0], W[0, 1], W[0, 2] = 0.0, -om[2], om[1]
-    W[1, 0], W[1, 1], W[1, 2] = om[2], 0.0, -om[0]
-    W[2, 0], W[2, 1], W[2, 2] = -om[1], om[0], 0.0
-    WW = np.empty((3, 3))
-    for i in range(3):
-        for j in range(3):
-            WW[i, j] = W[i, 0] * W[0, j] + W[i, 1] * W[1, j] + W[i, 2] * W[2, j]
+    W, WW = _skew_and_square(om)
     cvec = np.empty(3)  # W W b = A0^T (w x (w x r_C))
     for i in range(3):
         cvec[i] = WW[i, 0] * b[0] + WW[i, 1] * b[1] + WW[i, 2] * b[2]
