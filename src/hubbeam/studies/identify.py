@@ -150,7 +150,7 @@ def _lookup(data: dict, key: str) -> float:
     try:
         node = value_at(data, key)
     except ScenarioError as exc:
-        raise ScenarioError(f"--fit {exc}") from None
+        raise ScenarioError(f"--fit {str(exc).removeprefix('--set ')}") from None
     if node is None:
         raise ScenarioError(f"--fit {key}: not a key of the scenario (or not set in it)")
     if isinstance(node, bool) or not isinstance(node, (int, float)):
