@@ -10,6 +10,10 @@ time integration returns to Python at least every half second (see
 
 Inside :func:`deferred` (writing results) a signal is only noted; it takes effect after the
 block, so a result file is never left half written.
+
+A signal that lands while llvmlite (numba's code generator) is in Python code is not raised
+there either: llvmlite calls Python back from C, and an exception raised in such a callback is
+printed and lost. The signal is sent again a moment later, until it lands elsewhere.
 """
 
 from __future__ import annotations
@@ -18,10 +22,13 @@ import contextlib
 import signal
 import threading
 
+#: seconds after which a signal that landed in llvmlite is sent again
+RESEND_AFTER = 0.05
+
 #: the signals that interrupt a command
 SIGNALS = tuple(s for s in (getattr(signal, n, None) for n in ("SIGINT", "SIGTERM", "SIGHUP")) if s is not None)
 
-_state = {"defer": 0, "pending": None, "received": None}
+_state = {"defer": 0, "pending": None, "received": None, "active": False}
 
 
 class Interrupted(BaseException):
@@ -50,7 +57,33 @@ def _handler(signum, frame):
         if _state["pending"] is None:
             _state["pending"] = signum
         return
+    if hasattr(signal, "pthread_kill") and _in_code_generator(frame):
+        _resend_later(signum)
+        return
     raise Interrupted(signum)
+
+
+def _in_code_generator(frame) -> bool:
+    """Whether ``frame`` or a caller of it is llvmlite's (whose C code calls Python back)."""
+    while frame is not None:
+        if str(frame.f_globals.get("__name__", "")).startswith("llvmlite"):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _resend_later(signum: int) -> None:
+    """Send ``signum`` to the main thread again after :data:`RESEND_AFTER` seconds."""
+    target = threading.main_thread().ident
+
+    def resend():
+        if _state["active"]:  # not once the command has ended and the old handlers are back
+            with contextlib.suppress(OSError, ValueError):
+                signal.pthread_kill(target, signum)
+
+    timer = threading.Timer(RESEND_AFTER, resend)
+    timer.daemon = True
+    timer.start()
 
 
 @contextlib.contextmanager
@@ -72,9 +105,11 @@ def handling():
         _restore(previous)
         raise
     _state["pending"] = _state["received"] = None
+    _state["active"] = bool(previous)
     try:
         yield
     finally:
+        _state["active"] = False
         _restore(previous)
         _state["pending"] = _state["received"] = None
 
