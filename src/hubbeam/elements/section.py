@@ -1,8 +1,13 @@
-"""Rectangular cross-section properties (docs/scenario.md: width b along y, thickness h along z)."""
+"""Cross-section properties: the homogeneous rectangle (docs/scenario.md: width b along y, thickness
+h along z) and the span-wise table of stations (:class:`SpanSections`) that tapered and pretwisted
+beams are described by."""
 
 from __future__ import annotations
 
+import enum
 from dataclasses import dataclass
+
+import numpy as np
 
 
 def saint_venant_torsion_constant(width: float, thickness: float) -> float:
@@ -49,3 +54,95 @@ class Section:
     @property
     def mass_per_length(self) -> float:
         return self.density * self.area
+
+
+class SectionForm(enum.Enum):
+    """How the stations of a :class:`SpanSections` table are given."""
+
+    RECTANGLE = "rectangle"  # width and thickness; the constants follow from the material
+    CONSTANTS = "constants"  # EA, GJ, EI_y, EI_z, rho_A, rho_I directly
+
+
+#: the columns of :meth:`SpanSections.at`, in order (SI units: N, N m^2, N m^2, N m^2, kg/m,
+#: kg m, kg m, kg m, m, m, rad)
+COLUMNS = ("EA", "GJ", "EI_y", "EI_z", "rho_A", "I_tau", "I_m", "I_n", "width", "thickness", "pretwist")
+COLUMN = {name: k for k, name in enumerate(COLUMNS)}
+
+
+def rectangle_constants(section: Section) -> np.ndarray:
+    """The :data:`COLUMNS` of a homogeneous rectangle, pretwist 0: EA, GJ_t, EI_y, EI_z (Section.stiffness),
+    rho A, rotary inertias per length rho (I_y + I_z), rho I_y, rho I_z (kg m), width, thickness."""
+    rho = section.density
+    return np.array([*section.stiffness, section.mass_per_length, rho * (section.i_y + section.i_z),
+                     rho * section.i_y, rho * section.i_z, section.width, section.thickness, 0.0])
+
+
+@dataclass(frozen=True)
+class SpanSections:
+    """Section properties along the undeformed span of a beam: stations x_0 = 0 < ... < x_n = length (m),
+    linear interpolation between them.
+
+    ``form`` RECTANGLE: ``values`` hold (width, thickness) per station; width and thickness interpolate
+    linearly and the constants follow from them with the ``material`` (a :class:`Section` whose density,
+    Young's and shear moduli are used; the torsion constant is Saint-Venant's formula of the
+    interpolated rectangle).
+    ``form`` CONSTANTS: ``values`` hold the first 10 :data:`COLUMNS` (EA ... I_n, width, thickness)
+    per station; every one interpolates linearly. ``pretwist`` (rad, per station, about the beam axis,
+    in the sense of the mount's twist) interpolates linearly in both forms.
+    """
+
+    x: np.ndarray
+    form: SectionForm
+    values: np.ndarray
+    pretwist: np.ndarray
+    material: Section | None = None
+
+    def __post_init__(self) -> None:
+        x = np.asarray(self.x, dtype=float)
+        if x.ndim != 1 or x.size < 2 or x[0] != 0.0 or np.any(np.diff(x) <= 0.0):
+            raise ValueError("sections: stations x must start at 0 and strictly increase (at least 2)")
+        width = 2 if self.form is SectionForm.RECTANGLE else 10
+        values = np.asarray(self.values, dtype=float).reshape(x.size, width)
+        if self.form is SectionForm.RECTANGLE and self.material is None:
+            raise ValueError("sections: rectangle stations need the beam's material")
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "values", values)
+        object.__setattr__(self, "pretwist", np.asarray(self.pretwist, dtype=float).reshape(x.size))
+
+    @classmethod
+    def uniform(cls, section: Section, length: float) -> "SpanSections":
+        """The prismatic beam of ``section`` over ``length`` (m), as two equal constant stations."""
+        row = rectangle_constants(section)[:10]
+        return cls(np.array([0.0, float(length)]), SectionForm.CONSTANTS, np.vstack([row, row]), np.zeros(2))
+
+    @property
+    def length(self) -> float:
+        return float(self.x[-1])
+
+    @property
+    def is_uniform(self) -> bool:
+        """Whether every station has the same properties and no pretwist."""
+        return bool(np.all(self.values == self.values[0]) and not np.any(self.pretwist))
+
+    def at(self, x) -> np.ndarray:
+        """The :data:`COLUMNS` at stations ``x`` (m from the root; scalar or array): shape (..., 11)."""
+        xs = np.clip(np.asarray(x, dtype=float), 0.0, self.length)
+        interpolated = np.stack([np.interp(xs, self.x, column) for column in self.values.T], axis=-1)
+        twist = np.interp(xs, self.x, self.pretwist)[..., None]
+        if self.form is SectionForm.CONSTANTS:
+            return np.concatenate([interpolated, twist], axis=-1)
+        width, thickness = interpolated[..., 0], interpolated[..., 1]
+        rows = [rectangle_constants(self._rectangle(float(b), float(h)))[:10]
+                for b, h in zip(np.ravel(width), np.ravel(thickness))]
+        return np.concatenate([np.reshape(rows, width.shape + (10,)), twist], axis=-1)
+
+    def _rectangle(self, width: float, thickness: float) -> Section:
+        m = self.material
+        return Section(width, thickness, m.density, m.youngs_modulus, m.shear_modulus,
+                       saint_venant_torsion_constant(width, thickness))
+
+    def pretwist_rate(self, x) -> np.ndarray:
+        """d(pretwist)/dx (rad/m) at ``x``: the slope of the segment holding x (the right one at a station)."""
+        xs = np.clip(np.asarray(x, dtype=float), 0.0, self.length)
+        k = np.clip(np.searchsorted(self.x, xs, side="right") - 1, 0, self.x.size - 2)
+        return (self.pretwist[k + 1] - self.pretwist[k]) / (self.x[k + 1] - self.x[k])
