@@ -98,47 +98,56 @@ MAGNITUDE_RANGE = (1e-150, 1e150)
 
 def check_magnitudes(scenario) -> None:
     """ScenarioError naming the keys when a derived quantity of the model is not a finite
-    number within :data:`MAGNITUDE_RANGE` (see the module doc)."""
+    number within :data:`MAGNITUDE_RANGE` (see the module doc). Every beam is checked; its keys
+    are named as written (``beam.width`` for a ``[beam]`` table, ``beams[1].width`` otherwise)."""
     import numpy as np
 
-    b, h = scenario.beam, scenario.hub
+    h = scenario.hub
     low, high = MAGNITUDE_RANGE
-    with np.errstate(all="ignore"):
-        w, t, L = np.float64(b.width), np.float64(b.thickness), np.float64(b.length)
-        E, rho, G = np.float64(b.youngs_modulus), np.float64(b.density), np.float64(scenario.shear_modulus)
-        a, c = max(w, t), min(w, t)
-        J = np.float64(b.torsion_constant) if b.torsion_constant is not None else a * c**3 / 3.0 * (1.0 - 0.63 * c / a)
-        area, i_y, i_z = w * t, w * t**3 / 12.0, t * w**3 / 12.0
-        quantities = [
-            ("the section area", area, "m^2", ["beam.width", "beam.thickness"]),
-            ("the weak-axis second moment of area", i_y, "m^4", ["beam.thickness", "beam.width"]),
-            ("the strong-axis second moment of area", i_z, "m^4", ["beam.width", "beam.thickness"]),
-            ("the torsion constant", J, "m^4", ["beam.torsion_constant" if b.torsion_constant is not None
-                                                 else "beam.thickness", "beam.width"]),
-            ("the axial stiffness EA", E * area, "N", ["beam.youngs_modulus", "beam.width", "beam.thickness"]),
-            ("the bending stiffness EI", E * i_y, "N m^2", ["beam.youngs_modulus", "beam.thickness"]),
-            ("the bending stiffness EI", E * i_z, "N m^2", ["beam.youngs_modulus", "beam.width"]),
-            ("the torsional stiffness GJ", G * J, "N m^2", ["beam.youngs_modulus", "beam.thickness"]),
-            ("the beam's mass", rho * area * L, "kg", ["beam.density", "beam.length", "beam.width"]),
-            ("the section's rotary inertia", rho * (i_y + i_z), "kg m", ["beam.density", "beam.width"]),
-            ("the axial stiffness of an element EA / (L / n)", E * area * b.elements / L, "N/m",
-             ["beam.length", "beam.youngs_modulus"]),
-            ("the bending stiffness of an element EI / (L / n)^3", E * i_z * (b.elements / L) ** 3, "N/m",
-             ["beam.length", "beam.youngs_modulus"]),
-            ("the beam's moment of inertia about the hub", rho * area * L * (L + h.radius) ** 2, "kg m^2",
-             ["beam.length", "hub.radius", "beam.density"]),
-        ]
-        if h.motion == "free":
-            quantities.append(("the hub's inertia", np.float64(h.inertia), "kg m^2", ["hub.inertia"]))
+    single = scenario.single_beam is not None
+    quantities, values = [], {}
+    for i, b in enumerate(scenario.beam_tables):
+        k = "beam" if single else f"beams[{i}]"
+        radius_key = f"{k}.radius" if b.radius is not None else "hub.radius"
+        with np.errstate(all="ignore"):
+            w, t, L = np.float64(b.width), np.float64(b.thickness), np.float64(b.length)
+            E, rho = np.float64(b.youngs_modulus), np.float64(b.density)
+            nu = 0.33 if b.poisson_ratio is None else b.poisson_ratio
+            G = np.float64(b.shear_modulus) if b.shear_modulus is not None else E / (2.0 * (1.0 + nu))
+            R = np.float64(h.radius if b.radius is None else b.radius)
+            a, c = max(w, t), min(w, t)
+            J = np.float64(b.torsion_constant) if b.torsion_constant is not None else a * c**3 / 3.0 * (1.0 - 0.63 * c / a)
+            area, i_y, i_z = w * t, w * t**3 / 12.0, t * w**3 / 12.0
+            quantities += [
+                ("the section area", area, "m^2", [f"{k}.width", f"{k}.thickness"]),
+                ("the weak-axis second moment of area", i_y, "m^4", [f"{k}.thickness", f"{k}.width"]),
+                ("the strong-axis second moment of area", i_z, "m^4", [f"{k}.width", f"{k}.thickness"]),
+                ("the torsion constant", J, "m^4", [f"{k}.torsion_constant" if b.torsion_constant is not None
+                                                     else f"{k}.thickness", f"{k}.width"]),
+                ("the axial stiffness EA", E * area, "N", [f"{k}.youngs_modulus", f"{k}.width", f"{k}.thickness"]),
+                ("the bending stiffness EI", E * i_y, "N m^2", [f"{k}.youngs_modulus", f"{k}.thickness"]),
+                ("the bending stiffness EI", E * i_z, "N m^2", [f"{k}.youngs_modulus", f"{k}.width"]),
+                ("the torsional stiffness GJ", G * J, "N m^2", [f"{k}.youngs_modulus", f"{k}.thickness"]),
+                ("the beam's mass", rho * area * L, "kg", [f"{k}.density", f"{k}.length", f"{k}.width"]),
+                ("the section's rotary inertia", rho * (i_y + i_z), "kg m", [f"{k}.density", f"{k}.width"]),
+                ("the axial stiffness of an element EA / (L / n)", E * area * b.elements / L, "N/m",
+                 [f"{k}.length", f"{k}.youngs_modulus"]),
+                ("the bending stiffness of an element EI / (L / n)^3", E * i_z * (b.elements / L) ** 3, "N/m",
+                 [f"{k}.length", f"{k}.youngs_modulus"]),
+                ("the beam's moment of inertia about the hub", rho * area * L * (L + R) ** 2, "kg m^2",
+                 [f"{k}.length", radius_key, f"{k}.density"]),
+            ]
+        values.update({f"{k}.{name}": getattr(b, name) for name in ("width", "thickness", "length", "youngs_modulus",
+                                                                     "density", "torsion_constant", "radius")})
+    values["hub.radius"], values["hub.inertia"] = h.radius, h.inertia
+    if h.motion == "free":
+        quantities.append(("the hub's inertia", np.float64(h.inertia), "kg m^2", ["hub.inertia"]))
     for what, value, unit, keys in quantities:
         if not (np.isfinite(value) and low < value < high):
-            given = ", ".join(f"{k} = {_value(scenario, k):g}" for k in keys if _value(scenario, k) is not None)
+            given = ", ".join(f"{key} = {values[key]:g}" for key in keys if _number(values.get(key)))
             raise ScenarioError(f"{keys[0]}: with {given}, {what} is {float(value):.3g} {unit}, outside the range "
                                 f"hubbeam computes with ({low:g} to {high:g}); check the values and their units (SI)")
 
 
-def _value(scenario, key: str):
-    node = scenario
-    for part in key.split("."):
-        node = getattr(node, part, None)
-    return node if isinstance(node, (int, float)) and not isinstance(node, bool) else None
+def _number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
