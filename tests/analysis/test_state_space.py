@@ -156,28 +156,34 @@ def test_tip_force_input_is_the_tip_jacobian_transposed(form):
     assert names == [f"tip_force_{a}_{system.beams[0].name}" for a in "xyz"]
 
 
-def test_static_gain_is_the_derivative_of_the_static_solution():
-    """Held hub, tip force input: the DC gain D - C A^-1 B of tip deflection and drive torque
-    equals the change of the static solution with the tip force (central difference of two
-    static solutions)."""
+SLEW = ['hub.motion="prescribed"', 'hub.drive.profile="slew"', "hub.drive.angle=0.5", "hub.drive.T=10.0"]
+
+
+@pytest.mark.parametrize("drive, spin", [(SLEW, None), (SPIN, 2.0)], ids=["rest", "rotating"])
+def test_static_gain_is_the_derivative_of_the_static_solution(drive, spin):
+    """Held hub (at rest; turning at 2 rad/s with drag), tip force input: the DC gain
+    D - C A^-1 B of tip deflection, drive torque and strain equals the change of the static
+    (steady) solution with the tip force, a central difference of two solve_static solutions."""
     sensors = ['sensors=[{name = "tip", kind = "tip_deflection"}, {name = "drive", kind = "hub_torque"}, '
                '{name = "P1", kind = "surface_strain", x = 0.3, surface = "upper"}]']
-    sc = exp1(SMALL, ['hub.motion="prescribed"', 'hub.drive.profile="slew"', "hub.drive.angle=0.5",
-                      "hub.drive.T=10.0"], sensors)
+    sc = exp1(SMALL, drive, sensors)
     model = api.linearize(sc)
     assert model.inputs == ["tip_force_x_beam1", "tip_force_y_beam1", "tip_force_z_beam1"]
     gain = model.D - model.C @ np.linalg.solve(model.A, model.B)
     df = 0.01
 
     def static(fz):
-        s = exp1(SMALL, FIXED, [f"loads.tip_force=[0.0, 0.0, {fz}]"], sensors)
-        d = api.static(s).to_dict()
-        return np.array([d["tip_displacement"]["radial"], d["tip_displacement"]["vertical"],
-                         d["tip_displacement"]["tangential"], d["hub_holding_torque"]])
+        system = api.build_system(exp1(SMALL, drive, [f"loads.tip_force=[0.0, 0.0, {fz}]"]))
+        sol = solve_static(system, load_steps=4, spin=spin)
+        tip = system.tip_displacement(sol.x)
+        strain = system.surface_strain(sol.x, sol.chart, 0.3, 0.0, 0.0025 / 2)
+        return np.array([tip["radial"], tip["vertical"], tip["tangential"], system.drive_torque(sol.multipliers),
+                         strain])
 
     fd = (static(df) - static(-df)) / (2 * df)
-    rows = [model.outputs.index(n) for n in ("tip_radial", "tip_vertical", "tip_tangential", "drive")]
-    np.testing.assert_allclose(gain[rows, 2], fd, rtol=1e-4, atol=1e-6 * np.max(np.abs(fd)))
+    rows = [model.outputs.index(n) for n in ("tip_radial", "tip_vertical", "tip_tangential", "drive", "P1")]
+    np.testing.assert_allclose(gain[rows, 2], fd, rtol=1e-4, atol=1e-6 * np.max(np.abs(fd[:4])))
+    np.testing.assert_allclose(gain[rows[4], 2], fd[4], rtol=1e-4)
     assert abs(fd[3]) > 0.1  # a force along z on a beam along x needs a holding torque
     # the drive reaction follows a force input at once: D != 0 there only
     assert abs(model.D[model.outputs.index("drive"), 2]) > 0
