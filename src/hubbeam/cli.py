@@ -70,7 +70,8 @@ def _parser() -> argparse.ArgumentParser:
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
     st.add_argument("--plot", help="figure of the deformed beam")
     scenario_cmd("modes", "natural frequencies about the static equilibrium (steady rotation for a constant drive)")
-    lin = scenario_cmd("linearize", "state space (A, B, C, D) about the equilibrium (steady rotation for a constant drive)")
+    lin = scenario_cmd("linearize", "state space (A, B, C, D) about the equilibrium (steady rotation for a "
+                                    "constant drive)")
     lin.add_argument("-o", "--output", help="NetCDF file of A, B, C, D")
     lin.add_argument("--inputs", help="comma-separated: hub_torque, tip_force:BEAM (default: hub_torque on a free hub, "
                                       "the first beam's tip force on a held one)")
@@ -754,7 +755,8 @@ def _main(argv) -> int:
             result = _cmd_applicability(args)
         else:
             scenario = _load(args)
-            handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell, "linearize": _cmd_linearize,
+            handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
+                       "linearize": _cmd_linearize,
                        "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]
             result = handler(args, scenario)
         raise_pending()

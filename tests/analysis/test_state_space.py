@@ -69,8 +69,8 @@ def test_free_hub_rigid_rotation_is_a_double_zero_eigenvalue_left_out():
     # (a near-zero eigenvalue of a stiff matrix: known to round-off relative to the largest, 1e-2 here)
     np.testing.assert_allclose(s[:2], [rigid[0], rigid[0]], rtol=2e-2)
     assert s[1] < 1e-2 * s[2]
-    with_pd = api.linearize(exp1(UNDAMPED, ['hub.torque = {law = "pd", kp = 20.0, kd = 0.0, '
-                                            'reference = {profile = "slew", angle = 0.5, T = 20.0}}']))
+    with_pd = api.linearize(exp1(UNDAMPED, [('hub.torque = {law = "pd", kp = 20.0, kd = 0.0, '
+                                             'reference = {profile = "slew", angle = 0.5, T = 20.0}}')]))
     assert with_pd.rigid_modes == 0  # the servo mode is a mode like the others
     f_pd = elastic(with_pd)[0]
     assert f_pd.size == elastic(model)[0].size + 1
@@ -104,7 +104,7 @@ def test_damping_matrix_is_the_velocity_derivative_of_the_residual_at_rest(form)
     sc = exp1(SMALL, form, ["damping.quadratic=0"])
     system = api.build_system(sc)
     eq = solve_static(system, load_steps=4)
-    M, C, K, A = rest_matrices(system, eq.x, eq.multipliers, eq.chart)
+    _, C, _, _ = rest_matrices(system, eq.x, eq.multipliers, eq.chart)
     lam = system.lambda_from_held(eq.multipliers, False)
     zx = system.layout.z_of_x
     zero = np.zeros(system.nx)
@@ -164,8 +164,8 @@ def test_static_gain_is_the_derivative_of_the_static_solution(drive, spin):
     """Held hub (at rest; turning at 2 rad/s with drag), tip force input: the DC gain
     D - C A^-1 B of tip deflection, drive torque and strain equals the change of the static
     (steady) solution with the tip force, a central difference of two solve_static solutions."""
-    sensors = ['sensors=[{name = "tip", kind = "tip_deflection"}, {name = "drive", kind = "hub_torque"}, '
-               '{name = "P1", kind = "surface_strain", x = 0.3, surface = "upper"}]']
+    sensors = [('sensors=[{name = "tip", kind = "tip_deflection"}, {name = "drive", kind = "hub_torque"}, '
+                '{name = "P1", kind = "surface_strain", x = 0.3, surface = "upper"}]')]
     sc = exp1(SMALL, drive, sensors)
     model = api.linearize(sc)
     assert model.inputs == ["tip_force_x_beam1", "tip_force_y_beam1", "tip_force_z_beam1"]
@@ -245,8 +245,8 @@ def test_step_response_is_the_nonlinear_response_to_first_order():
     from hubbeam.simulation import simulate
     from hubbeam.solvers import generalized_alpha as ga
 
-    sensors = ['sensors=[{name = "P1", kind = "surface_strain", x = 0.3, surface = "upper"}, '
-               '{name = "tip", kind = "tip_deflection"}, {name = "omega", kind = "hub_angular_velocity"}]']
+    sensors = [('sensors=[{name = "P1", kind = "surface_strain", x = 0.3, surface = "upper"}, '
+                '{name = "tip", kind = "tip_deflection"}, {name = "omega", kind = "hub_angular_velocity"}]')]
     sc = exp1(SMALL, sensors)
     model = api.linearize(sc)
     eq = model.equilibrium
@@ -300,6 +300,6 @@ def test_the_bode_example_of_the_docs_runs(tmp_path, monkeypatch, capsys):
     text = (Path(__file__).resolve().parents[2] / "docs" / "state_space.md").read_text()
     code = text.split("```python\n", 1)[1].split("```", 1)[0]
     monkeypatch.chdir(tmp_path)
-    exec(compile(code, "state_space.md", "exec"), {})
+    exec(compile(code, "state_space.md", "exec"), {})  # noqa: S102 (the documented example itself)
     assert "peak gain 0.000128 /(N m) at 1.015 Hz" in capsys.readouterr().out
     assert (tmp_path / "bode_exp1.png").stat().st_size > 0
