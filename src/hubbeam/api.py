@@ -233,6 +233,44 @@ def modes(scenario: Scenario) -> ModalResult:
                        about=about)
 
 
+def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
+    """The continuous-time state space (A, B, C, D) of a scenario
+    (:class:`hubbeam.analysis.state_space.LinearModel`): about the static equilibrium under its
+    loads or, for a hub driven at a constant omega_s, about the steadily rotating state (other
+    prescribed profiles: at rest with the hub held). ``inputs``: "hub_torque" (free hub, N m, added
+    to the torque law) and "tip_force:BEAM" (N, three components); default: the hub torque of a
+    free hub, the first beam's tip force on a held one. Outputs: the scenario's sensors.
+    ``open_loop``: leave the scenario's torque law out (the plant a controller is designed for)."""
+    from hubbeam.analysis.state_space import linearise
+
+    scenario = as_scenario(scenario)
+    system = build_system(scenario)
+    if open_loop:
+        system = system.with_hub(torque=TorqueLaw())
+    load_steps = scenario.analysis.load_steps
+    if inputs is None:
+        inputs = ["hub_torque"] if not system.hub.held else [f"tip_force:{system.beams[0].name}"]
+    omega = 0.0
+    if scenario.hub.motion == "prescribed" and system.drive.kind == "constant":
+        omega = float(system.drive(0.0)[1])
+        about = f"steadily rotating state at omega = {omega:g} rad/s (co-rotating coordinates)"
+        equilibrium = solve_static(system, load_steps=load_steps, spin=omega)
+    else:
+        about = "static equilibrium under the scenario's gravity and loads"
+        if scenario.hub.motion == "prescribed":
+            about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
+        equilibrium = solve_static(system, load_steps=load_steps)
+    model = linearise(system, equilibrium, omega, inputs, scenario.sensors, about)
+    if not system.hub.held:
+        needed = -float(equilibrium.multipliers[system.layout_for(True).drive_lambda])  # the torque that holds it
+        missing = needed - system.applied_torque(0.0, equilibrium.x, np.zeros(system.nx))
+        scale = system.static_force_scale(equilibrium.x, equilibrium.chart) * system.length_scale  # N m
+        if abs(missing) > 1e-4 * max(scale, abs(needed)):  # above the discretisation's own small torque
+            model.notes.append(f"the free hub is not in equilibrium there: it needs {missing:+.6g} N m more torque "
+                               "(the model holds for the motion about that state)")
+    return model
+
+
 def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None):
     """Time integration of a scenario's dynamic analysis with all its settings (step,
     spectral radius, output step, Newton options). ``torque`` replaces the scenario's torque

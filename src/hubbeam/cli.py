@@ -70,6 +70,12 @@ def _parser() -> argparse.ArgumentParser:
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
     st.add_argument("--plot", help="figure of the deformed beam")
     scenario_cmd("modes", "natural frequencies about the static equilibrium (steady rotation for a constant drive)")
+    lin = scenario_cmd("linearize", "state space (A, B, C, D) about the equilibrium (steady rotation for a "
+                                    "constant drive)")
+    lin.add_argument("-o", "--output", help="NetCDF file of A, B, C, D")
+    lin.add_argument("--inputs", help="comma-separated: hub_torque, tip_force:BEAM (default: hub_torque on a free hub, "
+                                      "the first beam's tip force on a held one)")
+    lin.add_argument("--open-loop", action="store_true", help="leave the scenario's hub torque law out")
     camp = scenario_cmd("campbell", "natural frequencies about the steadily rotating state against hub speed")
     camp.add_argument("--omega", required=True, metavar="START:STOP:N", help="hub speeds (rad/s)")
     camp.add_argument("--count", type=int, default=6, help="modes per speed (default 6)")
@@ -256,6 +262,37 @@ def _cmd_modes(args, scenario) -> dict:
         print(f"natural frequencies (Hz) about the {d['about']}, {d['rigid_modes']} rigid mode(s) left out:")
         for i, f in enumerate(d["frequencies_hz"], 1):
             print(f"  {i:3d}  {f:12.6f}")
+    return d
+
+
+def _cmd_linearize(args, scenario) -> dict:
+    import numpy as np
+
+    from hubbeam import api
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import Target
+
+    targets = _check([Target("-o", args.output)], args)
+    inputs = None if args.inputs is None else [i.strip() for i in args.inputs.split(",")]
+    try:
+        model = api.linearize(scenario, inputs, open_loop=args.open_loop)
+    except ScenarioError as exc:
+        raise ScenarioError(f"--{exc}" if str(exc).startswith("inputs:") else str(exc)) from None
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise _numerical_failure("linearisation", exc) from exc
+    if targets:
+        from hubbeam.io.results import write_netcdf
+
+        _write([(targets[0], lambda p: write_netcdf(model.to_dataset(scenario), p))])
+    d = model.to_dict()
+    if not args.json:
+        print(f"state space about the {d['about']}: {d['states']} states, inputs {', '.join(d['inputs'])}, "
+              f"outputs {', '.join(d['outputs']) or '(none: the scenario has no sensors)'}")
+        for f, z in list(zip(d["frequencies_hz"], d["damping_ratios"]))[:10]:
+            print(f"  {f:12.6f} Hz  damping ratio {z:.4g}")
+    left_out = [f"outputs left out (not functions of the state, or zero to first order): {', '.join(model.left_out)}"]
+    for note in model.notes + (left_out if model.left_out else []):
+        _say(f"hubbeam: note: {note}")
     return d
 
 
@@ -719,6 +756,7 @@ def _main(argv) -> int:
         else:
             scenario = _load(args)
             handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
+                       "linearize": _cmd_linearize,
                        "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]
             result = handler(args, scenario)
         raise_pending()

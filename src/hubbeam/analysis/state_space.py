@@ -1,0 +1,344 @@
+"""Continuous-time state space (A, B, C, D) of the hub-beam system about an equilibrium.
+
+The equations of motion with constraints (paper Eq. 77), M(x) x'' + r(x, x') + Phi_x^T lambda
+= B_x u, Phi(x) = 0, are linearised about a state that does not change in time:
+
+- **rest**: the static equilibrium under the scenario's loads (``solve_static``), x' = 0;
+- **steady rotation** (a hub driven at a constant speed omega): the state that turns rigidly
+  with the hub (``solve_static(spin=omega)``), described in co-rotating coordinates
+  x(t) = G(omega t) y(t) (G the rigid rotation of the whole system about the axis, a symmetry
+  of the equations), in which the linearised equations do not depend on time.
+
+Linearised: M dx'' + C dx' + K dx + A^T dlambda = B_x u with A dx = 0. The states are the
+minimal coordinates of the constrained system: dx = N y with N an orthonormal basis of the
+null space of A (the constraint Jacobian), state = [y, y'], so the state matrix has no
+constraint drift:
+
+    d/dt [y, y'] = [[0, I], [-Mr^-1 Kr, -Mr^-1 Cr]] [y, y'] + [0; Mr^-1 N^T B_x] u,
+    Mr = N^T M N, Cr = N^T C N, Kr = N^T K N.
+
+At rest K, M and A are the exact derivatives of :meth:`HubSystem.linearised` and C (the linear
+part of the drag, and -dT/dtheta' of a torque law) is the system's Newton matrix with coef_c =
+1, which is exact at zero velocity. About the steady rotation K and C (centrifugal softening and
+pre-stress, gyroscopic and Coriolis terms, drag) are central differences of the system's own
+residual in co-rotating coordinates (as the Campbell diagram's, :mod:`hubbeam.solvers.modal`),
+M the Newton matrix with coef_m = 1.
+
+Inputs: ``hub_torque`` (N m), a torque on a free hub added to its torque law: B_x is the unit
+vector of theta (the hub row of the equations is J theta'' - T - u + ...); ``tip_force:NAME``
+(N): a force at the tip centroid of beam NAME, three inputs along the global x, y, z (about
+steady rotation: the axes of the hub frame, which turn with the hub; at t = 0 they are the
+global ones), its B_x column the difference of the residuals with and without a unit tip force
+(the residual is affine in a dead load, so the difference is exact).
+
+Outputs: the scenario's sensors, each linearised about the equilibrium by central differences
+of the sensor (:mod:`hubbeam.sensors`) along the basis directions: y moves x = x0 + N y, y'
+the velocity (about the steady rotation the velocity is omega Xi(x) + N y', Xi the rigid
+rotation's rates). A sensor that reads the multipliers (``hub_torque``: the drive's reaction)
+gets the linearised multipliers dlambda = (A A^T)^-1 A (B_x u - M N y'' - C N y' - K N y), which
+depend on u directly: such an output has D != 0 when a force input is applied to a held hub;
+every other output has D = 0. Left out (named in ``left_out``): the energy parts
+"dissipated" and "drive" (work integrals over the run, not functions of the state) and
+``constraint_violation`` (a norm, zero to first order).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy.linalg import null_space
+
+from hubbeam.errors import ScenarioError
+from hubbeam.numerics import central_difference_jacobian, relative_steps
+from hubbeam.sensors import UNITS, measure
+from hubbeam.solvers.static import StaticSolution
+from hubbeam.system.hub_system import HubSystem
+
+#: sensor kinds that give no linear output (a norm, zero to first order)
+NOT_LINEARISED = ("constraint_violation",)
+#: parts of a multi-part sensor that are work integrals over a run, not functions of the state
+WORK_PARTS = ("dissipated", "drive")
+#: tip force components (global directions)
+AXES = ("x", "y", "z")
+#: modes below this frequency are rigid (the rule of :func:`hubbeam.solvers.modal.modal_analysis`)
+RIGID_TOL_HZ = 1e-3
+
+
+@dataclass
+class Equilibrium:
+    """The state the model is linearised about: coordinates ``x``, multipliers ``multipliers``
+    (N, N m; the layout of the system's hub, held or free), ``chart`` (the beams' rotation
+    charts), the hub speed ``omega`` (rad/s, 0 at rest) and the velocities ``v`` (rad/s, m/s)."""
+
+    x: np.ndarray
+    multipliers: np.ndarray
+    chart: np.ndarray
+    omega: float
+    v: np.ndarray
+
+
+@dataclass
+class LinearModel:
+    """x' = A x + B u, y = C x + D u: deviations from the equilibrium (SI units; the states
+    [y, y'] are the coordinates of the constraint null-space basis ``basis``: the system's
+    coordinates are equilibrium.x + basis @ y). ``output_offsets`` are the outputs' values at
+    the equilibrium; ``rigid_modes`` how many rigid-body modes the modal summary leaves out."""
+
+    A: np.ndarray
+    B: np.ndarray
+    C: np.ndarray
+    D: np.ndarray
+    states: list[str]
+    inputs: list[str]
+    outputs: list[str]
+    input_units: list[str]
+    output_units: list[str]
+    basis: np.ndarray
+    equilibrium: Equilibrium
+    output_offsets: np.ndarray
+    about: str
+    rigid_modes: int = 0
+    left_out: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+    def to_control(self):
+        """A ``control.StateSpace`` with the state, input and output names (python-control,
+        the extra ``hubbeam[control]``)."""
+        try:
+            import control
+        except ImportError as exc:
+            raise ImportError("python-control is not installed: pip install 'hubbeam[control]' "
+                              "(or use the numpy arrays A, B, C, D)") from exc
+        return control.ss(self.A, self.B, self.C, self.D, states=self.states, inputs=self.inputs,
+                          outputs=self.outputs, name="hubbeam")
+
+    def modal_summary(self) -> tuple[np.ndarray, np.ndarray]:
+        """(frequencies Hz, damping ratios) of the eigenvalues lambda of A with Im > 0:
+        |lambda| / 2 pi and -Re lambda / |lambda|, ascending in frequency. Rigid-body modes are
+        left out as ``modes`` does: the ``rigid_modes`` eigenvalue pairs nearest zero (the free
+        hub's rotation) and any mode below 1e-3 Hz."""
+        s = np.linalg.eigvals(self.A)
+        keep = np.ones(s.size, dtype=bool)
+        keep[np.argsort(np.abs(s))[: 2 * self.rigid_modes]] = False
+        keep &= np.abs(s) / (2.0 * np.pi) >= RIGID_TOL_HZ
+        s = s[keep & (s.imag > 0.0)]
+        s = s[np.argsort(np.abs(s))]
+        return np.abs(s) / (2.0 * np.pi), -s.real / np.abs(s)
+
+    def to_dict(self) -> dict:
+        f, zeta = self.modal_summary()
+        return {"states": len(self.states), "inputs": list(self.inputs), "outputs": list(self.outputs),
+                "frequencies_hz": f.tolist(), "damping_ratios": zeta.tolist(), "about": self.about}
+
+    def to_dataset(self, scenario=None):
+        """A, B, C, D with named dimensions (``state_rate`` x ``state``, ``state_rate`` x ``input``,
+        ``output`` x ``state``, ``output`` x ``input``), the basis and the equilibrium, as an
+        xarray.Dataset (A[i, j] = d(rate of state i) / d(state j))."""
+        import xarray as xr
+
+        n = len(self.states) // 2
+        data = {
+            "A": (("state_rate", "state"), self.A, {"units": "1/s", "long_name": "state matrix"}),
+            "B": (("state_rate", "input"), self.B, {"long_name": "input matrix"}),
+            "C": (("output", "state"), self.C, {"long_name": "output matrix"}),
+            "D": (("output", "input"), self.D, {"long_name": "feedthrough matrix"}),
+            "basis": (("coordinate", "reduced"), self.basis,
+                      {"long_name": "x = equilibrium_x + basis @ y (the first half of the states)"}),
+            "equilibrium_x": (("coordinate",), self.equilibrium.x, {"long_name": "coordinates at the equilibrium"}),
+            "output_offset": (("output",), self.output_offsets, {"long_name": "outputs at the equilibrium"}),
+        }
+        coords = {"state": self.states, "state_rate": self.states, "input": self.inputs, "output": self.outputs,
+                  "reduced": self.states[:n], "coordinate": np.arange(self.basis.shape[0]),
+                  "input_units": ("input", self.input_units), "output_units": ("output", self.output_units)}
+        ds = xr.Dataset(data, coords=coords)
+        ds.attrs.update({"about": self.about, "omega": float(self.equilibrium.omega),
+                         "left_out": json.dumps(self.left_out), "notes": json.dumps(self.notes)})
+        if scenario is not None:
+            ds.attrs["name"] = scenario.name
+            ds.attrs["scenario"] = json.dumps(scenario.to_dict())
+        return ds
+
+
+@dataclass
+class _Probe:
+    """The state a sensor reads (what :func:`hubbeam.sensors.measure` needs of an integrator state)."""
+
+    t: float
+    x: np.ndarray
+    v: np.ndarray
+    lam: np.ndarray
+    chart: np.ndarray
+
+
+def input_columns(system: HubSystem, names, x, v, acc, lam, F) -> tuple[np.ndarray, list[str], list[str]]:
+    """(B_x (nx x m), input names, units) of the inputs ``names``: "hub_torque" (a free hub) and
+    "tip_force:NAME" (three components). ScenarioError ("inputs: ...") for an unknown one."""
+    columns, labels, units = [], [], []
+    held = system.hub.held
+    for spec in names:
+        kind, _, beam = str(spec).strip().partition(":")
+        if kind == "hub_torque" and not beam:
+            if held:
+                raise ScenarioError(f"inputs: hub_torque needs a free hub (hub.motion = {system.motion!r} holds it; "
+                                    "a tip_force:BEAM input works on any hub)")
+            e = np.zeros(system.nx)
+            e[0] = 1.0  # the hub row is J theta'' - T - u + ...: u enters as the torque law's T
+            columns.append(e)
+            labels.append("hub_torque")
+            units.append("N m")
+        elif kind == "tip_force":
+            names_ = [b.name for b in system.beams]
+            k = 0 if not beam else (names_.index(beam) if beam in names_ else None)
+            if k is None:
+                raise ScenarioError(f"inputs: tip_force:{beam}: no beam of that name (beams: {', '.join(names_)})")
+            base = _forces(system, x, v, acc, lam, F)
+            for i, axis in enumerate(AXES):
+                part = system.beams[k]
+                pushed = replace(part, tip_force=np.asarray(part.tip_force, dtype=float) + np.eye(3)[i])
+                variant = HubSystem([pushed if j == k else b for j, b in enumerate(system.beams)], system.hub,
+                                    system.gravity, system.damping)
+                columns.append(base - _forces(variant, x, v, acc, lam, F))  # residual is affine in a dead load
+                labels.append(f"tip_force_{axis}_{system.beams[k].name}")
+                units.append("N")
+        else:
+            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque or tip_force:BEAM)")
+    if len(set(labels)) != len(labels):
+        raise ScenarioError(f"inputs: an input is given twice ({', '.join(map(str, names))})")
+    return np.array(columns).T.reshape(system.nx, len(columns)), labels, units
+
+
+def _forces(system: HubSystem, x, v, acc, lam, F) -> np.ndarray:
+    """The force rows of the equations of motion on x (N, N m): M acc + r(x, v) + Phi_x^T lam - Q."""
+    res = system.equations(x, v, acc, lam, F, 0.0, 0.0, 0.0, 1.0, 1.0, want_matrix=False)[0]
+    return res[system.layout.z_of_x]
+
+
+def _dense(system: HubSystem, x, v, acc, lam, F, coef_m, coef_c) -> np.ndarray:
+    """coef_m M + coef_c C of the system's Newton matrix on x (dense)."""
+    _, matrix = system.equations(x, v, acc, lam, F, 0.0, coef_m, coef_c, 0.0, 1.0)
+    zx = system.layout.z_of_x
+    return matrix.to_dense()[np.ix_(zx, zx)]
+
+
+def rest_matrices(system: HubSystem, x, lam_held, F):
+    """(M, C, K, A) about a static equilibrium (x, the held layout's multipliers lam_held as
+    ``solve_static`` gives them, charts F): exact K, M, A of :meth:`HubSystem.linearised`, C the
+    Newton matrix's velocity part at zero velocity (exact there: the drag's linear part and
+    -dT/dtheta' of a torque law; the quadratic velocity terms have no slope at rest)."""
+    held = system.hub.held
+    K, M, A = system.linearised(x, lam_held, F, 1.0, held=held)
+    zero = np.zeros(system.nx)
+    C = _dense(system, x, zero, zero, system.lambda_from_held(lam_held, held), F, 0.0, 1.0)
+    return M, C, K, A
+
+
+def rotating_matrices(system: HubSystem, x_s, lam, F, omega: float):
+    """(M, G, K, A) about the steadily rotating state x_s (hub held, turning at omega rad/s),
+    in co-rotating coordinates (see :func:`hubbeam.solvers.modal.rotating_modal_analysis`):
+    G holds the gyroscopic, Coriolis and drag terms, K the elastic, centrifugal and constraint
+    terms (central differences of the residual), M the mass matrix (the Newton matrix)."""
+
+    def generator(y):
+        return system.steady_rotation_rates(y, F, 1.0)[0]
+
+    def steady_rates(y):
+        return omega * generator(y), system.steady_rotation_rates(y, F, omega)[1]
+
+    def forces(y, v, a):
+        return _forces(system, y, v, a, lam, F)
+
+    v_s, a_s = steady_rates(x_s)
+    nx = x_s.shape[0]
+    unit = relative_steps(np.zeros(nx))
+    K = central_difference_jacobian(lambda y: forces(y, *steady_rates(y)), x_s, relative_steps(x_s))
+    dxi = central_difference_jacobian(generator, x_s, relative_steps(x_s))  # affine for ANCF: exact
+    G = central_difference_jacobian(lambda e: forces(x_s, v_s + e, a_s), np.zeros(nx), unit)
+    M = _dense(system, x_s, v_s, a_s, lam, F, 1.0, 0.0)
+    G = G + 2.0 * omega * M @ dxi
+    return M, G, K, system.constraint_jacobian(x_s, F)
+
+
+def _output_specs(sensors, system):
+    """[(sensor, part or None, name, units)] of the linearised outputs, and the names left out."""
+    specs, left_out = [], []
+    probe = None
+    for s in sensors:
+        if s.kind in NOT_LINEARISED:
+            left_out.append(s.name)
+            continue
+        if probe is None:
+            x, F = system.initial_state(0.0)
+            probe = _Probe(0.0, x, np.zeros(system.nx), np.zeros(system.layout.n_lambda), F)
+        value = measure(s, system, probe, {"dissipated": 0.0, "drive": 0.0})
+        if isinstance(value, dict):
+            for part in value:
+                name = f"{s.name}_{part}"
+                if part in WORK_PARTS:
+                    left_out.append(name)
+                else:
+                    specs.append((s, part, name, UNITS[s.kind]))
+        else:
+            specs.append((s, None, s.name, UNITS[s.kind]))
+    return specs, left_out
+
+
+def linearise(system: HubSystem, equilibrium: StaticSolution, omega: float = 0.0, inputs=("hub_torque",),
+              sensors=(), about: str = "") -> LinearModel:
+    """The state space of ``system`` about ``equilibrium`` (a ``solve_static`` solution; with
+    ``spin=omega`` for a hub driven at the constant speed omega rad/s, then the system's hub is
+    held). ``inputs``: names (see :func:`input_columns`); ``sensors``: a scenario's sensors."""
+    held = system.hub.held
+    lam = system.lambda_from_held(equilibrium.multipliers, held)
+    x0, F = equilibrium.x, equilibrium.chart
+    if omega:
+        if not held:
+            raise ScenarioError("hub.motion: a steadily rotating state is linearised with the hub driven "
+                                "(hub.motion = 'prescribed', profile 'constant')")
+        v0, a0 = system.steady_rotation_rates(x0, F, omega)
+        M, C, K, A = rotating_matrices(system, x0, lam, F, omega)
+    else:
+        v0 = a0 = np.zeros(system.nx)
+        M, C, K, A = rest_matrices(system, x0, equilibrium.multipliers, F)
+    Bx, in_names, in_units = input_columns(system, inputs, x0, v0, a0, lam, F)
+    N = null_space(A)
+    n, m = N.shape[1], Bx.shape[1]
+    Mr, Cr, Kr, Br = N.T @ M @ N, N.T @ C @ N, N.T @ K @ N, N.T @ Bx
+    Mr = 0.5 * (Mr + Mr.T)
+    acc_y, acc_v, acc_u = (np.linalg.solve(Mr, X) for X in (-Kr, -Cr, Br))  # y'' = acc_y y + acc_v y' + acc_u u
+    A_ss = np.block([[np.zeros((n, n)), np.eye(n)], [acc_y, acc_v]])
+    B_ss = np.vstack([np.zeros((n, m)), acc_u])
+    # multipliers: A^T dlam = B_x u - M N y'' - C N y' - K N y (least squares: A has full row rank)
+    P = np.linalg.solve(A @ A.T, A)
+    lam_y = -P @ (M @ N @ acc_y + K @ N)
+    lam_v = -P @ (M @ N @ acc_v + C @ N)
+    lam_u = P @ (Bx - M @ N @ acc_u)
+
+    specs, left_out = _output_specs(sensors, system)
+
+    def outputs(y, yd, dlam):
+        x = x0 + N @ y
+        v = (system.steady_rotation_rates(x, F, omega)[0] if omega else np.zeros(system.nx)) + N @ yd
+        probe = _Probe(0.0, x, v, lam + dlam, F)
+        out, cache = np.empty(len(specs)), {}
+        for i, (s, part, _, _) in enumerate(specs):
+            if id(s) not in cache:
+                cache[id(s)] = measure(s, system, probe, {"dissipated": 0.0, "drive": 0.0})
+            out[i] = cache[id(s)] if part is None else cache[id(s)][part]
+        return out
+
+    zy, zl = np.zeros(n), np.zeros(lam.size)
+    offsets = outputs(zy, zy, zl)
+    h = 1e-6 * np.ones(n)
+    Hy = central_difference_jacobian(lambda y: outputs(y, zy, zl), zy, h).reshape(len(specs), n)
+    Hv = central_difference_jacobian(lambda yd: outputs(zy, yd, zl), zy, h).reshape(len(specs), n)
+    Hl = central_difference_jacobian(lambda d: outputs(zy, zy, d), zl, relative_steps(lam, 1e-6)).reshape(
+        len(specs), lam.size)
+    C_ss = np.hstack([Hy + Hl @ lam_y, Hv + Hl @ lam_v])
+    D_ss = Hl @ lam_u
+    states = [f"y{i + 1}" for i in range(n)] + [f"y{i + 1}_rate" for i in range(n)]
+    rigid = int(not held and system.hub.torque(0.0, x0[0], 0.0)[1] == 0.0)
+    return LinearModel(A_ss, B_ss, C_ss, D_ss, states, in_names, [sp[2] for sp in specs], in_units,
+                       [sp[3] for sp in specs], N, Equilibrium(x0, lam, F, float(omega), v0), offsets, about,
+                       rigid, left_out)
