@@ -388,7 +388,6 @@ def _finish_run(targets, scenario, traj, failure) -> None:
 def _cmd_campbell(args, scenario) -> dict:
     from hubbeam.io.scenario import ScenarioError
     from hubbeam.io.targets import Target
-    from hubbeam.studies.campbell import campbell
     from hubbeam.studies.variants import FORMULATIONS, parse_range
 
     speeds = parse_range(args.omega, "--omega")
@@ -413,6 +412,8 @@ def _cmd_campbell(args, scenario) -> dict:
         raise ScenarioError(f"{option}: expected {'a finite FMAX > 0' if args.fmax is not None else 'LO:HI with 0 <= LO < HI'}"
                             f" (Hz; got {args.fmax if args.fmax is not None else args.frange!r})")
     targets = _check([Target("-o", args.output, "figure"), Target("--data", args.data)], args)
+    from hubbeam.studies.campbell import campbell
+
     progress, finish = _progress_bar(len(forms) * speeds.size, label="campbell", unit="points")
     try:
         ds = campbell(scenario, speeds, count=args.count, formulations=forms,

@@ -41,7 +41,7 @@ def crossing(tmp_path_factory):
 
 
 def test_tracked_branches_keep_their_label_through_the_crossing(crossing):
-    speeds, ds = crossing
+    _, ds = crossing
     tracked = ds["tracked_frequency_hz"].sel(formulation="ancf").values
     labels = ds["tracked_label"].sel(formulation="ancf").values
     assert list(ds["branch_label"].sel(formulation="ancf").values) == ["flap", "lag", "flap"]

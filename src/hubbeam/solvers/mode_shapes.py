@@ -19,7 +19,6 @@ speeds by the assignment that maximises the summed MAC (scipy's linear_sum_assig
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from hubbeam.system.parts import BEAM_MOTIONS
 
@@ -59,6 +58,8 @@ def mac_matrix(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def match_modes(previous: np.ndarray, current: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """For every column of ``previous`` the column of ``current`` (at least as many) that
     continues it, by the assignment that maximises the summed MAC: (indices, their MAC)."""
+    from scipy.optimize import linear_sum_assignment  # loaded when first needed: it is slow to import
+
     if np.shape(current)[1] < np.shape(previous)[1]:
         raise ValueError(f"{np.shape(current)[1]} modes cannot continue {np.shape(previous)[1]}")
     mac = mac_matrix(previous, current)

@@ -8,8 +8,8 @@ import numpy as np
 import xarray as xr
 
 from hubbeam import api
-from hubbeam.io.scenario import Scenario
 from hubbeam.errors import ComputationError
+from hubbeam.io.scenario import Scenario
 from hubbeam.solvers.modal import rotating_modal_analysis
 from hubbeam.solvers.mode_shapes import MOTIONS, energy_fractions, match_modes, mode_label
 from hubbeam.solvers.static import solve_static
