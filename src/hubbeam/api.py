@@ -191,9 +191,65 @@ class ModalResult:
     modes: Modes
     about: str = "static equilibrium under the scenario's gravity and loads"
 
+    def energy_fractions(self) -> list[dict[str, float]]:
+        """Per mode, the shares of its kinetic energy (:mod:`hubbeam.solvers.mode_shapes`)."""
+        from hubbeam.solvers.mode_shapes import energy_fractions
+
+        sol = self.static.solution
+        return [energy_fractions(self.static.system, sol.x, sol.chart, u) for u in self.modes.shapes.T]
+
+    def shapes_dataset(self):
+        """The mode shapes as an xarray.Dataset (docs/modes.md): the generalized vectors
+        ``shape`` (mode, coordinate), mass-normalised, and every beam's centre-line
+        ``displacement`` (mode, beam, station, component: axial, flap, lag) and ``twist``
+        (mode, beam, station) at ``x`` (beam, station) (m from the root); complex shapes add
+        the imaginary parts as ``*_imag``; ``frequency_hz``, ``label`` and ``energy_fraction``
+        per mode."""
+        import json
+
+        import xarray as xr
+
+        from hubbeam.solvers.mode_shapes import MOTIONS, mode_label, span_shapes
+
+        system, sol, modes = self.static.system, self.static.solution, self.modes
+        fractions = self.energy_fractions()
+        spans = span_shapes(system, sol.x, sol.chart, modes.shapes)
+        n = max(xs.size for xs, _, _ in spans)
+        nm, nb = modes.shapes.shape[1], len(spans)
+        x = np.full((nb, n), np.nan)
+        disp = np.full((nm, nb, n, 3), np.nan, dtype=modes.shapes.dtype)
+        twist = np.full((nm, nb, n), np.nan, dtype=modes.shapes.dtype)
+        for k, (xs, d, t) in enumerate(spans):
+            x[k, : xs.size], disp[:, k, : xs.size], twist[:, k, : xs.size] = xs, d, t
+        unit = "per unit modal coordinate (kinetic energy eta'^2/2)"
+        data = {"frequency_hz": ("mode", modes.frequencies_hz, {"units": "Hz"}),
+                "label": ("mode", np.array([mode_label(f) for f in fractions], dtype=object)),
+                "energy_fraction": (("mode", "motion"), np.array([[f[k] for k in MOTIONS] for f in fractions]),
+                                    {"units": "1"}),
+                "x": (("beam", "station"), x, {"units": "m", "long_name": "station from the root"})}
+        arrays = {"shape": (("mode", "coordinate"), modes.shapes.T, {"units": "coordinates' units kg^-1/2"}),
+                  "displacement": (("mode", "beam", "station", "component"), disp, {"units": "kg^-1/2", "note": unit}),
+                  "twist": (("mode", "beam", "station"), twist, {"units": "rad kg^-1/2 m^-1", "note": unit})}
+        for name, (dims, values, attrs) in arrays.items():
+            data[name] = (dims, np.real(values), attrs)
+            if np.iscomplexobj(values):
+                data[name + "_imag"] = (dims, np.imag(values), attrs)
+        ds = xr.Dataset(data, coords={"mode": np.arange(1, nm + 1), "motion": list(MOTIONS),
+                                      "beam": [b.name for b in system.beams],
+                                      "component": ["axial", "flap", "lag"]})
+        ds.attrs.update({"about": self.about, "normalisation": "u^H M u = 1 (mass-normalised); complex shapes "
+                         "turned so that their largest generalized entry is real and positive",
+                         "equilibrium": json.dumps([float(v) for v in sol.x])})
+        return ds
+
     def to_dict(self) -> dict:
+        from hubbeam.solvers.mode_shapes import mode_label
+
+        fractions = self.energy_fractions()
         return {
             "frequencies_hz": [float(f) for f in self.modes.frequencies_hz],
+            "labels": [mode_label(f) for f in fractions],
+            "energy_fractions": fractions,
             "rigid_modes": self.modes.rigid_modes,
             "rigid_frequencies_hz": [float(f) for f in self.modes.rigid_frequencies_hz],
             "about": self.about,

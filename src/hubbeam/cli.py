@@ -69,7 +69,9 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--plot", help="figure (PNG, PDF, SVG, ...)")
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
     st.add_argument("--plot", help="figure of the deformed beam")
-    scenario_cmd("modes", "natural frequencies about the static equilibrium (steady rotation for a constant drive)")
+    mod = scenario_cmd("modes", "natural frequencies about the static equilibrium (steady rotation for a constant drive)")
+    mod.add_argument("--shapes", help="NetCDF file of the mode shapes (docs/modes.md)")
+    mod.add_argument("--plot", help="figure of the lowest mode shapes along the span")
     lin = scenario_cmd("linearize", "state space (A, B, C, D) about the equilibrium (steady rotation for a "
                                     "constant drive)")
     lin.add_argument("-o", "--output", help="NetCDF file of A, B, C, D")
@@ -82,6 +84,9 @@ def _parser() -> argparse.ArgumentParser:
     camp.add_argument("-o", "--output", help="figure")
     camp.add_argument("--data", help="NetCDF file of the frequencies")
     camp.add_argument("--formulations", default="ancf,ffr,ffr+", help="comma-separated: ancf, ffr, ffr+ (default all)")
+    zoom = camp.add_mutually_exclusive_group()
+    zoom.add_argument("--fmax", type=float, help="draw frequencies from 0 to FMAX Hz only")
+    zoom.add_argument("--frange", metavar="LO:HI", help="draw frequencies from LO to HI Hz only")
     sw = scenario_cmd("sweep", "run the scenario over the cartesian product of varied keys, on Dask")
     sw.add_argument("--vary", action="append", required=True, metavar="KEY=START:STOP:N",
                     help="a varied key and its values (numpy.linspace); repeat for more keys")
@@ -251,17 +256,35 @@ def _cmd_modes(args, scenario) -> dict:
 
     from hubbeam import api
     from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import Target
 
+    targets = _check([Target("--shapes", getattr(args, "shapes", None)),
+                      Target("--plot", getattr(args, "plot", None), "figure")], args)
     try:
-        d = api.modes(scenario).to_dict()
+        result = api.modes(scenario)
+        d = result.to_dict()
+        ds = result.shapes_dataset() if targets else None
     except ScenarioError:
         raise
     except (np.linalg.LinAlgError, ValueError) as exc:
         raise _numerical_failure("modal analysis", exc) from exc
+
+    def figure(path):
+        from hubbeam import plots
+
+        half = [0.5 * max(b.section.width, b.section.thickness) for b in result.static.system.beams]
+        plots.plot_mode_shapes(ds, path, half, title=f"{scenario.name}: mode shapes")
+
+    def shapes(path):
+        from hubbeam.io.results import write_netcdf
+
+        write_netcdf(ds, path)
+
+    _write([(t, figure if t.option == "--plot" else shapes) for t in targets])
     if not args.json:
         print(f"natural frequencies (Hz) about the {d['about']}, {d['rigid_modes']} rigid mode(s) left out:")
-        for i, f in enumerate(d["frequencies_hz"], 1):
-            print(f"  {i:3d}  {f:12.6f}")
+        for i, (f, label) in enumerate(zip(d["frequencies_hz"], d["labels"]), 1):
+            print(f"  {i:3d}  {f:12.6f}  {label}")
     return d
 
 
@@ -402,7 +425,6 @@ def _finish_run(targets, scenario, traj, failure) -> None:
 def _cmd_campbell(args, scenario) -> dict:
     from hubbeam.io.scenario import ScenarioError
     from hubbeam.io.targets import Target
-    from hubbeam.studies.campbell import campbell
     from hubbeam.studies.variants import FORMULATIONS, parse_range
 
     speeds = parse_range(args.omega, "--omega")
@@ -416,7 +438,19 @@ def _cmd_campbell(args, scenario) -> dict:
         raise ScenarioError(f"--formulations: unknown {', '.join(unknown)} (use {', '.join(FORMULATIONS)})")
     if len(set(forms)) != len(forms):
         raise ScenarioError(f"--formulations: a formulation is given twice ({args.formulations})")
+    frange = None if args.fmax is None else (0.0, args.fmax)
+    if args.frange is not None:
+        try:
+            frange = tuple(float(v) for v in args.frange.split(":"))
+        except ValueError:
+            frange = ()
+    if frange is not None and not (len(frange) == 2 and all(map(math.isfinite, frange)) and 0 <= frange[0] < frange[1]):
+        option = "--fmax" if args.fmax is not None else "--frange"
+        raise ScenarioError(f"{option}: expected {'a finite FMAX > 0' if args.fmax is not None else 'LO:HI with 0 <= LO < HI'}"
+                            f" (Hz; got {args.fmax if args.fmax is not None else args.frange!r})")
     targets = _check([Target("-o", args.output, "figure"), Target("--data", args.data)], args)
+    from hubbeam.studies.campbell import campbell
+
     progress, finish = _progress_bar(len(forms) * speeds.size, label="campbell", unit="points")
     try:
         ds = campbell(scenario, speeds, count=args.count, formulations=forms,
@@ -427,7 +461,7 @@ def _cmd_campbell(args, scenario) -> dict:
     def figure(path):
         from hubbeam import plots
 
-        plots.plot_campbell(ds, path, title=f"Campbell diagram: {scenario.name}")
+        plots.plot_campbell(ds, path, title=f"Campbell diagram: {scenario.name}", frange=frange)
 
     def data(path):
         from hubbeam.io.results import write_netcdf
@@ -436,7 +470,11 @@ def _cmd_campbell(args, scenario) -> dict:
 
     _write([(t, figure if t.option == "-o" else data) for t in targets])
     result = {"omega": speeds.tolist(),
-              "frequencies_hz": {str(f): ds["frequency_hz"].sel(formulation=f).values.tolist() for f in forms}}
+              "frequencies_hz": {str(f): ds["frequency_hz"].sel(formulation=f).values.tolist() for f in forms},
+              "labels": {str(f): ds["label"].sel(formulation=f).values.tolist() for f in forms},
+              "tracked": {str(f): {"frequencies_hz": ds["tracked_frequency_hz"].sel(formulation=f).values.tolist(),
+                                   "labels": ds["branch_label"].sel(formulation=f).values.tolist(),
+                                   "mac": ds["mac"].sel(formulation=f).values.tolist()} for f in forms}}
     if not args.json:
         for f in forms:
             first = ds["frequency_hz"].sel(formulation=f).values[:, 0]

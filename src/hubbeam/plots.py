@@ -86,23 +86,49 @@ def _finish_single(fig, ax, path, xlabel: str, ylabel: str, title: str) -> None:
     plt.close(fig)
 
 
-def plot_campbell(ds, path, title: str = "") -> None:
+def plot_campbell(ds, path, title: str = "", frange: tuple[float, float] | None = None) -> None:
     """Campbell diagram of a :func:`hubbeam.studies.campbell.campbell` dataset: each
-    formulation's modes against hub speed, with the 1x and 2x speed lines."""
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    formulation's tracked branches against hub speed (colour: the branch, with its label in the
+    legend; line style: the formulation), with the 1x and 2x speed lines. ``frange`` (Hz, low,
+    high): one panel on that range. Without it, when the highest branch is far above the
+    lowest, a second panel zooms on the lowest branches so they are not squashed."""
     omega = ds["omega"].values
+    f_all = ds["tracked_frequency_hz"].values
+    top = float(np.nanmax(f_all)) if np.any(np.isfinite(f_all)) else 1.0
+    low_top = float(np.nanmax(f_all[:, :, : max(1, f_all.shape[2] // 3)])) if np.any(np.isfinite(f_all)) else 1.0
+    if frange is not None:
+        ranges = [tuple(frange)]
+    elif top > 4.0 * low_top:
+        ranges = [(0.0, 1.05 * top), (0.0, 1.25 * low_top)]
+    else:
+        ranges = [(0.0, 1.05 * top)]
+    fig, axes = plt.subplots(1, len(ranges), figsize=(8 if len(ranges) == 1 else 13, 5.5), squeeze=False)
     styles = {"ancf": "-", "ffr": "--", "ffr+": ":"}
     names = {"ancf": "ANCF", "ffr": "FFR (paper, linear)", "ffr+": "FFR + geometric stiffening"}
-    for k, form in enumerate(ds["formulation"].values):
-        f = ds["frequency_hz"].sel(formulation=form).values
-        for m in range(f.shape[1]):
-            ax.plot(omega, f[:, m], styles.get(str(form), "-"), color=f"C{k}", lw=1.4,
-                    label=names.get(str(form), str(form)) if m == 0 else None)
-    for mult in (1, 2):
-        ax.plot(omega, mult * omega / (2 * np.pi), color="0.5", lw=0.8)
-        ax.annotate(f"{mult}x", (omega[-1], mult * omega[-1] / (2 * np.pi)), fontsize=8, color="0.4")
-    ax.set_ylim(bottom=0)
-    _finish_single(fig, ax, path, "hub speed (rad/s)", "natural frequency (Hz)", title)
+    forms = [str(f) for f in ds["formulation"].values]
+    for ax, (lo, hi) in zip(axes[0], ranges):
+        for k, form in enumerate(forms):
+            f = ds["tracked_frequency_hz"].sel(formulation=form).values
+            for b in range(f.shape[1]):
+                label = f"{b + 1}: {ds['branch_label'].values[k, b]}" if k == 0 else None
+                ax.plot(omega, f[:, b], styles.get(form, "-"), color=f"C{b % 10}", lw=1.4, label=label)
+        for form in forms if len(forms) > 1 else []:
+            ax.plot([], [], styles.get(form, "-"), color="k", lw=1.2, label=names.get(form, form))
+        for mult in (1, 2):
+            ax.plot(omega, mult * omega / (2 * np.pi), color="0.5", lw=0.8)
+            y_end = mult * omega[-1] / (2 * np.pi)
+            if lo <= y_end <= hi:
+                ax.annotate(f"{mult}x", (omega[-1], y_end), fontsize=8, color="0.4")
+        ax.set_ylim(lo, hi)
+        ax.set_xlabel("hub speed (rad/s)")
+        ax.set_ylabel("natural frequency (Hz)")
+        ax.grid(alpha=0.3)
+        ax.set_title(title if ax is axes[0, 0] else f"zoom: {lo:g} to {hi:.3g} Hz", fontsize=10)
+    axes[0, -1].legend(loc="best", fontsize=7, title="branch: label" + (" (first formulation)" if len(forms) > 1 else ""),
+                       title_fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 def plot_fit(times, measured, fitted, path, signal: str, title: str = "") -> None:
@@ -179,6 +205,53 @@ def plot_sweep(ds, path, variables: list[str] | None = None, title: str = "") ->
         ax.set_ylabel(f"{name}\n({da.attrs.get('units', '')})", fontsize=8)
         ax.grid(alpha=0.3)
     axes[0, 0].legend(loc="best", fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_mode_shapes(ds, path, half_widths, count: int = 6, title: str = "") -> None:
+    """The lowest ``count`` modes of a :meth:`hubbeam.api.ModalResult.shapes_dataset`: each
+    beam's centre-line displacement (flap, lag, axial) and its twist times the half of the
+    section's larger side (``half_widths``, m, per beam: the edge's displacement from the twist)
+    along the span, one panel per mode, scaled so that the largest curve of the mode reaches 1
+    (complex shapes: their real part after the phase turn)."""
+    count = min(count, ds.sizes["mode"])
+    cols = min(count, 3)
+    rows = -(-count // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.2 * rows), squeeze=False, sharex=True)
+    styles = ["-", "--", ":", "-."]
+    colours = {"flap": "C0", "lag": "C1", "axial": "C2", "twist": "C3"}
+    for i, ax in enumerate(axes.ravel()):
+        if i >= count:
+            ax.axis("off")
+            continue
+        m = ds.isel(mode=i)
+        curves = []
+        for k, beam in enumerate(ds["beam"].values):
+            x = m["x"].values[k]
+            keep = np.isfinite(x)
+            s = x[keep] / x[keep][-1]
+            d = m["displacement"].values[k][keep]
+            parts = {name: d[:, j] for j, name in enumerate(("axial", "flap", "lag"))}
+            parts["twist"] = m["twist"].values[k][keep] * half_widths[k]
+            curves += [(beam, k, name, s, y) for name, y in parts.items()]
+        scale = max(max(float(np.max(np.abs(y))) for *_, y in curves), 1e-300)
+        for beam, k, name, s, y in curves:
+            label = (name if name != "twist" else "twist x b/2") if k == 0 else None
+            ax.plot(s, y / scale, styles[k % len(styles)], color=colours[name], lw=1.4, label=label)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.set_title(f"mode {int(m['mode'])}: {float(m['frequency_hz']):.4g} Hz, {str(m['label'].values)}", fontsize=9)
+        ax.set_ylim(-1.1, 1.1)
+        ax.grid(alpha=0.3)
+        if i % cols == 0:
+            ax.set_ylabel("normalised shape")
+        if i >= count - cols:
+            ax.set_xlabel("x / L (root to tip)")
+    axes[0, 0].legend(loc="best", fontsize=7)
+    if ds.sizes["beam"] > 1:
+        title += " (beams: " + ", ".join(f"{b} {styles[k % len(styles)]}" for k, b in enumerate(ds["beam"].values)) + ")"
     fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(path, dpi=110)

@@ -11,6 +11,10 @@ equilibrium the discrete model gives it a small non-zero frequency, because the 
 relative to a fixed chart that a rigid rotation needs is not a cubic along a bent element
 (the paper's Cardan-angle element shares this); it vanishes under mesh refinement
 (tests/solvers/test_modal.py) and is reported as ``rigid_frequencies_hz``.
+
+Mode shapes are mass-normalised: with x = x_s + u eta the kinetic energy is eta'^2 / 2 (J),
+u^H M u = 1; a complex shape (the gyroscopic modes about a rotating state) is turned in
+phase so that its largest entry is real and positive, a real one so that it is positive.
 """
 
 from __future__ import annotations
@@ -70,7 +74,7 @@ def modal_analysis(
         # it the servo mode, an elastic mode like the others
         rigid[np.argmin(np.abs(f))] = True
     elastic = np.flatnonzero(~rigid)[:count]
-    return Modes(f[elastic], N @ V[:, elastic], f[rigid])
+    return Modes(f[elastic], _normalised(N @ V[:, elastic], M), f[rigid])
 
 
 def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: float, count: int = 6,
@@ -84,8 +88,10 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     rotation's generator (``steady_rotation_rates``). Linearised at y = y_s:
     M dy'' + G dy' + K dy = 0 with A dy = 0 (hub held; the drive is theta_y = 0), where K
     holds the elastic, centrifugal (softening and pre-stress) and constraint terms, G the
-    gyroscopic (Coriolis) terms. Each is a central difference of the system's own residual
-    (independent of how the residual was derived). The quadratic eigenproblem is solved in
+    gyroscopic (Coriolis) terms. M is the system's mass matrix (exact); K and G are central
+    differences of the system's own residual (independent of how the residual was derived):
+    the compiled equations give neither the stiffness of the rotary inertia's steady-rotation
+    forces nor the gyroscopic matrix. The quadratic eigenproblem is solved in
     state space on the null space of A; the frequencies are |Im s| / (2 pi).
     ``include_damping``: keep the drag's velocity terms (then the modes are damped).
     """
@@ -110,7 +116,9 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     K = central_difference_jacobian(lambda y: forces(y, *steady_rates(y)), x_s, relative_steps(x_s))
     G = central_difference_jacobian(
         lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), zero, unit)
-    M = central_difference_jacobian(lambda e: forces(x_s, v_s, a_s + e), zero, unit)
+    layout = system.layout_for(True)
+    Mz = system.equations(x_s, v_s, a_s, lam, F, 0.0, 1.0, 0.0, 0.0, 1.0, held=True)[1].to_dense()
+    M = Mz[np.ix_(layout.z_of_x, layout.z_of_x)]
     N = null_space(system.constraint_jacobian(x_s, F, held=True))
     Mr, Gr, Kr = (N.T @ X @ N for X in (M, G, K))
     n = Mr.shape[0]
@@ -120,8 +128,19 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     keep = np.flatnonzero(s.imag > 1e-9)
     order = keep[np.argsort(np.abs(s[keep].imag))]
     f = np.abs(s[order].imag) / (2.0 * np.pi)
-    shapes = N @ V[:n, order].real
-    return Modes(f[:count], shapes[:, :count], np.array([]))
+    shapes = _normalised(N @ V[:n, order[:count]], M)
+    return Modes(f[:count], shapes, np.array([]))
+
+
+def _normalised(shapes: np.ndarray, M: np.ndarray) -> np.ndarray:
+    """Columns scaled to u^H M u = 1, each turned so that its largest entry is real and positive."""
+    out = np.array(shapes, dtype=complex if np.iscomplexobj(shapes) else float)
+    for i in range(out.shape[1]):
+        u = out[:, i]
+        big = u[np.argmax(np.abs(u))]
+        mass = float(np.real(np.conj(u) @ (0.5 * (M + M.T)) @ u))
+        out[:, i] = u * (np.abs(big) / big) / np.sqrt(max(mass, 1e-300))
+    return out
 
 
 def _directional(fun, x, e, h=1e-6):

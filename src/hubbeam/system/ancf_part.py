@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
+from hubbeam.elements.ancf.frame import section_frame
+from hubbeam.elements.ancf.strain import strain_measures
 from hubbeam.system.beam import NODE_DOFS, AncfBeam
 from hubbeam.system.clamp import clamp_constraints
 from hubbeam.system.mount import Mount
@@ -138,6 +140,24 @@ class AncfPart(ChartedBeamPart):
 
     def frame_at(self, q, chart, station) -> np.ndarray:
         return self.beam.frame_at(q, chart, station)
+
+    def section_motion(self, q, chart, u, stations):
+        """The section frame R = F [tau m n](U, theta_1) (U = F^T r0') and its angular velocity
+        R omega, where omega (section axes) is the curvature function of
+        :func:`~hubbeam.elements.ancf.strain.strain_measures` evaluated at
+        (U, F^T d r0'/dt, theta_1, d theta_1/dt) (as in the rotary inertia kernel); the centre
+        line's velocity is the Hermite interpolation of u's positions and slopes."""
+        beam = self.beam
+        n = len(stations)
+        frames, vel, omega = np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3))
+        F = np.asarray(chart, dtype=float)
+        for i, x in enumerate(stations):
+            _, r1, _, phi, _ = beam.interpolate(q, x)
+            vel[i], v1, _, phi_dot, _ = beam.interpolate(u, x)
+            U = F.T @ r1
+            frames[i] = F @ np.column_stack(section_frame(U, phi))
+            omega[i] = frames[i] @ np.array(strain_measures(U, F.T @ v1, phi, phi_dot)[1:4])
+        return frames, vel, omega
 
     def centre_line(self, q, chart, points_per_element: int = 8) -> np.ndarray:
         beam = self.beam

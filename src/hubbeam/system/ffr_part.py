@@ -263,7 +263,35 @@ class FfrPart(BeamPart):
     def surface_strain(self, q, chart, station, y, z) -> float:
         return self.beam.surface_strain(q[BODY:], station, y, z)
 
+    def section_motion(self, q, chart, u, stations):
+        """FFR's kinematics (Eq. 42) at the station's centre point, r = r_C + A0 (rho0 + N p):
+        velocity r_C' + A0 (omega^b x (rho0 + N p) + N p'), omega^b = D Theta'; the section turns
+        by the body rotation and its small rotation phi = Phi p (:meth:`FfrBeam.rotation_row`):
+        frame A0 exp([phi]x) (the body frame's axes are the undeformed section's), angular
+        velocity A0 (omega^b + Phi p') (to first order in phi, as FFR's kinematics)."""
+        beam = self.beam
+        A0, D = self._body(q)
+        p, w_b, pd = q[BODY:], D @ u[ANGLES], u[BODY:]
+        n = len(stations)
+        frames, vel, omega = np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3))
+        for i, x in enumerate(stations):
+            N, Phi = beam.displacement_row(x), beam.rotation_row(x)
+            r = np.array([x, 0.0, 0.0]) + N @ p
+            vel[i] = u[R_C] + A0 @ (np.cross(w_b, r) + N @ pd)
+            omega[i] = A0 @ (w_b + Phi @ pd)
+            frames[i] = A0 @ _rotation(Phi @ p)
+        return frames, vel, omega
+
     def centre_line(self, q, chart=None, points_per_element: int = 8) -> np.ndarray:
         beam = self.beam
         xs = np.linspace(0.0, beam.length, beam.elements * points_per_element + 1)
         return np.array([self.point_position(q, s) for s in xs])
+
+
+def _rotation(phi: np.ndarray) -> np.ndarray:
+    """The rotation by the vector phi (rad): Rodrigues' formula."""
+    angle = float(np.linalg.norm(phi))
+    K = np.array([[0.0, -phi[2], phi[1]], [phi[2], 0.0, -phi[0]], [-phi[1], phi[0], 0.0]])
+    if angle < 1e-12:
+        return np.eye(3) + K
+    return np.eye(3) + np.sin(angle) / angle * K + (1.0 - np.cos(angle)) / angle**2 * K @ K

@@ -24,7 +24,7 @@ from hubbeam.system.equations import (CHART_SINGULAR, FFR_FIELD_NDIM, FfrStack, 
 from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.layout import CLAMP_EQUATIONS, Layout
-from hubbeam.system.parts import BeamPart, ChartedBeamPart
+from hubbeam.system.parts import BEAM_MOTIONS, BeamPart, ChartedBeamPart
 from hubbeam.system.tip_body import TipBody
 
 #: the hub's axis j0 (global); the hub turns about -j0 for increasing theta (Eq. 74)
@@ -433,6 +433,20 @@ class HubSystem:
             if beam is not None and k != beam:
                 continue
             for key, value in part.energies(q, v[self.layout.beam_x(k)], chart, self.gravity).items():
+                total[key] += value
+        return total
+
+    def kinetic_energy_split(self, x, F, u) -> dict[str, float]:
+        """The kinetic energy (J) of the system moving at the rate u about the configuration x
+        (u complex: real and imaginary parts' energies summed), split into the hub's
+        (J theta'^2 / 2, ``hub``) and, summed over the beams, each beam's ``flap``, ``lag``,
+        ``axial`` and ``torsion`` parts in its own directions
+        (:meth:`~hubbeam.system.parts.BeamPart.kinetic_energy_split`)."""
+        u = np.asarray(u)
+        total = dict.fromkeys(BEAM_MOTIONS, 0.0)
+        total["hub"] = 0.5 * self.hub.inertia * float(np.abs(u[0]) ** 2)
+        for k, part, q, chart in self.parts(x, F):
+            for key, value in part.kinetic_energy_split(q, chart, u[self.layout.beam_x(k)], x[0]).items():
                 total[key] += value
         return total
 

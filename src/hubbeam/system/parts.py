@@ -17,7 +17,12 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
-from hubbeam.system.mount import Mount
+from hubbeam.elements.hermite import gauss_legendre
+from hubbeam.system.mount import Mount, axis_frame
+
+#: the parts of a beam's kinetic energy (:meth:`BeamPart.kinetic_energy_split`), in the order
+#: a label joins them
+BEAM_MOTIONS = ("flap", "lag", "axial", "torsion")
 
 
 class BeamPart(ABC):
@@ -33,6 +38,7 @@ class BeamPart(ABC):
     tip_force: np.ndarray
     tip_moment: np.ndarray
     beam: object  # the formulation's mesh: length, section, elements
+    tip_body: object  # a TipBody or None
 
     def __post_init__(self) -> None:
         self.tip_force = np.asarray(self.tip_force, dtype=float)
@@ -85,6 +91,76 @@ class BeamPart(ABC):
     @abstractmethod
     def centre_line(self, q: np.ndarray, chart: np.ndarray, points_per_element: int = 8) -> np.ndarray:
         """Points of the deformed centre line (global, m), root to tip."""
+
+    @abstractmethod
+    def section_motion(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, stations: np.ndarray):
+        """The sections at the stations x (m from the root) of the configuration q moved at the
+        coordinate rate u: (frames (n, 3, 3): the section frames [tau m n] at q, global;
+        velocity (n, 3): the centre line's velocity (m/s per unit of u); omega (n, 3): the
+        section's angular velocity (rad/s), global). Both are linear in u; with u a mode shape
+        they are the centre line's displacement and the section's small rotation."""
+
+    def section_inertia(self) -> np.ndarray:
+        """The section's rotary inertia per length about (tau, m, n): rho (I_y + I_z, I_y, I_z) (kg m)."""
+        sec = self.section
+        return sec.density * np.array([sec.i_y + sec.i_z, sec.i_y, sec.i_z])
+
+    def span_stations(self, gauss_points: int = 4) -> tuple[np.ndarray, np.ndarray]:
+        """Gauss stations along the span (m from the root) and their weights (m): ``gauss_points``
+        per element of the mesh (4: exact for the cubic centre-line velocities' squares)."""
+        xi, w = gauss_legendre(gauss_points)
+        le = self.length / self.beam.elements
+        e = np.arange(self.beam.elements)[:, None]
+        return ((e + xi[None, :]) * le).ravel(), np.tile(w * le, self.beam.elements)
+
+    def kinetic_energy_split(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, theta: float) -> dict[str, float]:
+        """The kinetic energy (J) of the beam and its tip body moving at the coordinate rate u
+        about the configuration q (u complex: the sum of its real and imaginary parts' energies),
+        split by direction in the beam's undeformed axis frame (a_1 the axis, a_2, a_3 = k_k;
+        with no precone a_1 = i_k and a_2 = j0):
+
+        - ``flap``: centre-line motion along a_2 and section rotation about a_3 (the slope of
+          the flap deflection);
+        - ``lag``: centre-line motion along a_3 and section rotation about a_2;
+        - ``axial``: centre-line motion along a_1;
+        - ``torsion``: section rotation about a_1.
+
+        Per length the energy is rho A |v|^2 / 2 + omega . J omega / 2 (J the section's rotary
+        inertia, its frame at q); the rotary part is split as sum_i (omega . a_i)(J omega . a_i) / 2,
+        so the four parts add up to the whole kinetic energy. A tip body adds m |v_cm|^2 / 2
+        (v_cm = v + omega x (R c), c its offset) and omega . J_b omega / 2 the same way."""
+        u = np.asarray(u)
+        if np.iscomplexobj(u):
+            re, im = (self.kinetic_energy_split(q, chart, part, theta) for part in (u.real, u.imag))
+            return {k: re[k] + im[k] for k in BEAM_MOTIONS}
+        a = axis_frame(self.mount.params(), float(theta))
+        x, w = self.span_stations()
+        frames, vel, omega = self.section_motion(q, chart, u, x)
+        J = self.section_inertia()
+        J_omega = np.einsum("nij,j,nkj,nk->ni", frames, J, frames, omega)  # R J R^T omega
+        trans = 0.5 * self.section.mass_per_length * np.einsum("n,ni->i", w, (vel @ a) ** 2)
+        rot = 0.5 * np.einsum("n,ni->i", w, (omega @ a) * (J_omega @ a))
+        body = self.tip_body
+        if body is not None:
+            R, v, om = (arr[0] for arr in self.section_motion(q, chart, u, np.array([self.length])))
+            v_cm = v + np.cross(om, R @ np.array(body.offset))
+            trans = trans + 0.5 * body.mass * (v_cm @ a) ** 2
+            Jb_omega = R @ (np.array(body.inertia) * (R.T @ om))
+            rot = rot + 0.5 * (om @ a) * (Jb_omega @ a)
+        return {"flap": float(trans[1] + rot[2]), "lag": float(trans[2] + rot[1]), "axial": float(trans[0]),
+                "torsion": float(rot[0])}
+
+    def span_shape(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, theta: float, stations: np.ndarray):
+        """The centre-line displacement (n, 3) along (a_1, a_2, a_3) = (axial, flap, lag) (m per
+        unit of u) and the section rotation about the beam axis a_1 (twist, rad per unit of u) at
+        the stations (m from the root) for the coordinate change u about q (complex u: complex)."""
+        u = np.asarray(u)
+        if np.iscomplexobj(u):
+            re, im = (self.span_shape(q, chart, part, theta, stations) for part in (u.real, u.imag))
+            return re[0] + 1j * im[0], re[1] + 1j * im[1]
+        a = axis_frame(self.mount.params(), float(theta))
+        _, disp, rot = self.section_motion(q, chart, u, np.asarray(stations, dtype=float))
+        return disp @ a, rot @ a[:, 0]
 
     def tip_displacement(self, q: np.ndarray, theta: float) -> dict[str, float]:
         """Tip centroid displacement from its undeformed place, along the beam's own hub frame
