@@ -53,6 +53,7 @@ from scipy.linalg import null_space
 from hubbeam.errors import ScenarioError
 from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.sensors import UNITS, measure
+from hubbeam.solvers.modal import rotating_matrices
 from hubbeam.solvers.static import StaticSolution
 from hubbeam.system.hub_system import HubSystem
 
@@ -232,32 +233,6 @@ def rest_matrices(system: HubSystem, x, lam_held, F):
     zero = np.zeros(system.nx)
     C = _dense(system, x, zero, zero, system.lambda_from_held(lam_held, held), F, 0.0, 1.0)
     return M, C, K, A
-
-
-def rotating_matrices(system: HubSystem, x_s, lam, F, omega: float):
-    """(M, G, K, A) about the steadily rotating state x_s (hub held, turning at omega rad/s),
-    in co-rotating coordinates (see :func:`hubbeam.solvers.modal.rotating_modal_analysis`):
-    G holds the gyroscopic, Coriolis and drag terms, K the elastic, centrifugal and constraint
-    terms (central differences of the residual), M the mass matrix (the Newton matrix)."""
-
-    def generator(y):
-        return system.steady_rotation_rates(y, F, 1.0)[0]
-
-    def steady_rates(y):
-        return omega * generator(y), system.steady_rotation_rates(y, F, omega)[1]
-
-    def forces(y, v, a):
-        return _forces(system, y, v, a, lam, F)
-
-    v_s, a_s = steady_rates(x_s)
-    nx = x_s.shape[0]
-    unit = relative_steps(np.zeros(nx))
-    K = central_difference_jacobian(lambda y: forces(y, *steady_rates(y)), x_s, relative_steps(x_s))
-    dxi = central_difference_jacobian(generator, x_s, relative_steps(x_s))  # affine for ANCF: exact
-    G = central_difference_jacobian(lambda e: forces(x_s, v_s + e, a_s), np.zeros(nx), unit)
-    M = _dense(system, x_s, v_s, a_s, lam, F, 1.0, 0.0)
-    G = G + 2.0 * omega * M @ dxi
-    return M, G, K, system.constraint_jacobian(x_s, F)
 
 
 def _output_specs(sensors, system):

@@ -77,6 +77,33 @@ def modal_analysis(
     return Modes(f[elastic], _normalised(N @ V[:, elastic], M), f[rigid])
 
 
+def rotating_matrices(system: HubSystem, x_s, lam, F, omega: float, held: bool = True):
+    """(M, G, K, A) about the steadily rotating state x_s (multipliers ``lam`` of the layout with
+    the hub ``held``, charts F, hub speed omega in rad/s), in the co-rotating coordinates of
+    :func:`rotating_modal_analysis`: M the system's mass matrix (exact), G the gyroscopic,
+    Coriolis and drag terms, K the elastic, centrifugal and constraint terms (central
+    differences of the system's residual), A the constraint Jacobian."""
+    zx = system.layout_for(held).z_of_x
+
+    def forces(x, v, a):
+        res = system.equations(x, v, a, lam, F, 0.0, 0.0, 0.0, 1.0, 1.0, want_matrix=False, held=held)[0]
+        return res[zx]
+
+    def generator(y):
+        return system.steady_rotation_rates(y, F, 1.0)[0]
+
+    def steady_rates(y):
+        return omega * generator(y), system.steady_rotation_rates(y, F, omega)[1]
+
+    v_s, a_s = steady_rates(x_s)
+    zero, unit = np.zeros(x_s.shape[0]), relative_steps(np.zeros(x_s.shape[0]))
+    K = central_difference_jacobian(lambda y: forces(y, *steady_rates(y)), x_s, relative_steps(x_s))
+    G = central_difference_jacobian(
+        lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), zero, unit)
+    Mz = system.equations(x_s, v_s, a_s, lam, F, 0.0, 1.0, 0.0, 0.0, 1.0, held=held)[1].to_dense()
+    return Mz[np.ix_(zx, zx)], G, K, system.constraint_jacobian(x_s, F, held=held)
+
+
 def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: float, count: int = 6,
                             include_damping: bool = False) -> Modes:
     """Lowest ``count`` natural frequencies (Hz) about the state that turns steadily with the
@@ -95,31 +122,10 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     state space on the null space of A; the frequencies are |Im s| / (2 pi).
     ``include_damping``: keep the drag's velocity terms (then the modes are damped).
     """
-    x_s, F, lam = steady.x, steady.chart, steady.multipliers
-    nx = x_s.shape[0]
     if not include_damping:
         system = system.without_damping()
-    zx = system.layout_for(True).z_of_x
-
-    def forces(x, v, a):
-        res = system.equations(x, v, a, lam, F, 0.0, 0.0, 0.0, 1.0, 1.0, want_matrix=False, held=True)[0]
-        return res[zx]
-
-    def generator(y):
-        return system.steady_rotation_rates(y, F, 1.0)[0]
-
-    def steady_rates(y):
-        return omega * generator(y), system.steady_rotation_rates(y, F, omega)[1]
-
-    v_s, a_s = steady_rates(x_s)
-    zero, unit = np.zeros(nx), relative_steps(np.zeros(nx))
-    K = central_difference_jacobian(lambda y: forces(y, *steady_rates(y)), x_s, relative_steps(x_s))
-    G = central_difference_jacobian(
-        lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), zero, unit)
-    layout = system.layout_for(True)
-    Mz = system.equations(x_s, v_s, a_s, lam, F, 0.0, 1.0, 0.0, 0.0, 1.0, held=True)[1].to_dense()
-    M = Mz[np.ix_(layout.z_of_x, layout.z_of_x)]
-    N = null_space(system.constraint_jacobian(x_s, F, held=True))
+    M, G, K, A = rotating_matrices(system, steady.x, steady.multipliers, steady.chart, omega)
+    N = null_space(A)
     Mr, Gr, Kr = (N.T @ X @ N for X in (M, G, K))
     n = Mr.shape[0]
     Minv = np.linalg.inv(0.5 * (Mr + Mr.T))
