@@ -18,7 +18,7 @@ from hubbeam.io.scenario import Sensor
 from hubbeam.sensors import measure
 from hubbeam.simulation import simulate
 from hubbeam.solvers import generalized_alpha as ga
-from hubbeam.solvers.modal import modal_analysis
+from hubbeam.solvers.modal import modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.hub_system import Hub, HubSystem, single_beam_system
@@ -186,3 +186,59 @@ def test_a_uniform_table_runs_as_the_prismatic_beam():
     assert np.max(np.abs(a - b)) < 1e-9 * np.ptp(a)
     ta, tb = (np.array([r["vertical"] for r in run.records["tip"]]) for run in runs)
     assert np.max(np.abs(ta - tb)) < 1e-9 * np.ptp(ta)
+
+
+# ----------------------------------------------------------------------------- Campbell
+def rotating_flap_frequency(EI, rho_a, length, radius, spin, elements=200):
+    """First flap frequency (Hz) of a cantilever turning at ``spin`` about an axis parallel to the
+    flap direction, root at ``radius``: (EI w'')'' - (T w')' + rho_A w_tt = 0 with the centrifugal
+    tension T(x) = spin^2 int_x^L rho_A(s) (radius + s) ds; cubic Hermite elements written here."""
+    g, wg = np.polynomial.legendre.leggauss(5)
+    xi, wg = 0.5 * (g + 1), 0.5 * wg
+    l = length / elements
+    n = 2 * (elements + 1)
+    K, M = np.zeros((n, n)), np.zeros((n, n))
+    N = np.stack([1 - 3 * xi**2 + 2 * xi**3, l * (xi - 2 * xi**2 + xi**3), 3 * xi**2 - 2 * xi**3, l * (-xi**2 + xi**3)], 1)
+    N1 = np.stack([-6 * xi + 6 * xi**2, l * (1 - 4 * xi + 3 * xi**2), 6 * xi - 6 * xi**2, l * (-2 * xi + 3 * xi**2)], 1) / l
+    N2 = np.stack([-6 + 12 * xi, l * (-4 + 6 * xi), 6 - 12 * xi, l * (-2 + 6 * xi)], 1) / l**2
+    s, ws = np.polynomial.legendre.leggauss(40)
+
+    def tension(x):
+        u = x + 0.5 * (length - x) * (s + 1)
+        return spin**2 * 0.5 * (length - x) * np.sum(ws * rho_a(u) * (radius + u))
+
+    for e in range(elements):
+        x = (e + xi) * l
+        T = np.array([tension(v) for v in x])
+        d = slice(2 * e, 2 * e + 4)
+        K[d, d] += l * (np.einsum("q,qi,qj->ij", wg * EI(x), N2, N2) + np.einsum("q,qi,qj->ij", wg * T, N1, N1))
+        M[d, d] += l * np.einsum("q,qi,qj->ij", wg * rho_a(x), N, N)
+    w2 = eigh(K[2:, 2:], M[2:, 2:], eigvals_only=True, subset_by_index=[0, 0])
+    return float(np.sqrt(w2[0]) / (2 * np.pi))
+
+
+@pytest.mark.parametrize("modes", [None, 4])
+def test_rotating_flap_frequency_of_a_tapered_stiffened_blade(modes):
+    """The Campbell diagram's machinery (rotating_modal_analysis about solve_static(spin=...))
+    on a tapered blade with geometric stiffening, weak axis along j0 (twist 90 deg), turning at
+    twice its first flap frequency: the first frequency is the centrifugally stiffened flap
+    frequency of an Euler-Bernoulli model with the tension of its own taper; with structural
+    damping on the beam (left out of the undamped modes) and modal reduction (4 modes + axial)."""
+    taper = tapered_sections(root=(B, H), tip=(0.5 * B, 0.5 * H), pretwist_deg=0.0)
+    b = lambda x: np.interp(x, [0, L], [B, 0.5 * B])  # noqa: E731
+    h = lambda x: np.interp(x, [0, L], [H, 0.5 * H])  # noqa: E731
+    EI, rho_a = (lambda x: E * b(x) * h(x) ** 3 / 12), (lambda x: RHO * b(x) * h(x))
+    radius = 0.3
+    f0 = rotating_flap_frequency(EI, rho_a, L, radius, 0.0)
+    spin = 2 * 2 * np.pi * f0
+    reference = rotating_flap_frequency(EI, rho_a, L, radius, spin)
+    beam = FfrBeam(L, 16, plate(), sections=taper, geometric_stiffening=True, structural_damping=1e-3, modes=modes)
+    system = single_beam_system(beam, radius=radius, twist=np.pi / 2, motion="prescribed",
+                                drive=DriveProfile("constant", spin))
+    steady = solve_static(system, load_steps=4, spin=spin)
+    f = rotating_modal_analysis(system, steady, spin, count=2).frequencies_hz
+    assert reference > 1.8 * f0  # the stiffening is large
+    # the element-mean axial strain carries a tension constant on each element: the error falls
+    # like h^2 (measured, nodal: 7.8e-3, 2.4e-3, 6.3e-4 with 4, 8, 16 elements; prismatic 1.1e-3 with 8);
+    # 4 kept modes add 5e-4 (1.2e-3 in all)
+    assert f[0] == pytest.approx(reference, rel=1e-3 if modes is None else 2e-3)

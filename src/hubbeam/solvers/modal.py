@@ -87,7 +87,7 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     gyroscopic (Coriolis) terms. Each is a central difference of the system's own residual
     (independent of how the residual was derived). The quadratic eigenproblem is solved in
     state space on the null space of A; the frequencies are |Im s| / (2 pi).
-    ``include_damping``: keep the drag's velocity terms (then the modes are damped).
+    ``include_damping``: keep the drag's and the beams' structural damping's velocity terms (then the modes are damped).
     """
     x_s, F, lam = steady.x, steady.chart, steady.multipliers
     nx = x_s.shape[0]

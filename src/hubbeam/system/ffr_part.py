@@ -31,7 +31,7 @@ numpy, and the stiffness by central differences, which the tests hold the kernel
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -269,6 +269,12 @@ class FfrPart(BeamPart):
         """Fibre strain at the section point (y, z) on the local section axes of the station
         (:meth:`FfrBeam.surface_strain`)."""
         return self.beam.surface_strain(q[BODY:], station, y, z)
+
+    def without_structural_damping(self) -> "FfrPart":
+        """The same beam part with structural_damping = 0 (itself when it has none)."""
+        if not self.beam.structural_damping:
+            return self
+        return replace(self, beam=replace(self.beam, structural_damping=0.0))
 
     def thickness_at(self, station: float) -> float:
         """The section's thickness (m) at the station (from the span-wise table when there is one)."""
