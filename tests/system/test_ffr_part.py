@@ -189,7 +189,7 @@ def test_a_uniform_table_runs_as_the_prismatic_beam():
 
 
 # ----------------------------------------------------------------------------- Campbell
-def rotating_flap_frequency(EI, rho_a, length, radius, spin, elements=200):
+def rotating_flap_frequency(EI, rho_a, length, radius, spin, elements=60):
     """First flap frequency (Hz) of a cantilever turning at ``spin`` about an axis parallel to the
     flap direction, root at ``radius``: (EI w'')'' - (T w')' + rho_A w_tt = 0 with the centrifugal
     tension T(x) = spin^2 int_x^L rho_A(s) (radius + s) ds; cubic Hermite elements written here."""

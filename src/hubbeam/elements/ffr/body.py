@@ -168,6 +168,8 @@ class FfrBeam:
 
     def body_point(self, x: float, y: float, z: float) -> tuple[float, float]:
         """Body-frame (y, z) (m) of the section point (y, z) given on the local axes m', n' at x."""
+        if y == 0.0 and z == 0.0 or self.sections is None:
+            return float(y), float(z)
         yb, zb = self.section_axes(x) @ np.array([y, z], dtype=float)
         return float(yb), float(zb)
 
