@@ -47,7 +47,8 @@ def test_inertia_invariants_are_the_volume_integrals_of_the_twisted_tapered_sect
     sections = tapered_sections(pretwist_deg=70.0, root=(0.05, 0.01), tip=(0.03, 0.004))
     beam = FfrBeam(L, 3, plate(), sections=sections, gauss_points=6)
     rng = np.random.default_rng(4)
-    p, A0, v = 1e-2 * rng.standard_normal(beam.ndof), expm(skew(rng.standard_normal(3))), rng.standard_normal(6 + beam.ndof)
+    p, A0 = 1e-2 * rng.standard_normal(beam.ndof), expm(skew(rng.standard_normal(3)))
+    v = rng.standard_normal(6 + beam.ndof)
     xg, wx = np.polynomial.legendre.leggauss(8)
     xg, wx = 0.5 * (xg + 1), 0.5 * wx
     sg, ws = np.polynomial.legendre.leggauss(3)
@@ -145,21 +146,27 @@ def test_macneal_harder_twisted_beam():
 
 
 # ----------------------------------------------------------------------------- tapered cantilever
-def euler_bernoulli_frequencies(EI, rho_a, length, elements=60, count=3):
-    """Clamped-free bending frequencies (Hz) of EI(x), rho_A(x): cubic Hermite elements, 5-point
-    Gauss (numpy), written here (60 elements: the three lowest converged to about 1e-7; more
-    elements only add round-off, the stiffness's condition growing like elements^4)."""
+def euler_bernoulli_frequencies(EI, rho_a, length, elements=60, count=3, tension=None):
+    """Clamped-free bending frequencies (Hz) of EI(x), rho_A(x) (and an axial tension T(x), N:
+    (EI w'')'' - (T w')' + rho_A w_tt = 0): cubic Hermite elements, 5-point Gauss (numpy), written
+    here (60 elements: the three lowest converged to about 1e-7; more elements only add
+    round-off, the stiffness's condition growing like elements^4)."""
     g, wg = np.polynomial.legendre.leggauss(5)
     xi, wg = 0.5 * (g + 1), 0.5 * wg
     l = length / elements
     n = 2 * (elements + 1)
     K, M = np.zeros((n, n)), np.zeros((n, n))
-    N = np.stack([1 - 3 * xi**2 + 2 * xi**3, l * (xi - 2 * xi**2 + xi**3), 3 * xi**2 - 2 * xi**3, l * (-xi**2 + xi**3)], 1)
+    N = np.stack([1 - 3 * xi**2 + 2 * xi**3, l * (xi - 2 * xi**2 + xi**3), 3 * xi**2 - 2 * xi**3,
+                  l * (-xi**2 + xi**3)], 1)
+    N1 = np.stack([-6 * xi + 6 * xi**2, l * (1 - 4 * xi + 3 * xi**2), 6 * xi - 6 * xi**2,
+                   l * (-2 * xi + 3 * xi**2)], 1) / l
     N2 = np.stack([-6 + 12 * xi, l * (-4 + 6 * xi), 6 - 12 * xi, l * (-2 + 6 * xi)], 1) / l**2
     for e in range(elements):
         x = (e + xi) * l
         d = slice(2 * e, 2 * e + 4)
         K[d, d] += l * np.einsum("q,qi,qj->ij", wg * EI(x), N2, N2)
+        if tension is not None:
+            K[d, d] += l * np.einsum("q,qi,qj->ij", wg * np.array([tension(v) for v in x]), N1, N1)
         M[d, d] += l * np.einsum("q,qi,qj->ij", wg * rho_a(x), N, N)
     w2 = eigh(K[2:, 2:], M[2:, 2:], eigvals_only=True, subset_by_index=[0, count - 1])
     return np.sqrt(w2) / (2 * np.pi)

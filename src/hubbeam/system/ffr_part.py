@@ -134,8 +134,9 @@ class FfrPart(BeamPart):
     # ------------------------------------------------------------ generalized forces
     def forces(self, q, v, acc, gravity, damping, tangent: bool, factor: float = 1.0):
         """M q'' - Q on q (everything but the constraints), and the pieces of the iteration
-        matrix: M, H^T C_v H + c K on p (drag and structural damping), the elastic tangent on p. ``factor`` scales the applied loads
-        (gravity, tip force and moment). The Python reference of the compiled kernel."""
+        matrix: M, H^T C_v H + c K on p (drag and structural damping), the elastic tangent on p.
+        ``factor`` scales the applied loads (gravity, tip force and moment). The Python reference
+        of the compiled kernel."""
         beam = self.beam
         nf = beam.ndof
         A0, D = self._body(q)

@@ -263,8 +263,8 @@ class FfrBeam:
 
     def _centre_line_table(self) -> dict:
         """Gauss points along the centre line (4 per element): weights (m), x, the frontal width
-        b (m, of the drag) and N(x, 0, 0) over p; and per element the rows of the element-mean axial strain: a_e (the mean of
-        u0') and G_e = (1/l) int (N2x^T N2x + N3x^T N3x) dx (exact: 4 points)."""
+        b (m, of the drag) and N(x, 0, 0) over p; and per element the rows of the element-mean
+        axial strain: a_e (the mean of u0') and G_e = (1/l) int (N2x^T N2x + N3x^T N3x) dx (exact: 4 points)."""
         xg, wx = gauss_legendre(4)
         l = self.element_length
         sh = line_shapes(xg, l)
