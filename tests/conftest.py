@@ -12,6 +12,15 @@ def plate(width=B, thickness=H) -> Section:
     return Section(width, thickness, RHO, E, E / (2 * (1 + NU)), saint_venant_torsion_constant(width, thickness))
 
 
+def tapered_sections(length=L, root=(B, H), tip=(0.6 * B, 0.6 * H), pretwist_deg=60.0, material=None):
+    """A linearly tapered rectangle (width, thickness from ``root`` to ``tip``) of the plate's material,
+    pretwisted linearly to ``pretwist_deg`` at the tip."""
+    from hubbeam.elements.section import SectionForm, SpanSections
+
+    return SpanSections(np.array([0.0, length]), SectionForm.RECTANGLE, np.array([root, tip], dtype=float),
+                        np.radians([0.0, pretwist_deg]), material or plate())
+
+
 @pytest.fixture
 def section() -> Section:
     return plate()

@@ -15,14 +15,15 @@ from hubbeam.elements.ffr.cardan import angular_velocity_matrix, angular_velocit
 from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
-from tests.conftest import L, central_difference, plate
+from tests.conftest import L, central_difference, plate, tapered_sections
 
 BODY = TipBody(0.2, (1.0e-4, 2.0e-4, 2.5e-4), (0.01, 0.005, -0.003))
 GRAVITY = np.array([0.3, -9.81, 0.7])
 
 
-def make_part(stiffening=False, tip_loads=False, tip_body=None, elements=3):
-    beam = FfrBeam(L, elements, plate(), geometric_stiffening=stiffening, tip_body=tip_body)
+def make_part(stiffening=False, tip_loads=False, tip_body=None, elements=3, sections=None, structural_damping=0.0):
+    beam = FfrBeam(L, elements, plate(), geometric_stiffening=stiffening, tip_body=tip_body, sections=sections,
+                   structural_damping=structural_damping)
     loads = {}
     if tip_loads:
         loads = {"tip_force": np.array([3.0, -20.0, 12.0]), "tip_moment": np.array([0.4, -1.5, 2.0])}
@@ -85,6 +86,9 @@ CASES = {
     "tip loads": {"tip_loads": True},
     "tip body": {"tip_body": BODY},
     "everything": {"stiffening": True, "damping": (0.4, 1.7), "tip_loads": True, "tip_body": BODY},
+    "structural damping": {"structural_damping": 2e-3},
+    "tapered, pretwisted, damped": {"sections": tapered_sections(), "structural_damping": 2e-3, "stiffening": True,
+                                    "damping": (0.4, 1.7), "tip_loads": True, "tip_body": BODY},
 }
 
 
@@ -104,7 +108,7 @@ def test_kernel_is_the_python_forces(case):
             assert close(f_k[rows], f_py[rows], 1e-12), rows
         assert close(M_k, M_py, 1e-12)
         assert close(K_k, K_py, 1e-12)
-        if damping == (0.0, 0.0):
+        if damping == (0.0, 0.0) and not part.beam.structural_damping:
             assert np.all(C_k == 0.0) and np.all(C_py == 0.0) and power == 0.0
         else:
             assert close(C_k, C_py, 1e-12)
@@ -136,10 +140,12 @@ def test_inertia_part_of_the_force_alone():
 
 
 @pytest.mark.skipif("modes" not in FfrBeam.__dataclass_fields__, reason="no modal reduction")
-@pytest.mark.parametrize("stiffening", [False, True])
-def test_modally_reduced_beam(stiffening):
-    """A modally reduced beam (dense invariants over eta): the same numbers as FfrPart."""
-    beam = FfrBeam(L, 4, plate(), geometric_stiffening=stiffening, tip_body=BODY, modes=5)
+@pytest.mark.parametrize("stiffening, real_blade", [(False, False), (True, False), (True, True)])
+def test_modally_reduced_beam(stiffening, real_blade):
+    """A modally reduced beam (dense invariants over eta): the same numbers as FfrPart; also
+    tapered, pretwisted, with structural damping."""
+    extra = {"sections": tapered_sections(), "structural_damping": 2e-3} if real_blade else {}
+    beam = FfrBeam(L, 4, plate(), geometric_stiffening=stiffening, tip_body=BODY, modes=5, **extra)
     part = FfrPart(beam, Mount(0.2, 0.1), tip_force=np.array([3.0, -20.0, 12.0]),
                    tip_moment=np.array([0.4, -1.5, 2.0]))
     arrays = fk.pack(part)
@@ -156,7 +162,8 @@ def test_modally_reduced_beam(stiffening):
 
 def test_padded_arrays_give_the_same_numbers():
     """Arrays zero-padded beyond nf (stacking beams of different meshes) read only nf."""
-    part = make_part(stiffening=True, tip_loads=True, tip_body=BODY)
+    part = make_part(stiffening=True, tip_loads=True, tip_body=BODY, sections=tapered_sections(),
+                     structural_damping=2e-3)
     a = fk.pack(part)
     nf, extra = part.beam.ndof, 6
 
@@ -169,10 +176,11 @@ def test_padded_arrays_give_the_same_numbers():
         return np.ascontiguousarray(np.pad(x, width))
 
     b = a._replace(Sbar=pad(a.Sbar, [1]), J=pad(a.J, [2]), II=pad(a.II, [2, 3]), Mff=pad(a.Mff, [0, 1]),
-                   K=pad(a.K, [0, 1]), mean_stretch=pad(a.mean_stretch, [1], rows=2),
+                   K=pad(a.K, [0, 1]), C_struct=pad(a.C_struct, [0, 1]), EAl=pad(a.EAl, [], rows=2),
+                   mean_stretch=pad(a.mean_stretch, [1], rows=2),
                    mean_slope2=pad(a.mean_slope2, [1, 2], rows=2), tip_rows=pad(a.tip_rows, [1]),
                    tip_rotation_rows=pad(a.tip_rotation_rows, [1]), N_pts=pad(a.N_pts, [2], rows=3),
-                   x_pts=pad(a.x_pts, [], rows=3), w_pts=pad(a.w_pts, [], rows=3))
+                   x_pts=pad(a.x_pts, [], rows=3), w_pts=pad(a.w_pts, [], rows=3), width=pad(a.width, [], rows=3))
     q, v, acc = random_state(part, np.random.default_rng(2))
     n = 6 + nf
     outs = []

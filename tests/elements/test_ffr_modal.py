@@ -33,7 +33,7 @@ from hubbeam.system.hub_system import single_beam_system
 from hubbeam.system.laws import DriveProfile
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
-from tests.conftest import L, plate
+from tests.conftest import L, plate, tapered_sections
 from tests.system.test_tip_body import (
     FREQUENCY_BODY,
     TIP_J_M,
@@ -62,12 +62,14 @@ def lift(B):
 
 
 # ----------------------------------------------------------------------------- exact mapping
-@pytest.mark.parametrize("stiffening", [False, True])
-def test_all_modes_map_every_term_of_the_nodal_beam(stiffening):
+@pytest.mark.parametrize("stiffening, real_blade", [(False, False), (True, False), (False, True), (True, True)])
+def test_all_modes_map_every_term_of_the_nodal_beam(stiffening, real_blade):
     """3 elements, an offset tip body, every mode kept: invariants, M_v, Q_v, Q_g, the elastic
-    energy, force and tangent, and every row are the nodal ones mapped by the basis."""
-    nodal = FfrBeam(L, 3, plate(), geometric_stiffening=stiffening, tip_body=OFFSET_BODY)
-    red = FfrBeam(L, 3, plate(), geometric_stiffening=stiffening, tip_body=OFFSET_BODY, modes=18)
+    energy, force and tangent, the structural damping and every row are the nodal ones mapped by
+    the basis; also for a tapered, pretwisted beam."""
+    extra = {"sections": tapered_sections(), "structural_damping": 1e-3} if real_blade else {}
+    nodal = FfrBeam(L, 3, plate(), geometric_stiffening=stiffening, tip_body=OFFSET_BODY, **extra)
+    red = FfrBeam(L, 3, plate(), geometric_stiffening=stiffening, tip_body=OFFSET_BODY, modes=18, **extra)
     B = red.basis
     assert red.ndof == 18 and nodal.ndof == red.nodal_ndof == 18 and B.shape == (18, 18)
     assert np.linalg.matrix_rank(B) == 18
@@ -111,6 +113,9 @@ def test_all_modes_map_every_term_of_the_nodal_beam(stiffening):
             assert red.surface_strain(eta, x, 0.0, 0.00125) == pytest.approx(nodal.surface_strain(p, x, 0.0, 0.00125),
                                                                               rel=1e-10, abs=1e-15)
         assert np.allclose(red.centre_line_table["N"], nodal.centre_line_table["N"] @ B)
+        assert np.array_equal(red.centre_line_table["b"], nodal.centre_line_table["b"])
+        Cn = B.T @ nodal.damping_matrix @ B
+        assert np.allclose(red.damping_matrix, Cn, rtol=0, atol=1e-11 * max(np.max(np.abs(Cn)), 1e-300))
         assert np.allclose(red.first_moment(eta), nodal.first_moment(p))
 
 

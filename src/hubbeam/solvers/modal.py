@@ -120,7 +120,7 @@ def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: fl
     the compiled equations give neither the stiffness of the rotary inertia's steady-rotation
     forces nor the gyroscopic matrix. The quadratic eigenproblem is solved in
     state space on the null space of A; the frequencies are |Im s| / (2 pi).
-    ``include_damping``: keep the drag's velocity terms (then the modes are damped).
+    ``include_damping``: keep the drag's and the beams' structural damping's velocity terms (then the modes are damped).
     """
     if not include_damping:
         system = system.without_damping()

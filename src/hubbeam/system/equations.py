@@ -45,10 +45,10 @@ def bandwidth_for(ffr_dofs) -> int:
 
 
 #: dimensions of the per-beam arrays of :class:`hubbeam.elements.ffr.kernels.FfrArrays`
-FFR_FIELD_NDIM = {"m": 0, "c0": 1, "Sbar": 2, "I0": 2, "J": 3, "II": 4, "Mff": 2, "K": 2, "EAl": 0,
-                  "mean_stretch": 2, "mean_slope2": 3, "stiffening": 0, "tip_force": 1, "tip_moment": 1,
-                  "tip_rows": 2, "tip_rotation_rows": 2, "length": 0, "N_pts": 3, "x_pts": 1, "w_pts": 1,
-                  "width": 0}
+FFR_FIELD_NDIM = {"m": 0, "c0": 1, "Sbar": 2, "I0": 2, "J": 3, "II": 4, "Mff": 2, "K": 2, "EAl": 1,
+                  "mean_stretch": 2, "mean_slope2": 3, "stiffening": 0, "C_struct": 2, "damped": 0,
+                  "tip_force": 1, "tip_moment": 1, "tip_rows": 2, "tip_rotation_rows": 2, "length": 0, "N_pts": 3,
+                  "x_pts": 1, "w_pts": 1, "width": 1}
 
 
 class FfrStack(NamedTuple):
@@ -71,6 +71,8 @@ class FfrStack(NamedTuple):
     mean_stretch: np.ndarray
     mean_slope2: np.ndarray
     stiffening: np.ndarray
+    C_struct: np.ndarray  # (nb, nf, nf) structural damping c K (N s)
+    damped: np.ndarray
     tip_force: np.ndarray
     tip_moment: np.ndarray
     tip_rows: np.ndarray
@@ -328,7 +330,7 @@ def ffr_arguments(model, k):
     """(inv, tip, drag) of FFR beam k for :mod:`hubbeam.elements.ffr.kernels`."""
     ff = model.ffr
     inv = (ff.m[k], ff.c0[k], ff.Sbar[k], ff.I0[k], ff.J[k], ff.II[k], ff.Mff[k], ff.K[k], ff.EAl[k],
-           ff.mean_stretch[k], ff.mean_slope2[k], ff.stiffening[k])
+           ff.mean_stretch[k], ff.mean_slope2[k], ff.stiffening[k], ff.C_struct[k], ff.damped[k])
     tip = (ff.tip_force[k], ff.tip_moment[k], ff.tip_rows[k], ff.tip_rotation_rows[k], ff.length[k])
     drag = (ff.N_pts[k], ff.x_pts[k], ff.w_pts[k], ff.width[k], model.drag[0], model.drag[1])
     return inv, tip, drag
@@ -389,7 +391,8 @@ def applied_load(model, k, q, F, factor, Q, tip_jacobian):
 
 @njit(cache=True)
 def dissipated_power(model, x, v):
-    """Power of the drag of Eq. 37 on every beam at the state (x, v) (W, >= 0)."""
+    """Power of the drag of Eq. 37 on every beam and of the FFR beams' structural damping at the
+    state (x, v) (W, >= 0)."""
     power = 0.0
     ff = model.ffr
     zero = np.zeros(x.shape[0])

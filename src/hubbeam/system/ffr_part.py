@@ -31,7 +31,7 @@ numpy, and the stiffness by central differences, which the tests hold the kernel
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -134,8 +134,9 @@ class FfrPart(BeamPart):
     # ------------------------------------------------------------ generalized forces
     def forces(self, q, v, acc, gravity, damping, tangent: bool, factor: float = 1.0):
         """M q'' - Q on q (everything but the constraints), and the pieces of the iteration
-        matrix: M, H^T C_v H, the elastic tangent on p. ``factor`` scales the applied loads
-        (gravity, tip force and moment). The Python reference of the compiled kernel."""
+        matrix: M, H^T C_v H + c K on p (drag and structural damping), the elastic tangent on p.
+        ``factor`` scales the applied loads (gravity, tip force and moment). The Python reference
+        of the compiled kernel."""
         beam = self.beam
         nf = beam.ndof
         A0, D = self._body(q)
@@ -148,7 +149,7 @@ class FfrPart(BeamPart):
         Mv = beam.mass_matrix(p, A0)
         _, f_el, K_el = beam.elastic(p)
         Q = beam.quadratic_velocity(p, pd, omega, A0) + factor * (beam.gravity(p, A0, gravity) + self._tip_load(A0))
-        Q[6:] -= f_el
+        Q[6:] -= f_el + beam.damping_matrix @ pd
         Qd, Cv = self._drag(q, vb, A0, damping, tangent)
         Q += Qd
         vdot = H @ acc + h
@@ -157,6 +158,7 @@ class FfrPart(BeamPart):
             return force, None
         M = H.T @ Mv @ H
         C = H.T @ Cv @ H
+        C[6:, 6:] += beam.damping_matrix
         K = np.zeros_like(M)
         K[6:, 6:] = K_el
         return force, (M, C, K)
@@ -199,7 +201,6 @@ class FfrPart(BeamPart):
         if c1 == 0.0 and c2 == 0.0:
             return np.zeros(n), np.zeros((n, n))
         t = self.beam.centre_line_table
-        b = self.beam.section.width
         p = q[BODY:]
         r = np.column_stack([t["x"], np.zeros((t["x"].shape[0], 2))]) + t["N"] @ p  # body frame
         S = np.empty((r.shape[0], 3, n))
@@ -211,7 +212,7 @@ class FfrPart(BeamPart):
         S[:, :, 6:] = A0 @ t["N"]
         rdot = S @ vb
         speed = np.linalg.norm(rdot, axis=1)
-        weight = b * t["w"]
+        weight = t["b"] * t["w"]
         Q = -np.einsum("qif,qi->f", S, (weight * (c1 + c2 * speed))[:, None] * rdot)
         if not tangent:
             return Q, None
@@ -222,14 +223,17 @@ class FfrPart(BeamPart):
         return Q, C
 
     def dissipated_power(self, q, v, damping) -> float:
-        """Power of the drag (W, >= 0): the Python reference of the compiled one."""
+        """Power of the drag and the structural damping (W, >= 0): the Python reference of the
+        compiled one."""
+        pd = v[BODY:]
+        power = float(pd @ self.beam.damping_matrix @ pd)
         c1, c2 = damping
         if c1 == 0.0 and c2 == 0.0:
-            return 0.0
+            return power
         A0, D = self._body(q)
         vb = self._H(D) @ v
         Qd, _ = self._drag(q, vb, A0, damping, tangent=False)
-        return float(-Qd @ vb)
+        return power + float(-Qd @ vb)
 
     # ------------------------------------------------------------ inertia and energies
     def mass_matrix(self, q, chart=None) -> np.ndarray:
@@ -252,15 +256,19 @@ class FfrPart(BeamPart):
 
     # ------------------------------------------------------------ measured quantities
     def point_position(self, q, station: float, y: float = 0.0, z: float = 0.0) -> np.ndarray:
-        """Global position of the material point (station, y, z) (Eq. 42)."""
+        """Global position of the material point (station, y, z) (Eq. 42); (y, z) (m) on the local
+        section axes of the station (turned by the pretwist, :meth:`FfrBeam.body_point`)."""
         A0, _ = self._body(q)
-        u = self.beam.displacement_row(station, y, z) @ q[BODY:]
-        return q[R_C] + A0 @ (np.array([station, y, z]) + u)
+        yb, zb = self.beam.body_point(station, y, z)
+        u = self.beam.displacement_row(station, yb, zb) @ q[BODY:]
+        return q[R_C] + A0 @ (np.array([station, yb, zb]) + u)
 
     def tip_position(self, q) -> np.ndarray:
         return self.point_position(q, self.beam.length)
 
     def surface_strain(self, q, chart, station, y, z) -> float:
+        """Fibre strain at the section point (y, z) on the local section axes of the station
+        (:meth:`FfrBeam.surface_strain`)."""
         return self.beam.surface_strain(q[BODY:], station, y, z)
 
     def section_motion(self, q, chart, u, stations):
@@ -281,6 +289,16 @@ class FfrPart(BeamPart):
             omega[i] = A0 @ (w_b + Phi @ pd)
             frames[i] = A0 @ _rotation(Phi @ p)
         return frames, vel, omega
+
+    def without_structural_damping(self) -> "FfrPart":
+        """The same beam part with structural_damping = 0 (itself when it has none)."""
+        if not self.beam.structural_damping:
+            return self
+        return replace(self, beam=replace(self.beam, structural_damping=0.0))
+
+    def thickness_at(self, station: float) -> float:
+        """The section's thickness (m) at the station (from the span-wise table when there is one)."""
+        return self.beam.thickness_at(station)
 
     def centre_line(self, q, chart=None, points_per_element: int = 8) -> np.ndarray:
         beam = self.beam

@@ -88,6 +88,15 @@ class BeamPart(ABC):
     def surface_strain(self, q: np.ndarray, chart: np.ndarray, station: float, y: float, z: float) -> float:
         """Fibre axial strain at section point (y, z) of the station x (m from the root)."""
 
+    def without_structural_damping(self) -> "BeamPart":
+        """The same beam without its structural damping (itself when it has none)."""
+        return self
+
+    def thickness_at(self, station: float) -> float:
+        """The section's thickness h (m) at the station x (m from the root): where a strain gauge's
+        'upper' (z = +h/2) and 'lower' faces are. A formulation with span-wise sections overrides it."""
+        return float(self.section.thickness)
+
     @abstractmethod
     def centre_line(self, q: np.ndarray, chart: np.ndarray, points_per_element: int = 8) -> np.ndarray:
         """Points of the deformed centre line (global, m), root to tip."""

@@ -15,6 +15,26 @@ rectangle: the integrands are polynomials of degree <= 6 in x and <= 2 in y, z):
 With the generalized velocity v = [r_C', omega^b, p'] (Eq. 58), M_v (Eq. 66), Q_v (Eq. 67)
 and Q_g follow in closed form (see the methods). Units: SI.
 
+**Span-wise sections** (``sections=``, a :class:`~hubbeam.elements.section.SpanSections`):
+every property is taken at the Gauss points of each element from the table (``section`` then
+only stands for the material and the scales). The section's principal axes (m', n') turn
+about the axis by the pretwist beta(x), in the sense of the mount's twist:
+m' = cos(beta) j_b - sin(beta) k_b, n' = sin(beta) j_b + cos(beta) k_b. The centre line
+stays straight (no reference strain). A section is given to the inertia by four points
+(+-a m', +-c n') of mass rho_A / 4 each, a^2 = I_n / rho_A, c^2 = I_m / rho_A: they carry
+its mass, its zero first moments and its second-moment tensor exactly, which is all the
+invariants see (N and rho0 are linear in y, z); for the prismatic rectangle these are its
+2 x 2 Gauss points. The torsional inertia is therefore I_m + I_n (a table's I_tau is not
+used). The elastic energy's bending part is (v0'', w0'') E S (v0'', w0'')^T / 2 with
+E S = EI_z m' m'^T + EI_y n' n'^T in the body's (y, z) plane: pretwist couples the two
+bending planes. Sensor points (y, z) are in the local section axes (m', n').
+
+**Structural damping** (``structural_damping`` = c, s): Kelvin-Voigt, proportional to the
+material elastic stiffness K (Eq. 61 with the sections; not the geometric stiffening): the
+generalized force c K p' on the elastic coordinates (:attr:`FfrBeam.damping_matrix`),
+dissipating p'^T c K p' >= 0. About an unstressed state mode i decays with
+zeta_i = c omega_i / 2.
+
 A rigid tip body (:class:`~hubbeam.system.tip_body.TipBody`, ``tip_body=``) is part of the
 invariants. It moves with the tip section under the FFR's linear kinematics: its point at
 body position rho0 = (L, 0, 0) + d is displaced by u = N(L) p + phi(L) x d, phi the
@@ -42,7 +62,7 @@ import numpy as np
 
 from hubbeam.elements.ffr.shape import NODE_DOFS, displacement_matrix, line_shapes
 from hubbeam.elements.hermite import gauss_legendre
-from hubbeam.elements.section import Section
+from hubbeam.elements.section import COLUMN, Section, SpanSections, rectangle_constants
 
 
 def skew(a: np.ndarray) -> np.ndarray:
@@ -52,8 +72,9 @@ def skew(a: np.ndarray) -> np.ndarray:
 
 @dataclass
 class FfrBeam:
-    """n equal FFR elements over a beam of ``length`` (m) with one ``section``; with ``modes``,
-    reduced to that many clamped-free modes (``frequencies_hz``, ``max_frequency_hz``, ``basis``)."""
+    """n equal FFR elements over a beam of ``length`` (m) with one ``section`` (or, with
+    ``sections``, the span-wise table); with ``modes``, reduced to that many clamped-free modes
+    (``frequencies_hz``, ``max_frequency_hz``, ``basis``); ``structural_damping`` c (s)."""
 
     length: float
     elements: int
@@ -64,10 +85,19 @@ class FfrBeam:
     tip_body: object = None
     #: None: the nodal coordinates p; N: the N lowest clamped-free modes (:mod:`~hubbeam.elements.ffr.modal`)
     modes: int | None = None
+    #: span-wise properties and pretwist (:class:`~hubbeam.elements.section.SpanSections`); None: ``section`` throughout
+    sections: SpanSections | None = None
+    #: Kelvin-Voigt coefficient c (s): the generalized force c K p' on the elastic coordinates
+    structural_damping: float = 0.0
     invariants: dict = field(init=False, repr=False)
     _rows: dict = field(init=False, repr=False, compare=False, default_factory=dict)  # station rows, once each
 
     def __post_init__(self) -> None:
+        if self.sections is not None and not np.isclose(self.sections.length, self.length, rtol=1e-9, atol=0.0):
+            raise ValueError(f"sections: the last station ({self.sections.length} m) must be at the beam's length "
+                             f"({self.length} m)")
+        if not (np.isfinite(self.structural_damping) and self.structural_damping >= 0.0):
+            raise ValueError(f"structural_damping: must be >= 0 s, got {self.structural_damping!r}")
         #: p = basis @ eta for a modally reduced beam (nodal ndof x ndof); None: nodal
         self.basis = None
         #: a reduced beam's kept clamped-free modes: shapes over p (columns) and frequencies (Hz)
@@ -120,22 +150,65 @@ class FfrBeam:
         out[..., dofs[keep]] = row[..., keep]
         return out if self.basis is None else out @ self.basis
 
+    # ---------------------------------------------------------------- sections
+    def properties(self, x) -> np.ndarray:
+        """The section columns (:data:`~hubbeam.elements.section.COLUMNS`: EA, GJ, EI_y, EI_z (N, N m^2),
+        rho_A (kg/m), I_tau, I_m, I_n (kg m), width, thickness (m), pretwist (rad)) at stations ``x``
+        (m; scalar or array): from ``sections``, or ``section`` throughout. Shape (..., 11)."""
+        if self.sections is None:
+            return np.broadcast_to(rectangle_constants(self.section), np.shape(x) + (len(COLUMN),)).copy()
+        return self.sections.at(x)
+
+    def section_axes(self, x: float) -> np.ndarray:
+        """The local section axes m', n' at station x as columns of a 2 x 2 matrix over the body's
+        (y, z): turned by the pretwist beta(x) in the sense of the mount's twist."""
+        beta = float(self.properties(float(x))[COLUMN["pretwist"]])
+        c, s = np.cos(beta), np.sin(beta)
+        return np.array([[c, s], [-s, c]])
+
+    def body_point(self, x: float, y: float, z: float) -> tuple[float, float]:
+        """Body-frame (y, z) (m) of the section point (y, z) given on the local axes m', n' at x."""
+        if y == 0.0 and z == 0.0 or self.sections is None:
+            return float(y), float(z)
+        yb, zb = self.section_axes(x) @ np.array([y, z], dtype=float)
+        return float(yb), float(zb)
+
+    def thickness_at(self, x: float) -> float:
+        """The section's thickness h (m, along n') at station x."""
+        return float(self.properties(float(x))[COLUMN["thickness"]])
+
+    @property
+    def damping_matrix(self) -> np.ndarray:
+        """c K (N s over the elastic coordinates): the structural damping's generalized force is
+        damping_matrix @ p'."""
+        return self.structural_damping * self.stiffness_matrix
+
     # ---------------------------------------------------------------- invariants
+    def _section_points(self, props: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Four body-frame points (y, z) (4, 2) and their weight per length (kg/m) of the section with
+        columns ``props``: (+-a m', +-c n'), a^2 = I_n / rho_A, c^2 = I_m / rho_A, rho_A / 4 each (the
+        section's mass, first and second moments)."""
+        rho_a = props[COLUMN["rho_A"]]
+        a = np.sqrt(props[COLUMN["I_n"]] / rho_a)
+        c = np.sqrt(props[COLUMN["I_m"]] / rho_a)
+        beta = props[COLUMN["pretwist"]]
+        axes = np.array([[np.cos(beta), np.sin(beta)], [-np.sin(beta), np.cos(beta)]])
+        local = np.array([[-a, -c], [-a, c], [a, -c], [a, c]])
+        return local @ axes.T, 0.25 * rho_a
+
     def _inertia_invariants(self) -> dict:
-        sec = self.section
         xg, wx = gauss_legendre(self.gauss_points)
-        sg, ws = gauss_legendre(2)
-        ys, zs = (sg - 0.5) * sec.width, (sg - 0.5) * sec.thickness
         l = self.element_length
         shapes = line_shapes(xg, l)
         N_list, r0_list, w_list = [], [], []
         for e in range(self.elements):
+            props = self.properties((e + xg) * l)
             for k, (xi, wk) in enumerate(zip(xg, wx)):
-                for y, wy in zip(ys, ws):
-                    for z, wz in zip(zs, ws):
-                        N_list.append(self._scatter(e, displacement_matrix(shapes, k, y, z)))
-                        r0_list.append([(e + xi) * l, y, z])
-                        w_list.append(sec.density * wk * l * wy * sec.width * wz * sec.thickness)
+                points, weight = self._section_points(props[k])
+                for y, z in points:
+                    N_list.append(self._scatter(e, displacement_matrix(shapes, k, y, z)))
+                    r0_list.append([(e + xi) * l, y, z])
+                    w_list.append(weight * wk * l)
         if self.tip_body is not None:
             # seven weighted points carrying the tip body's mass, first and second moments,
             # moving with the tip section: u = N(L) p + phi(L) x d
@@ -158,28 +231,40 @@ class FfrBeam:
 
     # ---------------------------------------------------------------- stiffness
     def _stiffness(self) -> np.ndarray:
-        """K of Eq. 61: EA u0'^2 + EI_z v0''^2 + EI_y w0''^2 + GJ theta'^2, exact with 4 Gauss points."""
-        EA, GJ, EIy, EIz = self.section.stiffness
-        xg, wx = gauss_legendre(4)
+        """K of Eq. 61 with the properties at the Gauss points (max(4, gauss_points) per element;
+        exact for a prismatic beam): EA u0'^2 + GJ theta'^2 + (v0'', w0'') E S (v0'', w0'')^T,
+        E S = EI_z m' m'^T + EI_y n' n'^T in the body's (y, z) plane (m', n' the local section axes,
+        turned by the pretwist; without pretwist EI_z v0''^2 + EI_y w0''^2). Also sets the axial
+        part and the element integrals int EA dx (N m) of the element-mean strain."""
+        xg, wx = gauss_legendre(max(4, self.gauss_points))
         l = self.element_length
         sh = line_shapes(xg, l)
-        Ka = l * EA * np.einsum("q,qi,qj->ij", wx, sh["N1x"], sh["N1x"])
-        Ke = Ka + l * (EIz * np.einsum("q,qi,qj->ij", wx, sh["N2xx"], sh["N2xx"])
-                       + EIy * np.einsum("q,qi,qj->ij", wx, sh["N3xx"], sh["N3xx"])
-                       + GJ * np.einsum("q,qi,qj->ij", wx, sh["N4x"], sh["N4x"]))
         K = np.zeros((self.nodal_ndof, self.nodal_ndof))
         self._axial_stiffness = np.zeros((self.nodal_ndof, self.nodal_ndof))
+        self._axial_integrals = np.zeros(self.elements)
+        c_ = COLUMN
         for e in range(self.elements):
+            props = self.properties((e + xg) * l)
+            EA, GJ, EIy, EIz, beta = (props[:, c_[k]] for k in ("EA", "GJ", "EI_y", "EI_z", "pretwist"))
+            c, s = np.cos(beta), np.sin(beta)
+            kvv, kww, kvw = EIz * c * c + EIy * s * s, EIz * s * s + EIy * c * c, (EIy - EIz) * c * s
+            Ka = l * np.einsum("q,qi,qj->ij", wx * EA, sh["N1x"], sh["N1x"])
+            cross = np.einsum("q,qi,qj->ij", wx * kvw, sh["N2xx"], sh["N3xx"])
+            Ke = Ka + l * (np.einsum("q,qi,qj->ij", wx * kvv, sh["N2xx"], sh["N2xx"])
+                           + np.einsum("q,qi,qj->ij", wx * kww, sh["N3xx"], sh["N3xx"])
+                           + cross + cross.T
+                           + np.einsum("q,qi,qj->ij", wx * GJ, sh["N4x"], sh["N4x"]))
             dofs = self.element_dofs(e)
             keep = dofs >= 0
             K[np.ix_(dofs[keep], dofs[keep])] += Ke[np.ix_(keep, keep)]
             self._axial_stiffness[np.ix_(dofs[keep], dofs[keep])] += Ka[np.ix_(keep, keep)]
+            self._axial_integrals[e] = l * (wx @ EA)
         return K
 
     def _centre_line_table(self) -> dict:
-        """Gauss points along the centre line (4 per element): weights (m), x, and N(x, 0, 0)
-        over p; and per element the rows of the element-mean axial strain: a_e (the mean of
-        u0') and G_e = (1/l) int (N2x^T N2x + N3x^T N3x) dx (exact: 4 points)."""
+        """Gauss points along the centre line (4 per element): weights (m), x, the frontal width
+        b (m, of the drag) and N(x, 0, 0) over p; and per element the rows of the element-mean
+        axial strain: a_e (the mean of u0') and G_e = (1/l) int (N2x^T N2x + N3x^T N3x) dx (exact: 4 points)."""
         xg, wx = gauss_legendre(4)
         l = self.element_length
         sh = line_shapes(xg, l)
@@ -194,7 +279,9 @@ class FfrBeam:
                 n2, n3 = self._scatter(e, sh["N2x"][k]), self._scatter(e, sh["N3x"][k])
                 G[e] += wx[k] * (np.outer(n2, n2) + np.outer(n3, n3))
             a[e] = self._scatter(e, sh["N1x"][0])  # u0' is constant on the element
-        return {"N": np.array(N), "x": np.array(xs), "w": np.array(ws), "mean_stretch": a, "mean_slope2": G}
+        xs = np.array(xs)
+        return {"N": np.array(N), "x": xs, "w": np.array(ws), "b": self.properties(xs)[:, COLUMN["width"]],
+                "mean_stretch": a, "mean_slope2": G}
 
     def _mean_axial_strain(self, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Element-mean axial strain with its second-order part and its gradient rows:
@@ -214,30 +301,38 @@ class FfrBeam:
         u0 is linear on an element but v0'^2 is quartic, so a pointwise eps0 cannot vanish in
         an inextensible bending mode and the element locks (measured on Kane's spin-up at
         10 rad/s: tip lag 0.57 / 0.71 / 0.80 m with 8 / 16 / 32 elements against 0.84 m).
-        The axial energy therefore uses the element-mean strain, EA l eps_e^2 / 2 per
+        The axial energy therefore uses the element-mean strain, (int_e EA dx) eps_e^2 / 2 per
         element, which the linear u0 can match exactly. Bending and torsion keep Eq. 61.
         """
         K = self.stiffness_matrix
         if not self.geometric_stiffening:
             f = K @ p
             return 0.5 * p @ f, f, K
-        EAl = self.section.stiffness[0] * self.element_length
+        EAl = self.axial_integrals
         K_rest = K - self._axial_stiffness
         eps, deps = self._mean_axial_strain(p)
-        f = K_rest @ p + EAl * deps.T @ eps
-        Kt = K_rest + EAl * (deps.T @ deps + np.einsum("e,efg->fg", eps, self.centre_line_table["mean_slope2"]))
-        U = 0.5 * p @ (K_rest @ p) + 0.5 * EAl * eps @ eps
+        f = K_rest @ p + deps.T @ (EAl * eps)
+        Kt = K_rest + deps.T @ (EAl[:, None] * deps) \
+            + np.einsum("e,efg->fg", EAl * eps, self.centre_line_table["mean_slope2"])
+        U = 0.5 * p @ (K_rest @ p) + 0.5 * (EAl * eps) @ eps
         return U, f, Kt
 
+    @property
+    def axial_integrals(self) -> np.ndarray:
+        """int_e EA dx (N m) per element: the axial stiffness of the element-mean strain."""
+        return self._axial_integrals
+
     def _station_rows(self, x: float, y: float = 0.0, z: float = 0.0):
-        """(element, row of u0', row of -y v0'' - z w0'') over the coordinates at the station x and
-        section point (y, z), computed once per station (sensors ask at every output time)."""
+        """(element, row of u0', row of -y_b v0'' - z_b w0'') over the coordinates at the station x and
+        section point (y, z) on the local axes ((y_b, z_b) its body coordinates, :meth:`body_point`),
+        computed once per station (sensors ask at every output time)."""
         key = ("strain", float(x), float(y), float(z))
         if key not in self._rows:
             e, xi = self.locate(x)
             sh = line_shapes(np.array([xi]), self.element_length)
+            yb, zb = self.body_point(x, y, z)
             self._rows[key] = (e, self._scatter(e, sh["N1x"][0]),
-                               self._scatter(e, -y * sh["N2xx"][0] - z * sh["N3xx"][0]))
+                               self._scatter(e, -yb * sh["N2xx"][0] - zb * sh["N3xx"][0]))
         return self._rows[key]
 
     def axial_strain(self, p: np.ndarray, x: float) -> float:
@@ -330,12 +425,14 @@ class FfrBeam:
         return np.array([self._scatter(e, sh["N4"][0]), -self._scatter(e, sh["N3x"][0]), self._scatter(e, sh["N2x"][0])])
 
     def surface_strain(self, p: np.ndarray, x: float, y: float, z: float) -> float:
-        """Fibre strain eps = eps0 - y v0'' - z w0'' at (x, y, z) (eps0 as in :meth:`axial_strain`)."""
+        """Fibre strain eps = eps0 - y_b v0'' - z_b w0'' at the section point (y, z) (m, on the local
+        section axes m', n' of station x; (y_b, z_b) its body coordinates) (eps0 as in :meth:`axial_strain`):
+        the curvatures resolved on the local principal axes."""
         _, _, bending = self._station_rows(x, y, z)
         return self.axial_strain(p, x) + float(bending @ p)
 
     def strain_row(self, x: float, y: float, z: float) -> np.ndarray:
-        """The row of eps = u0' - y v0'' - z w0'' (the linear FFR fibre strain) over p."""
-        e, xi = self.locate(x)
-        sh = line_shapes(np.array([xi]), self.element_length)
-        return self._scatter(e, sh["N1x"][0] - y * sh["N2xx"][0] - z * sh["N3xx"][0])
+        """The row of eps = u0' - y_b v0'' - z_b w0'' (the linear FFR fibre strain) over p, (y, z) on the
+        local section axes as in :meth:`surface_strain`."""
+        _, axial, bending = self._station_rows(x, y, z)
+        return axial + bending

@@ -11,13 +11,18 @@ H = blockdiag(I, D(Theta), I).
 **Argument groups** (plain tuples of float64 arrays and floats, built by :func:`pack`):
 
     inv  = (m, c0 (3,), Sbar (3, nf), I0 (3, 3), J (3, 3, nf), II (3, 3, nf, nf), Mff (nf, nf),
-            K (nf, nf), EAl, mean_stretch (n_el, nf), mean_slope2 (n_el, nf, nf), stiffening)
+            K (nf, nf), EAl (n_el,), mean_stretch (n_el, nf), mean_slope2 (n_el, nf, nf), stiffening,
+            C_struct (nf, nf), damped)
     tip  = (tip_force (3,), tip_moment (3,), tip_rows (3, nf), tip_rotation_rows (3, nf), length)
-    drag = (N (npts, 3, nf), x (npts,), w (npts,), width, c1, c2)
+    drag = (N (npts, 3, nf), x (npts,), w (npts,), width (npts,), c1, c2)
 
-m, EAl, length, width, c1, c2 and stiffening (0.0 or 1.0) are floats. K is the stiffness
+m, length, c1, c2, stiffening and damped (0.0 or 1.0) are floats. K is the stiffness
 of Eq. 61, or without its axial part when ``stiffening`` (the axial energy then uses the
-element-mean strain, :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>`).
+element-mean strain with the element integrals EAl = int_e EA dx (N m),
+:meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>`). C_struct = c K (N s) is
+the structural damping (Kelvin-Voigt on the material stiffness, :attr:`FfrBeam.damping_matrix
+<hubbeam.elements.ffr.body.FfrBeam.damping_matrix>`), read when ``damped``; width is the drag's
+frontal width at each centre-line point (m).
 nf is taken from q (nf = q.shape[0] - 6): the arrays may be larger (zero-padded, for
 stacking beams of different meshes); only their leading nf entries are read, and padded
 elements (zero rows of mean_stretch / mean_slope2) or Gauss points (zero weights) add
@@ -196,13 +201,13 @@ def _elastic(inv, p, nf, want_tangent, f_el, K_el):
         eps += 0.5 * quad
         for i in range(na):
             f = act[i]
-            f_el[f] += EAl * deps[f] * eps
+            f_el[f] += EAl[e] * deps[f] * eps
         if want_tangent:
             for i in range(na):
                 f = act[i]
                 for j in range(na):
                     g = act[j]
-                    K_el[f, g] += EAl * (deps[f] * deps[g] + eps * G[e, f, g])
+                    K_el[f, g] += EAl[e] * (deps[f] * deps[g] + eps * G[e, f, g])
 
 
 @njit(cache=True, error_model="numpy")
@@ -299,12 +304,14 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     q, v, acc: (6 + nf) coordinates, rates q' and accelerations q''; gravity (3,) m/s^2;
     inv, tip, drag: see the module docstring. Writes ``force`` (6 + nf) =
     H^T (M_v vdot - Q), vdot = H q'' + h, Q = Q_v + load_factor (Q_g + Q_tip) + Q_d
-    - [0, 0, f_elastic]; and, when ``want_matrix``, overwrites the leading (6 + nf) square of
-    ``block`` with coef_m H^T M_v H + coef_c H^T C_v H + coef_k K_el (K_el on the p block:
-    the elastic tangent with geometric stiffening; C_v = -dQ_d/dv). Returns the power
-    dissipated by the drag, -Q_d . v (W)."""
+    - [0, 0, f_elastic + C_struct p']; and, when ``want_matrix``, overwrites the leading (6 + nf)
+    square of ``block`` with coef_m H^T M_v H + coef_c (H^T C_v H + C_struct) + coef_k K_el
+    (K_el and C_struct on the p block: the elastic tangent with geometric stiffening;
+    C_v = -dQ_d/dv). Returns the power dissipated by the drag and the structural damping,
+    -Q_d . v + p'^T C_struct p' (W)."""
     Sbar, J = inv[2], inv[4]
     Npts, xpts, wpts, width, dc1, dc2 = drag
+    Cs, damped = inv[12], inv[13]
     n = q.shape[0]
     nf = n - 6
     A = np.empty((3, 3))
@@ -400,6 +407,15 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     _elastic(inv, p, nf, want_matrix, f_el, K_el)
     for f in range(nf):
         Q[6 + f] -= f_el[f]
+    # structural damping c K p'
+    power = 0.0
+    if damped != 0.0:
+        for f in range(nf):
+            s = 0.0
+            for g in range(nf):
+                s += Cs[f, g] * pd[g]
+            Q[6 + f] -= s
+            power += pd[f] * s
 
     if want_matrix:
         for i in range(n):
@@ -407,7 +423,6 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
                 block[i, j] = coef_m * Mv[i, j]
 
     # drag (Eq. 64) on the centre line
-    power = 0.0
     if dc1 != 0.0 or dc2 != 0.0:
         want_c = want_matrix and coef_c != 0.0
         rb = np.empty(3)
@@ -437,7 +452,7 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
             for i in range(3):
                 rd[i] = vb[i] + A[i, 0] * ub[0] + A[i, 1] * ub[1] + A[i, 2] * ub[2]
             speed = math.sqrt(rd[0] * rd[0] + rd[1] * rd[1] + rd[2] * rd[2])
-            weight = width * wpts[k]
+            weight = width[k] * wpts[k]
             fac = weight * (dc1 + dc2 * speed)
             power += fac * speed * speed
             # Q_d -= S^T (fac rdot); S^T y = [y, r x (A0^T y), N^T A0^T y]
@@ -508,6 +523,10 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
             for f in range(nf):
                 for g in range(nf):
                     block[6 + f, 6 + g] += coef_k * K_el[f, g]
+        if coef_c != 0.0 and damped != 0.0:
+            for f in range(nf):
+                for g in range(nf):
+                    block[6 + f, 6 + g] += coef_c * Cs[f, g]
     return power
 
 
@@ -760,10 +779,12 @@ class FfrArrays(NamedTuple):
     II: np.ndarray  # (3, 3, nf, nf)
     Mff: np.ndarray  # (nf, nf)
     K: np.ndarray  # (nf, nf): Eq. 61, without its axial part when stiffening
-    EAl: float  # EA * element length
+    EAl: np.ndarray  # (n_el,) int_e EA dx (N m)
     mean_stretch: np.ndarray  # (n_el, nf)
     mean_slope2: np.ndarray  # (n_el, nf, nf)
     stiffening: float  # 1.0 or 0.0
+    C_struct: np.ndarray  # (nf, nf) c K: structural damping (N s)
+    damped: float  # 1.0 when c > 0, else 0.0
     tip_force: np.ndarray  # (3,) global
     tip_moment: np.ndarray  # (3,) global
     tip_rows: np.ndarray  # (3, nf): displacement_row(L)
@@ -772,12 +793,12 @@ class FfrArrays(NamedTuple):
     N_pts: np.ndarray  # (npts, 3, nf): centre-line Gauss table
     x_pts: np.ndarray  # (npts,)
     w_pts: np.ndarray  # (npts,)
-    width: float  # frontal width b of the drag
+    width: np.ndarray  # (npts,) frontal width b of the drag at the centre-line points (m)
 
     @property
     def inv(self) -> tuple:
         return (self.m, self.c0, self.Sbar, self.I0, self.J, self.II, self.Mff, self.K, self.EAl,
-                self.mean_stretch, self.mean_slope2, self.stiffening)
+                self.mean_stretch, self.mean_slope2, self.stiffening, self.C_struct, self.damped)
 
     @property
     def tip(self) -> tuple:
@@ -802,12 +823,13 @@ def pack(part) -> FfrArrays:
     return FfrArrays(
         m=float(inv["m"]), c0=_f64(inv["c0"]), Sbar=_f64(inv["Sbar"]), I0=_f64(inv["I0"]), J=_f64(inv["J"]),
         II=_f64(inv["II"]), Mff=_f64(inv["Mff"]), K=_f64(K),
-        EAl=float(beam.section.stiffness[0] * beam.element_length),
+        EAl=_f64(beam.axial_integrals),
         mean_stretch=_f64(t["mean_stretch"]), mean_slope2=_f64(t["mean_slope2"]), stiffening=1.0 if stiff else 0.0,
+        C_struct=_f64(beam.damping_matrix), damped=1.0 if beam.structural_damping > 0.0 else 0.0,
         tip_force=_f64(part.tip_force), tip_moment=_f64(part.tip_moment),
         tip_rows=_f64(beam.displacement_row(beam.length)), tip_rotation_rows=_f64(beam.rotation_row(beam.length)),
         length=float(beam.length), N_pts=_f64(t["N"]), x_pts=_f64(t["x"]), w_pts=_f64(t["w"]),
-        width=float(beam.section.width),
+        width=_f64(t["b"]),
     )
 
 

@@ -5,7 +5,8 @@
 A reduced beam is the nodal beam with p = B eta, B a fixed basis, so every invariant and row
 maps exactly, once, when the beam is built:
 
-    Sbar B,  J[..., B],  B^T II B (last two axes),  B^T Mff B,  B^T K B,
+    Sbar B,  J[..., B],  B^T II B (last two axes),  B^T Mff B,  B^T K B (and so the structural
+    damping c B^T K B),
     centre-line rows N B,  element-mean strain rows a_e B and B^T G_e B,
     displacement, rotation and strain rows (through ``FfrBeam._scatter``) times B.
 
@@ -111,7 +112,7 @@ def project(beam, basis: np.ndarray) -> None:
     beam._axial_stiffness = B.T @ beam._axial_stiffness @ B
     t = beam.centre_line_table
     beam.centre_line_table = {
-        "N": t["N"] @ B, "x": t["x"], "w": t["w"],
+        "N": t["N"] @ B, "x": t["x"], "w": t["w"], "b": t["b"],
         "mean_stretch": t["mean_stretch"] @ B,
         "mean_slope2": np.einsum("efg,fa,gb->eab", t["mean_slope2"], B, B, optimize=True),
     }
