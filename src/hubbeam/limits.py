@@ -34,6 +34,8 @@ WARN_RECORD_BYTES = 2**30
 #: memory per sensor column and output record while a run is kept and written (B):
 #: a Python float in a list or dict (about 65 B measured) and the arrays written from them
 BYTES_PER_VALUE = 100
+#: memory per number of a recorded state (B): in the snapshots' arrays and in the arrays written from them
+BYTES_PER_STATE_VALUE = 16
 #: sensor kinds with several parts (columns NAME_PART)
 PART_NAMES = {"tip_deflection": ("radial", "vertical", "tangential"),
               "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive")}
@@ -58,8 +60,9 @@ def _gib(n: float) -> str:
     return f"{n / 2**30:.3g} GiB" if n >= 2**30 else f"{n / 2**20:.3g} MiB"
 
 
-def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int) -> RunSize:
-    """Steps, records and record memory of a run; ScenarioError when it cannot be done."""
+def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int, state_values: int = 0) -> RunSize:
+    """Steps, records and record memory of a run; ScenarioError when it cannot be done.
+    ``state_values``: numbers per record of a recorded state (``--state``), kept as arrays."""
     if not (math.isfinite(dt) and dt > 0 and math.isfinite(t_end) and t_end > 0):
         raise ScenarioError(f"analysis.dt: needs finite positive analysis.dt and analysis.t_end (got {dt!r}, {t_end!r})")
     if dt < MIN_DT:
@@ -73,7 +76,7 @@ def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int) -
     every = max(1, round(out / dt))
     n_steps = max(1, round(steps))
     records = n_steps // every + 2
-    need = records * n_columns * BYTES_PER_VALUE
+    need = records * (n_columns * BYTES_PER_VALUE + state_values * BYTES_PER_STATE_VALUE)
     if need > MAX_RECORD_BYTES:
         raise ScenarioError(
             f"analysis.output_dt: {records:.3g} output records of {n_columns} columns would need about {_gib(need)} of "
@@ -85,10 +88,18 @@ def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int) -
     return RunSize(n_steps, records, n_columns, need, note)
 
 
-def check_run(scenario) -> RunSize:
-    """:func:`run_size` of a scenario's dynamic analysis."""
+def state_values(scenario) -> int:
+    """Numbers per output record of a recorded state (:mod:`hubbeam.snapshots`): the hub angle
+    and, at every station of every beam, its centre line, m, n and strain (10)."""
+    from hubbeam.snapshots import POINTS_PER_ELEMENT
+
+    return 1 + sum(10 * (b.elements * POINTS_PER_ELEMENT + 1) for b in scenario.resolved_beams())
+
+
+def check_run(scenario, state: bool = False) -> RunSize:
+    """:func:`run_size` of a scenario's dynamic analysis (``state``: with a recorded state)."""
     a = scenario.analysis
-    return run_size(a.t_end, a.dt, a.output_dt, columns(scenario.sensors))
+    return run_size(a.t_end, a.dt, a.output_dt, columns(scenario.sensors), state_values(scenario) if state else 0)
 
 
 #: derived model quantities must lie in this range (positive ones), so that the products the
@@ -101,44 +112,45 @@ def check_magnitudes(scenario) -> None:
     number within :data:`MAGNITUDE_RANGE` (see the module doc)."""
     import numpy as np
 
-    b, h = scenario.beam, scenario.hub
+    h = scenario.hub
     low, high = MAGNITUDE_RANGE
-    with np.errstate(all="ignore"):
-        w, t, L = np.float64(b.width), np.float64(b.thickness), np.float64(b.length)
-        E, rho, G = np.float64(b.youngs_modulus), np.float64(b.density), np.float64(scenario.shear_modulus)
-        a, c = max(w, t), min(w, t)
-        J = np.float64(b.torsion_constant) if b.torsion_constant is not None else a * c**3 / 3.0 * (1.0 - 0.63 * c / a)
-        area, i_y, i_z = w * t, w * t**3 / 12.0, t * w**3 / 12.0
-        quantities = [
-            ("the section area", area, "m^2", ["beam.width", "beam.thickness"]),
-            ("the weak-axis second moment of area", i_y, "m^4", ["beam.thickness", "beam.width"]),
-            ("the strong-axis second moment of area", i_z, "m^4", ["beam.width", "beam.thickness"]),
-            ("the torsion constant", J, "m^4", ["beam.torsion_constant" if b.torsion_constant is not None
-                                                 else "beam.thickness", "beam.width"]),
-            ("the axial stiffness EA", E * area, "N", ["beam.youngs_modulus", "beam.width", "beam.thickness"]),
-            ("the bending stiffness EI", E * i_y, "N m^2", ["beam.youngs_modulus", "beam.thickness"]),
-            ("the bending stiffness EI", E * i_z, "N m^2", ["beam.youngs_modulus", "beam.width"]),
-            ("the torsional stiffness GJ", G * J, "N m^2", ["beam.youngs_modulus", "beam.thickness"]),
-            ("the beam's mass", rho * area * L, "kg", ["beam.density", "beam.length", "beam.width"]),
-            ("the section's rotary inertia", rho * (i_y + i_z), "kg m", ["beam.density", "beam.width"]),
-            ("the axial stiffness of an element EA / (L / n)", E * area * b.elements / L, "N/m",
-             ["beam.length", "beam.youngs_modulus"]),
-            ("the bending stiffness of an element EI / (L / n)^3", E * i_z * (b.elements / L) ** 3, "N/m",
-             ["beam.length", "beam.youngs_modulus"]),
-            ("the beam's moment of inertia about the hub", rho * area * L * (L + h.radius) ** 2, "kg m^2",
-             ["beam.length", "hub.radius", "beam.density"]),
-        ]
-        if h.motion == "free":
-            quantities.append(("the hub's inertia", np.float64(h.inertia), "kg m^2", ["hub.inertia"]))
-    for what, value, unit, keys in quantities:
+    tables = scenario.beam_tables
+    checks = []
+    for b, table in zip(scenario.resolved_beams(), tables):
+        key = "beam" if len(tables) == 1 else f"beams[{b.index}]"
+        given = {f"{key}.{name}": getattr(table, name, None) for name in
+                 ("width", "thickness", "length", "youngs_modulus", "density", "torsion_constant")}
+        given["hub.radius"] = b.radius
+        with np.errstate(all="ignore"):
+            w, t, L = np.float64(b.width), np.float64(b.thickness), np.float64(b.length)
+            E, rho, G = np.float64(b.youngs_modulus), np.float64(b.density), np.float64(b.shear_modulus)
+            J = np.float64(b.torsion_constant)
+            area, i_y, i_z = w * t, w * t**3 / 12.0, t * w**3 / 12.0
+            checks += [(given, q) for q in [
+                ("the section area", area, "m^2", [f"{key}.width", f"{key}.thickness"]),
+                ("the weak-axis second moment of area", i_y, "m^4", [f"{key}.thickness", f"{key}.width"]),
+                ("the strong-axis second moment of area", i_z, "m^4", [f"{key}.width", f"{key}.thickness"]),
+                ("the torsion constant", J, "m^4", [f"{key}.torsion_constant" if table.torsion_constant is not None
+                                                     else f"{key}.thickness", f"{key}.width"]),
+                ("the axial stiffness EA", E * area, "N", [f"{key}.youngs_modulus", f"{key}.width", f"{key}.thickness"]),
+                ("the bending stiffness EI", E * i_y, "N m^2", [f"{key}.youngs_modulus", f"{key}.thickness"]),
+                ("the bending stiffness EI", E * i_z, "N m^2", [f"{key}.youngs_modulus", f"{key}.width"]),
+                ("the torsional stiffness GJ", G * J, "N m^2", [f"{key}.youngs_modulus", f"{key}.thickness"]),
+                ("the beam's mass", rho * area * L, "kg", [f"{key}.density", f"{key}.length", f"{key}.width"]),
+                ("the section's rotary inertia", rho * (i_y + i_z), "kg m", [f"{key}.density", f"{key}.width"]),
+                ("the axial stiffness of an element EA / (L / n)", E * area * b.elements / L, "N/m",
+                 [f"{key}.length", f"{key}.youngs_modulus"]),
+                ("the bending stiffness of an element EI / (L / n)^3", E * i_z * (b.elements / L) ** 3, "N/m",
+                 [f"{key}.length", f"{key}.youngs_modulus"]),
+                ("the beam's moment of inertia about the hub", rho * area * L * (L + b.radius) ** 2, "kg m^2",
+                 [f"{key}.length", "hub.radius", f"{key}.density"]),
+            ]]
+    if h.motion == "free":
+        checks.append(({"hub.inertia": h.inertia}, ("the hub's inertia", np.float64(h.inertia), "kg m^2",
+                                                    ["hub.inertia"])))
+    for given, (what, value, unit, keys) in checks:
         if not (np.isfinite(value) and low < value < high):
-            given = ", ".join(f"{k} = {_value(scenario, k):g}" for k in keys if _value(scenario, k) is not None)
-            raise ScenarioError(f"{keys[0]}: with {given}, {what} is {float(value):.3g} {unit}, outside the range "
+            values = ", ".join(f"{k} = {given[k]:g}" for k in keys
+                               if isinstance(given.get(k), (int, float)) and not isinstance(given.get(k), bool))
+            raise ScenarioError(f"{keys[0]}: with {values}, {what} is {float(value):.3g} {unit}, outside the range "
                                 f"hubbeam computes with ({low:g} to {high:g}); check the values and their units (SI)")
-
-
-def _value(scenario, key: str):
-    node = scenario
-    for part in key.split("."):
-        node = getattr(node, part, None)
-    return node if isinstance(node, (int, float)) and not isinstance(node, bool) else None

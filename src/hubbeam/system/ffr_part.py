@@ -263,7 +263,36 @@ class FfrPart(BeamPart):
     def surface_strain(self, q, chart, station, y, z) -> float:
         return self.beam.surface_strain(q[BODY:], station, y, z)
 
-    def centre_line(self, q, chart=None, points_per_element: int = 8) -> np.ndarray:
-        beam = self.beam
-        xs = np.linspace(0.0, beam.length, beam.elements * points_per_element + 1)
-        return np.array([self.point_position(q, s) for s in xs])
+    def centre_line_at(self, q, chart, stations) -> np.ndarray:
+        """Eq. 42 at (x, 0, 0) of every station."""
+        A0, _ = self._body(q)
+        xs = np.asarray(stations, dtype=float)
+        rows = np.array([self.beam.displacement_row(s) for s in xs]).reshape(xs.size, 3, -1)
+        local = rows @ q[BODY:]
+        local[:, 0] += xs
+        return q[R_C] + local @ A0.T
+
+    def frame_at(self, q, chart, station) -> np.ndarray:
+        """Section frame [tau m n] (3x3, global) at the station (m from the root)."""
+        return self.frames_at(q, chart, [station])[0]
+
+    def frames_at(self, q, chart, stations) -> np.ndarray:
+        """Section frames at the stations: the body frame turned by each section's rotation
+        phi (:meth:`~hubbeam.elements.ffr.body.FfrBeam.rotation_row`). FFR's kinematics are
+        linear in phi (u = phi x (0, y, z)); the frame turns by the rotation vector phi
+        (Rodrigues), which agrees with them to first order and stays orthonormal."""
+        A0, _ = self._body(q)
+        rows = np.array([self.beam.rotation_row(s) for s in stations]).reshape(len(stations), 3, -1)
+        return A0 @ rotations_about(rows @ q[BODY:])
+
+
+def rotations_about(phi: np.ndarray) -> np.ndarray:
+    """Rotation matrices (n x 3 x 3) of the rotation vectors phi (n x 3, rad): Rodrigues' formula."""
+    phi = np.asarray(phi, dtype=float).reshape(-1, 3)
+    angle = np.linalg.norm(phi, axis=1)
+    axis = phi / np.where(angle > 0.0, angle, 1.0)[:, None]
+    K = np.zeros((phi.shape[0], 3, 3))
+    K[:, 0, 1], K[:, 0, 2], K[:, 1, 2] = -axis[:, 2], axis[:, 1], -axis[:, 0]
+    K -= K.transpose(0, 2, 1)
+    s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
+    return np.eye(3) + s * K + (1.0 - c) * K @ K

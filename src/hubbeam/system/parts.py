@@ -83,8 +83,30 @@ class BeamPart(ABC):
         """Fibre axial strain at section point (y, z) of the station x (m from the root)."""
 
     @abstractmethod
+    def centre_line_at(self, q: np.ndarray, chart: np.ndarray, stations) -> np.ndarray:
+        """Centre-line points (n x 3, global, m) of the stations (m from the root along the undeformed beam)."""
+
+    @abstractmethod
+    def frames_at(self, q: np.ndarray, chart: np.ndarray, stations) -> np.ndarray:
+        """Section frames [tau m n] (n x 3 x 3, unit columns, global) of the stations (m from the root)."""
+
+    def surface_strains(self, q: np.ndarray, chart: np.ndarray, stations, y, z) -> np.ndarray:
+        """Fibre axial strains (1) at the section points (y_i, z_i) (m) of the stations (m)."""
+        return np.array([self.surface_strain(q, chart, s, yi, zi) for s, yi, zi in zip(stations, y, z)])
+
+    def stations(self, points_per_element: int) -> np.ndarray:
+        """Span stations (m from the root): the nodes and points_per_element - 1 points evenly
+        inside each element."""
+        return np.linspace(0.0, self.length, self.beam.elements * points_per_element + 1)
+
+    def section_size(self, station: float) -> tuple[float, float]:
+        """Width b (m, along m) and thickness h (m, along n) of the section at the station
+        (m from the root). What draws or samples a section asks here, not the section itself."""
+        return float(self.section.width), float(self.section.thickness)
+
     def centre_line(self, q: np.ndarray, chart: np.ndarray, points_per_element: int = 8) -> np.ndarray:
-        """Points of the deformed centre line (global, m), root to tip."""
+        """Points of the deformed centre line (global, m), root to tip, at :meth:`stations`."""
+        return self.centre_line_at(q, chart, self.stations(points_per_element))
 
     def tip_displacement(self, q: np.ndarray, theta: float) -> dict[str, float]:
         """Tip centroid displacement from its undeformed place, along the beam's own hub frame
