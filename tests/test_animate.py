@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from hubbeam.io.state import BeamTrack, RunState
 from hubbeam import animate
+from hubbeam.io.state import BeamTrack, RunState
 
 
 def _state(nt=5):

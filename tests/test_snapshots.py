@@ -22,7 +22,7 @@ def _run(name, overrides):
 def test_the_state_at_t0_is_the_undeformed_beam_of_exp1():
     """exp1 starts straight: root at R i_h, tip at R + L along it, stations evenly spaced,
     section frame of the 45 deg twist: m = (j0 - k_h)/sqrt 2, n = (j0 + k_h)/sqrt 2."""
-    scenario, traj = _run("exp1", ["beam.elements=2", "analysis.t_end=0.02", "analysis.output_dt=0.01"])
+    _, traj = _run("exp1", ["beam.elements=2", "analysis.t_end=0.02", "analysis.output_dt=0.01"])
     assert len(traj.snapshots) == len(traj.times) == 3
     first = traj.snapshots[0]
     assert first.hub_angle == 0.0

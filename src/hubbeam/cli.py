@@ -711,7 +711,7 @@ def _cmd_vtk(args) -> dict:
     state = read_state(args.result, "result file")
     out = Path(args.output)
     pvd, vtus = vtk.file_names(state)
-    pattern = re.compile(re.escape(vtk.series_name(state)) + r"_\d{%d}\.vtu" % vtk.INDEX_DIGITS)
+    pattern = re.compile(re.escape(vtk.series_name(state)) + rf"_\d{{{vtk.INDEX_DIGITS}}}\.vtu")
     old = sorted(p for p in out.iterdir() if p.name == pvd or pattern.fullmatch(p.name)) if out.is_dir() else []
     if old and not args.force:
         raise ScenarioError(f"-o {out}: holds a series named {vtk.series_name(state)!r} already ({old[0].name}"
@@ -722,7 +722,9 @@ def _cmd_vtk(args) -> dict:
     except OSError as exc:
         raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
     jobs = [(Target("-o", str(out / name)), lambda p, i=i: vtk.write_vtu(state, i, p)) for i, name in enumerate(vtus)]
-    _write(jobs)  # the collection last: it never lists a file that is not there
+    for start in range(0, len(jobs), 100):  # in chunks: a signal is noticed between them
+        _write(jobs[start : start + 100])
+    # the collection last: it never lists a file that is not there
     _write([(Target("-o", str(out / pvd)), lambda p: Path(p).write_text(vtk.pvd_text(state), encoding="utf-8"))])
     for stale in old:  # --force: files of an earlier, longer series
         if stale.name != pvd and stale.name not in vtus:

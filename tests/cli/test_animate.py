@@ -47,7 +47,7 @@ def test_a_gif_has_one_frame_per_stored_time(runs, tmp_path, name):
     assert code == 0, err
     with Image.open(movie) as im:
         assert im.n_frames == 6  # t = 0, 0.01, ..., 0.05
-    code, out, err = cli("animate", runs[name], "-o", movie, "--stride", "4", "--color", "none", "--fps", "5")
+    code, _, err = cli("animate", runs[name], "-o", movie, "--stride", "4", "--color", "none", "--fps", "5")
     assert code == 0, err
     with Image.open(movie) as im:
         assert im.n_frames == 2  # t = 0 and 0.04
@@ -57,7 +57,7 @@ def test_a_gif_has_one_frame_per_stored_time(runs, tmp_path, name):
 def test_an_mp4_is_written_with_the_packaged_ffmpeg(runs, tmp_path):
     pytest.importorskip("imageio_ffmpeg")
     movie = tmp_path / "movie.mp4"
-    code, out, err = cli("animate", runs["rotor3"], "-o", movie, "--color", "deflection")
+    code, _, err = cli("animate", runs["rotor3"], "-o", movie, "--color", "deflection")
     assert code == 0, err
     assert movie.read_bytes()[4:8] == b"ftyp"  # an MP4 (ISO base media) file
 

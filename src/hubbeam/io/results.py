@@ -73,7 +73,7 @@ def state_table(trajectory):
         dims[station] = rec.stations[k].size
         beam = {"beam": name, "formulation": rec.formulations[k]}
 
-        def over_time(field, n_stations=dims[station]):
+        def over_time(field, k=k, n_stations=dims[station]):
             values = np.array([getattr(s.beams[k], field) for s in snaps], dtype=float)
             return values.reshape((len(snaps), n_stations) + values.shape[2:])
 

@@ -84,7 +84,7 @@ def read_state(path, option: str = "input") -> RunState:
         raise ScenarioError(f"{option} {p}: not a regular file (a run's NetCDF result)")
     try:
         f = h5netcdf.File(p, "r")
-    except Exception as exc:
+    except (OSError, ValueError, KeyError) as exc:  # h5py: "file signature not found" and the like
         raise ScenarioError(f"{option} {p}: not a NetCDF-4 file ({exc.__class__.__name__}); give a run's -o result") \
             from None
     with f:
