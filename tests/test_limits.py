@@ -1,10 +1,11 @@
-"""limits.check_magnitudes on scenarios with several beams (each beam checked, named as written)."""
+"""hubbeam.limits on scenarios with several beams (each beam checked, named as written) and with a
+recorded state."""
 
 import pytest
 
 from hubbeam.errors import ScenarioError
 from hubbeam.io.scenario import load_example
-from hubbeam.limits import check_magnitudes
+from hubbeam.limits import check_magnitudes, check_run, state_values
 
 
 @pytest.mark.parametrize("name", ["rotor3", "spacecraft", "arm", "exp1"])
@@ -25,3 +26,10 @@ def test_a_single_beam_is_named_beam():
 def test_a_beam_s_own_radius_is_named():
     with pytest.raises(ScenarioError, match=r"beams\[0\]\.radius = 1e\+160"):
         check_magnitudes(load_example("rotor3", ["beams[0].radius=1e160"]))
+
+
+def test_a_recorded_state_is_counted_in_the_run_size():
+    scenario = load_example("rotor3")
+    assert state_values(scenario) == 1 + 3 * 10 * (4 * 4 + 1)  # hub angle; 3 blades x 17 stations x 10 numbers
+    plain, state = check_run(scenario), check_run(scenario, state=True)
+    assert state.records == plain.records and state.record_bytes > plain.record_bytes

@@ -327,11 +327,12 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
     return model
 
 
-def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None):
+def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None, state: bool = False):
     """Time integration of a scenario's dynamic analysis with all its settings (step,
     spectral radius, output step, Newton options). ``torque`` replaces the scenario's torque
     law (e.g. ``TorqueLaw.callable(f)``: the slower Python step path); ``sensors`` its
-    sensors. Returns (trajectory, failure): on a ComputationError, failure is that error and
+    sensors; ``state=True`` also records the hub angle and every beam's geometry at the
+    output times (:class:`hubbeam.snapshots.StateRecorder`; ``hubbeam run --state``). Returns (trajectory, failure): on a ComputationError, failure is that error and
     the trajectory holds the results up to it. A run too large to do (steps, records' memory)
     is a ScenarioError before anything is built; an interruption (KeyboardInterrupt,
     hubbeam.interrupt.Interrupted) carries the trajectory so far in its ``partial``."""
@@ -341,13 +342,22 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     from hubbeam.solvers.generalized_alpha import NewtonOptions
 
     scenario = as_scenario(scenario)
-    check_run(scenario)
+    check_run(scenario, state=state)
+    for i, sensor in enumerate(scenario.sensors if (state and sensors is None) else ()):
+        if sensor.name.startswith("state_"):
+            raise ScenarioError(f"sensors[{i}].name: {sensor.name!r}: with a recorded state (--state) the names "
+                                "state_... belong to the state's variables; rename the sensor")
     a = scenario.analysis
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
         system = build_system(scenario, torque)
-        state = initial_state(system, a.load_steps, a.start)
+        recorder = None
+        if state:
+            from hubbeam.snapshots import StateRecorder
+
+            recorder = StateRecorder(system)
+        start = initial_state(system, a.load_steps, a.start)
         return simulate(system, scenario.sensors if sensors is None else sensors, a.t_end, a.dt, a.spectral_radius,
-                        min(scenario.output_dt, a.t_end), progress, newton, state), None
+                        min(scenario.output_dt, a.t_end), progress, newton, start, recorder), None
     except ComputationError as exc:
         return exc.partial, exc

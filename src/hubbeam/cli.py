@@ -67,6 +67,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("-o", "--output", help="NetCDF result file")
     run.add_argument("--csv", help="CSV result file")
     run.add_argument("--plot", help="figure (PNG, PDF, SVG, ...)")
+    run.add_argument("--state", action="store_true", help="also store the hub angle and every beam's geometry in the "
+                                                          "NetCDF file (-o), for animate and vtk")
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
     st.add_argument("--plot", help="figure of the deformed beam")
     mod = scenario_cmd("modes", "natural frequencies about the static equilibrium (steady rotation for a constant drive)")
@@ -112,6 +114,18 @@ def _parser() -> argparse.ArgumentParser:
     rep.add_argument("-o", "--output", required=True, help="directory for report.md, tables.json and figures")
     rep.add_argument("--quick", action="store_true", help="experiment 2 at dt = 5 ms (same physics; < 10 min on 2 cores)")
     rep.add_argument("--jobs", type=int, default=None, help="parallel runs (default: all cores)")
+    an = sub.add_parser("animate", help="the hub and beams of a run stored with --state in 3D, as GIF or MP4")
+    an.add_argument("result", help="NetCDF file of hubbeam run -o OUT.nc --state")
+    an.add_argument("-o", "--output", required=True, help="movie file: .gif, or .mp4 (needs ffmpeg: the extra 'video')")
+    an.add_argument("--color", default="strain", help="strain (upper surface, default), deflection or none")
+    an.add_argument("--stride", type=int, default=1, help="draw every N-th stored output time (default 1)")
+    an.add_argument("--fps", type=float, default=20.0, help="frames per second of the movie (default 20)")
+    an.add_argument("--json", action="store_true", help="print one JSON object on stdout")
+    vt = sub.add_parser("vtk", help="a run stored with --state as a ParaView time series (.pvd and .vtu files)")
+    vt.add_argument("result", help="NetCDF file of hubbeam run -o OUT.nc --state")
+    vt.add_argument("-o", "--output", required=True, help="directory for NAME.pvd and NAME_NNNNN.vtu")
+    vt.add_argument("--force", action="store_true", help="replace a series of the same name already in the directory")
+    vt.add_argument("--json", action="store_true", help="print one JSON object on stdout")
     ex = sub.add_parser("example", help="print a bundled scenario")
     ex.add_argument("name", help=f"one of: {', '.join(EXAMPLES)}")
     return p
@@ -325,7 +339,8 @@ def _cmd_run(args, scenario) -> dict:
 
     kind = scenario.analysis.kind
     if kind != "dynamic":
-        refused = [("-o", args.output), ("--csv", args.csv)] + ([("--plot", args.plot)] if kind == "modes" else [])
+        refused = [("-o", args.output), ("--csv", args.csv), ("--state", args.state or None)] + \
+            ([("--plot", args.plot)] if kind == "modes" else [])
         for option, value in refused:
             if value is not None:
                 raise ScenarioError(f"{option}: analysis.kind = {kind!r} gives no time series to write (only a dynamic "
@@ -336,6 +351,8 @@ def _cmd_run(args, scenario) -> dict:
 
     targets = _check([Target("-o", args.output), Target("--csv", args.csv), Target("--plot", args.plot, "figure")],
                      args)
+    if args.state and args.output is None:
+        raise ScenarioError("--state: the state is stored in the NetCDF file; give -o OUT.nc")
     if args.plot is not None and not scenario.sensors:
         raise ScenarioError(f"--plot {args.plot}: the scenario has no sensors, so there is nothing to draw")
     size = limits.check_run(scenario)
@@ -345,7 +362,7 @@ def _cmd_run(args, scenario) -> dict:
         _say(f"hubbeam: warning: {line}")
     progress, finish = _progress_bar(scenario.analysis.t_end)
     try:
-        traj, failure = api.run(scenario, progress)
+        traj, failure = api.run(scenario, progress, state=args.state)
     except Interrupted as exc:
         traj, failure = exc.partial, exc
     finally:
@@ -727,6 +744,71 @@ def _cmd_reproduce(args) -> int:
     return 0
 
 
+def _cmd_animate(args) -> dict:
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.state import read_state
+    from hubbeam.io.targets import Target
+
+    movie = os.path.splitext(args.output)[1].lower()
+    if movie not in (".gif", ".mp4"):
+        raise ScenarioError(f"-o {args.output}: the movie must be a .gif or an .mp4 file")
+    if args.stride < 1:
+        raise ScenarioError(f"--stride: must be >= 1 (got {args.stride})")
+    if not (math.isfinite(args.fps) and 0 < args.fps <= 100):
+        raise ScenarioError(f"--fps: must be in (0, 100] (got {args.fps:g})")
+    from hubbeam.animate import COLORINGS, animate, find_ffmpeg
+
+    if args.color not in COLORINGS:
+        raise ScenarioError(f"--color: unknown {args.color!r} (use {', '.join(COLORINGS)})")
+    ffmpeg = find_ffmpeg() if movie == ".mp4" else None
+    if movie == ".mp4" and ffmpeg is None:
+        raise ScenarioError(f"-o {args.output}: an MP4 needs ffmpeg, which is not installed: pip install "
+                            "'hubbeam[video]' (imageio-ffmpeg), or write a .gif")
+    targets = _check([Target("-o", args.output)], args, ("result file", args.result))
+    state = read_state(args.result, "result file")
+    frames = []
+    _write([(targets[0], lambda p: frames.append(animate(state, p, args.color, args.stride, args.fps, ffmpeg)))])
+    if not args.json:
+        print(f"{frames[0]} frames (t = {state.times[0]:g} to {state.times[-1]:g} s) -> {args.output}")
+    return {"frames": frames[0], "output": args.output}
+
+
+def _cmd_vtk(args) -> dict:
+    import re
+    from pathlib import Path
+
+    from hubbeam.io import vtk
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.state import read_state
+    from hubbeam.io.targets import OutputError, Target
+
+    _check([Target("-o", args.output, "directory")], args)
+    state = read_state(args.result, "result file")
+    out = Path(args.output)
+    pvd, vtus = vtk.file_names(state)
+    pattern = re.compile(re.escape(vtk.series_name(state)) + rf"_\d{{{vtk.INDEX_DIGITS}}}\.vtu")
+    old = sorted(p for p in out.iterdir() if p.name == pvd or pattern.fullmatch(p.name)) if out.is_dir() else []
+    if old and not args.force:
+        raise ScenarioError(f"-o {out}: holds a series named {vtk.series_name(state)!r} already ({old[0].name}"
+                            f"{f' and {len(old) - 1} more' if len(old) > 1 else ''}); give another directory or "
+                            "--force to replace it")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
+    jobs = [(Target("-o", str(out / name)), lambda p, i=i: vtk.write_vtu(state, i, p)) for i, name in enumerate(vtus)]
+    for start in range(0, len(jobs), 100):  # in chunks: a signal is noticed between them
+        _write(jobs[start : start + 100])
+    # the collection last: it never lists a file that is not there
+    _write([(Target("-o", str(out / pvd)), lambda p: Path(p).write_text(vtk.pvd_text(state), encoding="utf-8"))])
+    for stale in old:  # --force: files of an earlier, longer series
+        if stale.name != pvd and stale.name not in vtus:
+            stale.unlink(missing_ok=True)
+    if not args.json:
+        print(f"{len(vtus)} time steps -> {out / pvd}")
+    return {"files": len(vtus), "pvd": str(out / pvd)}
+
+
 def _progress_bar(t_end: float, label: str = "simulating", unit: str = "s"):
     """(update(t), finish()): a rich progress bar on a terminal; in any case ``update`` is
     where a signal whose exception a library swallowed is raised again (interrupt.check)."""
@@ -791,6 +873,8 @@ def _main(argv) -> int:
             return _cmd_reproduce(args)
         if args.command == "applicability":
             result = _cmd_applicability(args)
+        elif args.command in ("animate", "vtk"):
+            result = {"animate": _cmd_animate, "vtk": _cmd_vtk}[args.command](args)
         else:
             scenario = _load(args)
             handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,

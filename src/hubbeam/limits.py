@@ -34,6 +34,8 @@ WARN_RECORD_BYTES = 2**30
 #: memory per sensor column and output record while a run is kept and written (B):
 #: a Python float in a list or dict (about 65 B measured) and the arrays written from them
 BYTES_PER_VALUE = 100
+#: memory per number of a recorded state (B): in the snapshots' arrays and in the arrays written from them
+BYTES_PER_STATE_VALUE = 16
 #: sensor kinds with several parts (columns NAME_PART)
 PART_NAMES = {"tip_deflection": ("radial", "vertical", "tangential"),
               "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive")}
@@ -58,8 +60,9 @@ def _gib(n: float) -> str:
     return f"{n / 2**30:.3g} GiB" if n >= 2**30 else f"{n / 2**20:.3g} MiB"
 
 
-def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int) -> RunSize:
-    """Steps, records and record memory of a run; ScenarioError when it cannot be done."""
+def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int, state_values: int = 0) -> RunSize:
+    """Steps, records and record memory of a run; ScenarioError when it cannot be done.
+    ``state_values``: numbers per record of a recorded state (``--state``), kept as arrays."""
     if not (math.isfinite(dt) and dt > 0 and math.isfinite(t_end) and t_end > 0):
         raise ScenarioError(f"analysis.dt: needs finite positive analysis.dt and analysis.t_end (got {dt!r}, {t_end!r})")
     if dt < MIN_DT:
@@ -73,7 +76,7 @@ def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int) -
     every = max(1, round(out / dt))
     n_steps = max(1, round(steps))
     records = n_steps // every + 2
-    need = records * n_columns * BYTES_PER_VALUE
+    need = records * (n_columns * BYTES_PER_VALUE + state_values * BYTES_PER_STATE_VALUE)
     if need > MAX_RECORD_BYTES:
         raise ScenarioError(
             f"analysis.output_dt: {records:.3g} output records of {n_columns} columns would need about {_gib(need)} of "
@@ -85,10 +88,18 @@ def run_size(t_end: float, dt: float, output_dt: float | None, n_columns: int) -
     return RunSize(n_steps, records, n_columns, need, note)
 
 
-def check_run(scenario) -> RunSize:
-    """:func:`run_size` of a scenario's dynamic analysis."""
+def state_values(scenario) -> int:
+    """Numbers per output record of a recorded state (:mod:`hubbeam.snapshots`): the hub angle
+    and, at every station of every beam, its centre line, m, n and strain (10)."""
+    from hubbeam.snapshots import POINTS_PER_ELEMENT
+
+    return 1 + sum(10 * (b.elements * POINTS_PER_ELEMENT + 1) for b in scenario.resolved_beams())
+
+
+def check_run(scenario, state: bool = False) -> RunSize:
+    """:func:`run_size` of a scenario's dynamic analysis (``state``: with a recorded state)."""
     a = scenario.analysis
-    return run_size(a.t_end, a.dt, a.output_dt, columns(scenario.sensors))
+    return run_size(a.t_end, a.dt, a.output_dt, columns(scenario.sensors), state_values(scenario) if state else 0)
 
 
 #: derived model quantities must lie in this range (positive ones), so that the products the

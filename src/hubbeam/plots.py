@@ -33,8 +33,11 @@ def plot_deformed(system, x_ref, F_ref, x, F, path, title: str = "") -> None:
 
 
 def plot_timeseries(ds, path, title: str = "", variables: list[str] | None = None) -> None:
-    """Variables of a result dataset over time (default: every one), one panel each."""
-    names = list(ds.data_vars) if variables is None else list(variables)
+    """Variables of a result dataset over time (default: every time series, not a recorded
+    state), one panel each."""
+    from hubbeam.io.results import time_series
+
+    names = time_series(ds) if variables is None else list(variables)
     fig, axes = plt.subplots(len(names), 1, figsize=(9, 1.9 * len(names) + 0.6), sharex=True, squeeze=False)
     for ax, name in zip(axes[:, 0], names):
         ax.plot(ds["time"].values, ds[name].values, lw=1)

@@ -22,7 +22,7 @@ def _beam(sensor, system: HubSystem) -> int:
 def section_point(sensor, system: HubSystem) -> tuple[float, float]:
     """(y, z) of a strain gauge on the section axes of its station: 'upper' is z = +h/2 (the face
     whose normal is +n), h the thickness at the station."""
-    h = system.beams[_beam(sensor, system)].thickness_at(sensor.x)
+    h = system.beams[_beam(sensor, system)].section_size(sensor.x)[1]
     if sensor.surface == "upper":
         return 0.0, h / 2
     if sensor.surface == "lower":

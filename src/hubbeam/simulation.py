@@ -23,20 +23,25 @@ CHART_LIMIT = 0.5
 
 @dataclass
 class Trajectory:
-    """Sensor records at output times, and the run's statistics."""
+    """Sensor records at output times, and the run's statistics; with a state recorder, the
+    recorder and its snapshots (:mod:`hubbeam.snapshots`) at the same times."""
 
     times: list = field(default_factory=list)
     records: dict = field(default_factory=dict)
+    recorder: object = None
+    snapshots: list = field(default_factory=list)
     steps: int = 0
     newton_iterations: int = 0
     chart_switches: int = 0
     factorisations: int | None = None  # LU factorisations of the iteration matrix (counted by compiled steps)
     wall_time_s: float = 0.0
 
-    def append(self, t, values):
+    def append(self, t, values, snapshot=None):
         self.times.append(t)
         for name, val in values.items():
             self.records.setdefault(name, []).append(val)
+        if snapshot is not None:
+            self.snapshots.append(snapshot)
 
 
 def change_chart(system: HubSystem, state: ga.AlphaState, F_new: np.ndarray, eps: float = 1e-4) -> ga.AlphaState:
@@ -199,7 +204,7 @@ CHUNK_SECONDS = 0.25
 
 def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
              output_dt: float | None = None, progress=None, newton: ga.NewtonOptions = ga.NewtonOptions(),
-             state: ga.AlphaState | None = None) -> Trajectory:
+             state: ga.AlphaState | None = None, recorder=None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
 
     Steps run in compiled code, in chunks of about 1/100 of the run and of at most about
@@ -210,21 +215,23 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
     ComputationError names the time and step and carries the trajectory so far in
     ``partial``; so does any other exception out of the loop (an interruption). When a beam
     tangent comes within 60 deg of the chart's singular direction the state is moved to a
-    better chart (counted in ``Trajectory.chart_switches``).
+    better chart (counted in ``Trajectory.chart_switches``). ``recorder``: a
+    :class:`hubbeam.snapshots.StateRecorder` whose snapshots are kept at the output times too.
     """
     params = ga.AlphaParameters.from_spectral_radius(spectral_radius)
     if state is None:
         state = initial_state(system)
     n_steps = int(round((t_end - state.t) / dt))
     every = max(1, int(round((output_dt or dt) / dt)))
-    traj = Trajectory()
+    traj = Trajectory(recorder=recorder)
     # exact time axis: record r is the state after step min(r * every, n_steps); its time is
     # the double nearest the decimal t0 + step * dt (not the sum of steps, which drifts: 20.00000000000146)
     t0_decimal, dt_decimal = Decimal(repr(float(state.t))), Decimal(repr(float(dt)))
 
     def record(st, work):
         st = replace(st, t=float(t0_decimal + dt_decimal * min(len(traj.times) * every, n_steps)))
-        traj.append(st.t, {s.name: measure(s, system, st, work) for s in sensors})
+        traj.append(st.t, {s.name: measure(s, system, st, work) for s in sensors},
+                    None if recorder is None else recorder(system, st))
 
     record(state, {"dissipated": 0.0, "drive": 0.0})
     steps_class = CompiledSteps if system.compiled else PythonSteps

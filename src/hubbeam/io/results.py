@@ -7,6 +7,9 @@ scenario (JSON), its name, the steps and the Newton iterations as file attribute
 ``partial`` (1 when the run stopped early: failed or interrupted, then also
 ``partial_reason`` and ``t_end``) and ``time_reached`` (s). Output time k is the double
 nearest the decimal k * output_dt, so ``ds.sel(time=0.57)`` finds it.
+A run with a recorded state (``--state``, :mod:`hubbeam.snapshots`) adds the variables of
+:func:`state_table`, every one named ``state_...`` (docs/viewing.md); the CSV keeps the
+time series alone.
 :func:`write_trajectory_netcdf` writes that layout with h5netcdf alone: importing
 xarray (and, through it, dask) costs about a second, which is most of a short run.
 """
@@ -33,12 +36,77 @@ def completion(trajectory, t_end: float | None = None, reason: str | None = None
     return attrs
 
 
+def complete_records(trajectory) -> int:
+    """Output records that have their time, every sensor and (with a recorder) the state."""
+    counts = [len(trajectory.times)] + [len(v) for v in trajectory.records.values()]
+    if getattr(trajectory, "recorder", None) is not None:
+        counts.append(len(trajectory.snapshots))
+    return min(counts)
+
+
+#: the dimension of the global components x, y, z of the recorded state's vectors
+STATE_XYZ = "state_xyz"
+
+
+def state_table(trajectory):
+    """The recorded state of a run (:mod:`hubbeam.snapshots`) as NetCDF variables: (dimension
+    sizes, {variable: (dimensions, values, attrs)}, file attrs); empty without a recorder.
+
+    ``state_hub_angle`` (time; rad) and, for every beam NAME, on its own dimension
+    ``state_NAME_station`` (a coordinate: m from the root along the undeformed beam):
+    ``state_NAME_width``, ``state_NAME_thickness`` (m), ``state_NAME_reference`` (station,
+    state_xyz; m: the undeformed centre line with the hub at theta = 0), ``state_NAME_centre_line`` (time,
+    station, state_xyz; m, global), ``state_NAME_m``, ``state_NAME_n`` (the section frame's
+    unit vectors along the width and the thickness, global) and ``state_NAME_surface_strain``
+    (time, station; the axial strain on the upper surface z = +h/2). File attributes:
+    ``state_beams`` (JSON list of the beam names in order), ``state_formulations``,
+    ``state_hub_radius`` (m), ``state_points_per_element``."""
+    rec = getattr(trajectory, "recorder", None)
+    if rec is None:
+        return {}, {}, {}
+    snaps = trajectory.snapshots[:complete_records(trajectory)]
+    dims = {STATE_XYZ: 3}
+    out = {"state_hub_angle": (("time",), np.array([s.hub_angle for s in snaps], dtype=float),
+                               {"units": "rad", "long_name": "hub angle theta"})}
+    for k, name in enumerate(rec.names):
+        station = f"state_{name}_station"
+        dims[station] = rec.stations[k].size
+        beam = {"beam": name, "formulation": rec.formulations[k]}
+
+        def over_time(field, k=k, n_stations=dims[station]):
+            values = np.array([getattr(s.beams[k], field) for s in snaps], dtype=float)
+            return values.reshape((len(snaps), n_stations) + values.shape[2:])
+
+        out[station] = ((station,), np.asarray(rec.stations[k], dtype=float),
+                        {"units": "m", "long_name": "span station, from the root along the undeformed beam", **beam})
+        out[f"state_{name}_width"] = ((station,), np.asarray(rec.widths[k], dtype=float),
+                                      {"units": "m", "long_name": "section width (along m)", **beam})
+        out[f"state_{name}_thickness"] = ((station,), np.asarray(rec.thicknesses[k], dtype=float),
+                                          {"units": "m", "long_name": "section thickness (along n)", **beam})
+        out[f"state_{name}_reference"] = ((station, STATE_XYZ), np.asarray(rec.references[k], dtype=float),
+                                          {"units": "m", "long_name": "undeformed centre line with the hub at theta = 0, "
+                                                                      "global x y z", **beam})
+        out[f"state_{name}_centre_line"] = (("time", station, STATE_XYZ), over_time("centre_line"),
+                                            {"units": "m", "long_name": "deformed centre line, global x y z", **beam})
+        out[f"state_{name}_m"] = (("time", station, STATE_XYZ), over_time("m"),
+                                  {"units": "1", "long_name": "section unit vector m (width direction), global", **beam})
+        out[f"state_{name}_n"] = (("time", station, STATE_XYZ), over_time("n"),
+                                  {"units": "1", "long_name": "section unit vector n (thickness direction), global",
+                                   **beam})
+        out[f"state_{name}_surface_strain"] = (("time", station), over_time("strain"),
+                                               {"units": "1", "long_name": "axial strain on the upper surface z = +h/2",
+                                                **beam})
+    attrs = {"state_beams": json.dumps(list(rec.names)), "state_formulations": json.dumps(list(rec.formulations)),
+             "state_hub_radius": float(rec.hub_radius), "state_points_per_element": int(rec.points_per_element)}
+    return dims, out, attrs
+
+
 def trajectory_table(trajectory, scenario, status: dict | None = None):
     """(times, {variable: (values, attrs)}, file attrs) of a run; ``status``: the attributes of
     :func:`completion` (default: a complete run). A record that an interruption left half
     made (its time but not all its sensors) is left out."""
     kinds = {s.name: s.kind for s in scenario.sensors}
-    n = min([len(trajectory.times)] + [len(v) for v in trajectory.records.values()])
+    n = complete_records(trajectory)
     variables = {}
 
     def add(column, data):
@@ -65,9 +133,14 @@ def to_dataset(trajectory, scenario, status: dict | None = None):
     import xarray as xr
 
     times, variables, attrs = trajectory_table(trajectory, scenario, status)
-    ds = xr.Dataset({name: ("time", values, a) for name, (values, a) in variables.items()},
-                    coords={"time": ("time", times, {"units": "s"})})
+    _, state, state_attrs = state_table(trajectory)
+    data = {name: ("time", values, a) for name, (values, a) in variables.items()}
+    data.update({name: (dims, values, a) for name, (dims, values, a) in state.items() if dims != (name,)})
+    coords = {"time": ("time", times, {"units": "s"})}
+    coords.update({name: (dims, values, a) for name, (dims, values, a) in state.items() if dims == (name,)})
+    ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(attrs)
+    ds.attrs.update(state_attrs)
     return ds
 
 
@@ -78,9 +151,10 @@ def trajectory_netcdf_bytes(trajectory, scenario, status: dict | None = None) ->
     import h5netcdf
 
     times, variables, attrs = trajectory_table(trajectory, scenario, status)
+    state_dims, state, state_attrs = state_table(trajectory)
     buffer = io.BytesIO()
     with h5netcdf.File(buffer, "w") as f:
-        f.dimensions = {"time": times.size}
+        f.dimensions = {"time": times.size, **state_dims}
         t = f.create_variable("time", ("time",), float)
         t[:] = times
         t.attrs["units"] = "s"
@@ -88,7 +162,12 @@ def trajectory_netcdf_bytes(trajectory, scenario, status: dict | None = None) ->
             v = f.create_variable(name, ("time",), float)
             v[:] = values
             v.attrs.update(a)
+        for name, (dims, values, a) in state.items():
+            v = f.create_variable(name, dims, float)
+            v[...] = values
+            v.attrs.update(a)
         f.attrs.update(attrs)
+        f.attrs.update(state_attrs)
     return buffer.getvalue()
 
 
@@ -109,6 +188,12 @@ def write_netcdf(ds, path) -> None:
     _write_bytes(ds.to_netcdf(engine="h5netcdf"), path)
 
 
+def time_series(ds) -> list[str]:
+    """The variables of a dataset that are series over time alone (a recorded state's are not)."""
+    state = "state_beams" in ds.attrs  # then no sensor is named state_... (api.run refuses it)
+    return [name for name in ds.data_vars if ds[name].dims == ("time",) and not (state and name.startswith("state_"))]
+
+
 def write_csv(ds, path) -> None:
-    """CSV with a header row: time, then one column per variable."""
-    ds.to_dataframe().to_csv(path)
+    """CSV with a header row: time, then one column per time series (:func:`time_series`)."""
+    ds[time_series(ds)].to_dataframe().to_csv(path)

@@ -159,7 +159,11 @@ class AncfPart(ChartedBeamPart):
             omega[i] = frames[i] @ np.array(strain_measures(U, F.T @ v1, phi, phi_dot)[1:4])
         return frames, vel, omega
 
-    def centre_line(self, q, chart, points_per_element: int = 8) -> np.ndarray:
-        beam = self.beam
-        xs = np.linspace(0.0, beam.length, beam.elements * points_per_element + 1)
-        return np.array([beam.interpolate(q, s)[0] for s in xs])
+    def frames_at(self, q, chart, stations) -> np.ndarray:
+        return self.beam.frames_at(q, chart, stations)
+
+    def surface_strains(self, q, chart, stations, y, z) -> np.ndarray:
+        return self.beam.surface_strains(q, chart, stations, y, z)
+
+    def centre_line_at(self, q, chart, stations) -> np.ndarray:
+        return self.beam.interpolate_at(q, stations)[0]

@@ -14,8 +14,8 @@ import numpy as np
 
 from hubbeam.elements.ancf import kernels
 from hubbeam.elements.ancf.chart import choose_director, frame_from_director
-from hubbeam.elements.ancf.frame import section_frame
-from hubbeam.elements.ancf.strain import strain_measures
+from hubbeam.elements.ancf.frame import section_frame, section_frames
+from hubbeam.elements.ancf.strain import strain_measures, strain_measures_at
 from hubbeam.elements.hermite import gauss_legendre, hermite
 from hubbeam.elements.section import Section
 from hubbeam.errors import ChartSingularityError
@@ -39,6 +39,7 @@ class AncfBeam:
     section: Section
     gauss_points: int = DEFAULT_GAUSS_POINTS
     _tables: tuple = field(init=False, repr=False)
+    _rows: dict = field(init=False, repr=False, compare=False, default_factory=dict)  # stations' Hermite rows, once each
 
     def __post_init__(self) -> None:
         xi, w = gauss_legendre(self.gauss_points)
@@ -164,14 +165,31 @@ class AncfBeam:
         e = min(int(x / self.element_length), self.elements - 1)
         return e, x / self.element_length - e
 
+    def _station_rows(self, xs: np.ndarray):
+        """(S, dS, d2S, indices into q of each station's r and r' (n x 4 x 3) and of its theta_1,
+        theta_1' (n x 4)) of the stations xs (m from the root), computed once per set of stations
+        (sensors and recorded states ask at every output time)."""
+        key = tuple(np.asarray(xs, dtype=float).tolist())
+        if key not in self._rows:
+            located = [self.locate(x) for x in key]
+            start = NODE_DOFS * np.array([e for e, _ in located], dtype=np.int64)[:, None]
+            vectors = start[:, :, None] + np.array([0, 3, NODE_DOFS, NODE_DOFS + 3])[None, :, None] + np.arange(3)
+            angles = start + np.array([6, 7, NODE_DOFS + 6, NODE_DOFS + 7])
+            S, dS, d2S = hermite(np.array([xi for _, xi in located]), self.element_length)
+            self._rows[key] = (S[:, None, :], dS[:, None, :], d2S[:, None, :], vectors, angles)
+        return self._rows[key]
+
+    def interpolate_at(self, q: np.ndarray, xs):
+        """r0, r0', r0'' (n x 3, global components) and theta_1, theta_1' (n) at the stations xs (m)."""
+        S, dS, d2S, vectors, angles = self._station_rows(np.atleast_1d(xs))
+        vec, ang = q[vectors], q[angles]
+        return ((S @ vec)[:, 0], (dS @ vec)[:, 0], (d2S @ vec)[:, 0], (S[:, 0] * ang).sum(axis=1),
+                (dS[:, 0] * ang).sum(axis=1))
+
     def interpolate(self, q: np.ndarray, x: float):
         """r0, r0', r0'', theta_1, theta_1' at the station x (global components)."""
-        e, xi = self.locate(x)
-        S, dS, d2S = (a[0] for a in hermite(np.array([xi]), self.element_length))
-        qe = q[NODE_DOFS * e : NODE_DOFS * e + 16]
-        vec = np.array([qe[0:3], qe[3:6], qe[8:11], qe[11:14]])
-        ang = np.array([qe[6], qe[7], qe[14], qe[15]])
-        return S @ vec, dS @ vec, d2S @ vec, float(S @ ang), float(dS @ ang)
+        r, u, v, phi, psi = self.interpolate_at(q, [x])
+        return r[0], u[0], v[0], float(phi[0]), float(psi[0])
 
     def strains(self, q: np.ndarray, F: np.ndarray, x: float) -> tuple[float, float, float, float]:
         """(eps0, kappa1, kappa2, kappa3) at station x (1, 1/m)."""
@@ -180,14 +198,22 @@ class AncfBeam:
 
     def frame_at(self, q: np.ndarray, F: np.ndarray, x: float) -> np.ndarray:
         """Section frame [tau m n] (3x3, global) at station x."""
-        _, u, _, phi, _ = self.interpolate(q, x)
-        T, m, n = section_frame(F.T @ u, phi)
-        return F @ np.column_stack([T, m, n])
+        return self.frames_at(q, F, [x])[0]
+
+    def frames_at(self, q: np.ndarray, F: np.ndarray, xs) -> np.ndarray:
+        """Section frames [tau m n] (n x 3 x 3, global, columns) at the stations xs (m)."""
+        _, u, _, phi, _ = self.interpolate_at(q, xs)
+        return F @ section_frames(np.ascontiguousarray(u @ F), phi)  # u @ F: chart components F^T r0'
 
     def surface_strain(self, q: np.ndarray, F: np.ndarray, x: float, y: float, z: float) -> float:
         """Fibre axial strain eps0 - y kappa3 + z kappa2 at section point (y, z) of station x."""
-        eps0, _, k2, k3 = self.strains(q, F, x)
-        return eps0 - y * k3 + z * k2
+        return float(self.surface_strains(q, F, [x], [y], [z])[0])
+
+    def surface_strains(self, q: np.ndarray, F: np.ndarray, xs, y, z) -> np.ndarray:
+        """Fibre axial strains at the section points (y_i, z_i) (m) of the stations xs (m)."""
+        _, u, v, phi, psi = self.interpolate_at(q, xs)
+        measures = strain_measures_at(np.ascontiguousarray(u @ F), np.ascontiguousarray(v @ F), phi, psi)
+        return measures[:, 0] - np.asarray(y, dtype=float) * measures[:, 3] + np.asarray(z, dtype=float) * measures[:, 2]
 
     def gauss_tangents(self, q: np.ndarray) -> np.ndarray:
         """Unit tangents at every Gauss point and node (rows)."""

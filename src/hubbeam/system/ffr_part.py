@@ -275,7 +275,8 @@ class FfrPart(BeamPart):
         """FFR's kinematics (Eq. 42) at the station's centre point, r = r_C + A0 (rho0 + N p):
         velocity r_C' + A0 (omega^b x (rho0 + N p) + N p'), omega^b = D Theta'; the section turns
         by the body rotation and its small rotation phi = Phi p (:meth:`FfrBeam.rotation_row`):
-        frame A0 exp([phi]x) (the body frame's axes are the undeformed section's), angular
+        frame A0 exp([phi]x) P(x) (the body frame's axes are the undeformed root section's, P the
+        pretwist's turn of the section axes), angular
         velocity A0 (omega^b + Phi p') (to first order in phi, as FFR's kinematics)."""
         beam = self.beam
         A0, D = self._body(q)
@@ -287,7 +288,7 @@ class FfrPart(BeamPart):
             r = np.array([x, 0.0, 0.0]) + N @ p
             vel[i] = u[R_C] + A0 @ (np.cross(w_b, r) + N @ pd)
             omega[i] = A0 @ (w_b + Phi @ pd)
-            frames[i] = A0 @ _rotation(Phi @ p)
+            frames[i] = A0 @ rotations_about(Phi @ p)[0] @ self._pretwisted_axes([x])[0]
         return frames, vel, omega
 
     def without_structural_damping(self) -> "FfrPart":
@@ -296,20 +297,45 @@ class FfrPart(BeamPart):
             return self
         return replace(self, beam=replace(self.beam, structural_damping=0.0))
 
-    def thickness_at(self, station: float) -> float:
-        """The section's thickness (m) at the station (from the span-wise table when there is one)."""
-        return self.beam.thickness_at(station)
+    def centre_line_at(self, q, chart, stations) -> np.ndarray:
+        """Eq. 42 at (x, 0, 0) of every station."""
+        A0, _ = self._body(q)
+        xs = np.asarray(stations, dtype=float)
+        rows = np.array([self.beam.displacement_row(s) for s in xs]).reshape(xs.size, 3, -1)
+        local = rows @ q[BODY:]
+        local[:, 0] += xs
+        return q[R_C] + local @ A0.T
 
-    def centre_line(self, q, chart=None, points_per_element: int = 8) -> np.ndarray:
-        beam = self.beam
-        xs = np.linspace(0.0, beam.length, beam.elements * points_per_element + 1)
-        return np.array([self.point_position(q, s) for s in xs])
+    def frame_at(self, q, chart, station) -> np.ndarray:
+        """Section frame [tau m n] (3x3, global) at the station (m from the root)."""
+        return self.frames_at(q, chart, [station])[0]
+
+    def frames_at(self, q, chart, stations) -> np.ndarray:
+        """Section frames at the stations: the body frame turned by each section's rotation
+        phi (:meth:`~hubbeam.elements.ffr.body.FfrBeam.rotation_row`). FFR's kinematics are
+        linear in phi (u = phi x (0, y, z)); the frame turns by the rotation vector phi
+        (Rodrigues), which agrees with them to first order and stays orthonormal."""
+        A0, _ = self._body(q)
+        rows = np.array([self.beam.rotation_row(s) for s in stations]).reshape(len(stations), 3, -1)
+        return A0 @ rotations_about(rows @ q[BODY:]) @ self._pretwisted_axes(stations)
+
+    def _pretwisted_axes(self, stations) -> np.ndarray:
+        """The undeformed section axes [tau m n] at the stations over the body frame (n x 3 x 3):
+        the root section's turned by the pretwist (:meth:`FfrBeam.section_axes`)."""
+        axes = np.tile(np.eye(3), (len(stations), 1, 1))
+        if self.beam.sections is not None:
+            for i, x in enumerate(stations):
+                axes[i, 1:, 1:] = self.beam.section_axes(x)
+        return axes
 
 
-def _rotation(phi: np.ndarray) -> np.ndarray:
-    """The rotation by the vector phi (rad): Rodrigues' formula."""
-    angle = float(np.linalg.norm(phi))
-    K = np.array([[0.0, -phi[2], phi[1]], [phi[2], 0.0, -phi[0]], [-phi[1], phi[0], 0.0]])
-    if angle < 1e-12:
-        return np.eye(3) + K
-    return np.eye(3) + np.sin(angle) / angle * K + (1.0 - np.cos(angle)) / angle**2 * K @ K
+def rotations_about(phi: np.ndarray) -> np.ndarray:
+    """Rotation matrices (n x 3 x 3) of the rotation vectors phi (n x 3, rad): Rodrigues' formula."""
+    phi = np.asarray(phi, dtype=float).reshape(-1, 3)
+    angle = np.linalg.norm(phi, axis=1)
+    axis = phi / np.where(angle > 0.0, angle, 1.0)[:, None]
+    K = np.zeros((phi.shape[0], 3, 3))
+    K[:, 0, 1], K[:, 0, 2], K[:, 1, 2] = -axis[:, 2], axis[:, 1], -axis[:, 0]
+    K -= K.transpose(0, 2, 1)
+    s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
+    return np.eye(3) + s * K + (1.0 - c) * K @ K

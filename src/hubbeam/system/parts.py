@@ -17,6 +17,8 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
+from hubbeam.elements.section import COLUMN
+
 from hubbeam.elements.hermite import gauss_legendre
 from hubbeam.system.mount import Mount, axis_frame
 
@@ -92,14 +94,36 @@ class BeamPart(ABC):
         """The same beam without its structural damping (itself when it has none)."""
         return self
 
-    def thickness_at(self, station: float) -> float:
-        """The section's thickness h (m) at the station x (m from the root): where a strain gauge's
-        'upper' (z = +h/2) and 'lower' faces are. A formulation with span-wise sections overrides it."""
-        return float(self.section.thickness)
+    @abstractmethod
+    def centre_line_at(self, q: np.ndarray, chart: np.ndarray, stations) -> np.ndarray:
+        """Centre-line points (n x 3, global, m) of the stations (m from the root along the undeformed beam)."""
 
     @abstractmethod
+    def frames_at(self, q: np.ndarray, chart: np.ndarray, stations) -> np.ndarray:
+        """Section frames [tau m n] (n x 3 x 3, unit columns, global) of the stations (m from the root)."""
+
+    def surface_strains(self, q: np.ndarray, chart: np.ndarray, stations, y, z) -> np.ndarray:
+        """Fibre axial strains (1) at the section points (y_i, z_i) (m) of the stations (m)."""
+        return np.array([self.surface_strain(q, chart, s, yi, zi) for s, yi, zi in zip(stations, y, z)])
+
+    def stations(self, points_per_element: int) -> np.ndarray:
+        """Span stations (m from the root): the nodes and points_per_element - 1 points evenly
+        inside each element."""
+        return np.linspace(0.0, self.length, self.beam.elements * points_per_element + 1)
+
+    def section_size(self, station: float) -> tuple[float, float]:
+        """Width b (m, along m) and thickness h (m, along n) of the section at the station
+        (m from the root), from the beam's span-wise table when it has one. What draws or samples
+        a section (a strain gauge's 'upper' face z = +h/2) asks here, not the section itself."""
+        sections = getattr(self.beam, "sections", None)
+        if sections is None:
+            return float(self.section.width), float(self.section.thickness)
+        row = sections.at(float(station))
+        return float(row[COLUMN["width"]]), float(row[COLUMN["thickness"]])
+
     def centre_line(self, q: np.ndarray, chart: np.ndarray, points_per_element: int = 8) -> np.ndarray:
-        """Points of the deformed centre line (global, m), root to tip."""
+        """Points of the deformed centre line (global, m), root to tip, at :meth:`stations`."""
+        return self.centre_line_at(q, chart, self.stations(points_per_element))
 
     @abstractmethod
     def section_motion(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, stations: np.ndarray):

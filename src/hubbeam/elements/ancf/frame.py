@@ -55,6 +55,18 @@ def section_frame(U, phi):
 
 
 @njit(cache=True)
+def section_frames(U, phi):
+    """[tau m n] (n x 3 x 3, columns, chart components) of :func:`section_frame` for every row of U and phi."""
+    out = np.empty((U.shape[0], 3, 3))
+    for i in range(U.shape[0]):
+        T, m, n = section_frame(U[i], phi[i])
+        out[i, :, 0] = T
+        out[i, :, 1] = m
+        out[i, :, 2] = n
+    return out
+
+
+@njit(cache=True)
 def block_to_global(F, A, out):
     """out[0:3, 0:3] = F A[0:3, 0:3] F^T: a 3 x 3 block of chart components (a Jacobian or
     a mass block on r0') in global components."""

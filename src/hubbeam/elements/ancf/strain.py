@@ -45,6 +45,15 @@ def strain_measures(U, V, phi, psi):
 
 
 @njit(cache=True, error_model="numpy")
+def strain_measures_at(U, V, phi, psi):
+    """:func:`strain_measures` for every row of U, V, phi, psi: an (n, 4) array."""
+    out = np.empty((U.shape[0], 4))
+    for i in range(U.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = strain_measures(U[i], V[i], phi[i], psi[i])
+    return out
+
+
+@njit(cache=True, error_model="numpy")
 def _levi_civita(i, j, k):
     return float((i - j) * (j - k) * (k - i)) / 2.0
 

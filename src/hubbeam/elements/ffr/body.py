@@ -419,10 +419,14 @@ class FfrBeam:
 
     def rotation_row(self, x: float) -> np.ndarray:
         """Rows (3 x ndof) of the section's small rotation (theta_tau, -w0', v0') in the body
-        frame at x: the rotation phi with u = phi x (0, y, z) in Eq. 43."""
-        e, xi = self.locate(x)
-        sh = line_shapes(np.array([xi]), self.element_length)
-        return np.array([self._scatter(e, sh["N4"][0]), -self._scatter(e, sh["N3x"][0]), self._scatter(e, sh["N2x"][0])])
+        frame at x: the rotation phi with u = phi x (0, y, z) in Eq. 43; computed once per station."""
+        key = ("rotation", float(x))
+        if key not in self._rows:
+            e, xi = self.locate(x)
+            sh = line_shapes(np.array([xi]), self.element_length)
+            self._rows[key] = np.array([self._scatter(e, sh["N4"][0]), -self._scatter(e, sh["N3x"][0]),
+                                        self._scatter(e, sh["N2x"][0])])
+        return self._rows[key]
 
     def surface_strain(self, p: np.ndarray, x: float, y: float, z: float) -> float:
         """Fibre strain eps = eps0 - y_b v0'' - z_b w0'' at the section point (y, z) (m, on the local

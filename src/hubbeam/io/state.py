@@ -1,0 +1,109 @@
+"""A run's recorded state read back from its NetCDF file (``hubbeam run -o OUT.nc --state``).
+
+:func:`read_state` gives a :class:`RunState`: the output times, the hub angle and, for every
+beam, the variables :func:`hubbeam.io.results.state_table` wrote. What draws a run
+(:mod:`hubbeam.animate`) or exports it (:mod:`hubbeam.io.vtk`) reads it from here.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import stat
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from hubbeam.errors import ScenarioError
+
+#: a file without a recorded state: the one line that says how to make one
+NO_STATE = "has no stored state (run it with --state: hubbeam run FILE.toml -o OUT.nc --state)"
+
+
+@dataclass(frozen=True)
+class BeamTrack:
+    """One beam over a run, at its n stations (SI units, global components)."""
+
+    name: str
+    formulation: str
+    stations: np.ndarray  # (n,) m from the root along the undeformed beam
+    width: np.ndarray  # (n,) m
+    thickness: np.ndarray  # (n,) m
+    reference: np.ndarray  # (n, 3) m: undeformed centre line, hub at theta = 0
+    centre_line: np.ndarray  # (nt, n, 3) m
+    m: np.ndarray  # (nt, n, 3) unit vectors along the width
+    n: np.ndarray  # (nt, n, 3) unit vectors along the thickness
+    surface_strain: np.ndarray  # (nt, n) axial strain on the upper surface
+
+    def displacement(self, hub_angle: np.ndarray, times=slice(None)) -> np.ndarray:
+        """(nt, n, 3) m at the output ``times`` (a slice or index array; default all) of the
+        ``hub_angle`` series (rad): the centre line's displacement from the undeformed beam
+        turned with the hub (by theta about -j0, Eq. 74), the beam's deflection."""
+        turned = np.einsum("tij,nj->tni", hub_rotation(np.asarray(hub_angle)[times]), self.reference)
+        return self.centre_line[times] - turned
+
+
+@dataclass(frozen=True)
+class RunState:
+    """A run's recorded state: ``name`` (the scenario's), ``times`` (nt, s), ``hub_angle`` (nt,
+    rad), ``hub_radius`` (m) and every beam's :class:`BeamTrack`."""
+
+    name: str
+    times: np.ndarray
+    hub_angle: np.ndarray
+    hub_radius: float
+    beams: tuple[BeamTrack, ...]
+
+
+def hub_rotation(theta) -> np.ndarray:
+    """A_h(theta) (nt x 3 x 3) of Eq. 74 for every hub angle (rad): i_h = (cos, 0, sin)."""
+    theta = np.atleast_1d(np.asarray(theta, dtype=float))
+    c, s = np.cos(theta), np.sin(theta)
+    out = np.zeros((theta.size, 3, 3))
+    out[:, 0, 0], out[:, 0, 2], out[:, 1, 1], out[:, 2, 0], out[:, 2, 2] = c, -s, 1.0, s, c
+    return out
+
+
+def _text(value) -> str:
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def read_state(path, option: str = "input") -> RunState:
+    """The recorded state of a run's NetCDF file; ScenarioError (one line naming the file) when
+    it is not a readable NetCDF file or has no stored state."""
+    import h5netcdf
+
+    p = Path(os.fspath(path))
+    try:
+        st = p.stat()
+    except OSError as exc:
+        raise ScenarioError(f"{option} {p}: {'no such file' if isinstance(exc, FileNotFoundError) else exc.strerror}") \
+            from None
+    if not stat.S_ISREG(st.st_mode):
+        raise ScenarioError(f"{option} {p}: not a regular file (a run's NetCDF result)")
+    try:
+        f = h5netcdf.File(p, "r")
+    except (OSError, ValueError, KeyError) as exc:  # h5py: "file signature not found" and the like
+        raise ScenarioError(f"{option} {p}: not a NetCDF-4 file ({exc.__class__.__name__}); give a run's -o result") \
+            from None
+    with f:
+        if "state_beams" not in f.attrs:
+            raise ScenarioError(f"{option} {p}: {NO_STATE}")
+        try:
+            names = json.loads(_text(f.attrs["state_beams"]))
+            formulations = json.loads(_text(f.attrs["state_formulations"]))
+            v = f.variables
+            beams = tuple(BeamTrack(
+                name, form, v[f"state_{name}_station"][...], v[f"state_{name}_width"][...],
+                v[f"state_{name}_thickness"][...], v[f"state_{name}_reference"][...],
+                v[f"state_{name}_centre_line"][...], v[f"state_{name}_m"][...], v[f"state_{name}_n"][...],
+                v[f"state_{name}_surface_strain"][...]) for name, form in zip(names, formulations))
+            state = RunState(_text(f.attrs.get("name", p.stem)), v["time"][...], v["state_hub_angle"][...],
+                             float(f.attrs["state_hub_radius"]), beams)
+        except (KeyError, ValueError, TypeError) as exc:
+            raise ScenarioError(f"{option} {p}: the stored state is incomplete ({exc.__class__.__name__}: {exc})") \
+                from None
+    if state.times.size == 0:
+        raise ScenarioError(f"{option} {p}: the stored state has no output time")
+    return state

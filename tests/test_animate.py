@@ -1,0 +1,57 @@
+"""hubbeam.animate: what is drawn, checked on a made-up state (no run needed)."""
+
+import numpy as np
+import pytest
+
+from hubbeam import animate
+from hubbeam.io.state import BeamTrack, RunState
+
+
+def _state(nt=5):
+    """One straight beam along i_h from R = 0.3 to 1.3 m, width 0.1 m along j0 ... turning with the hub."""
+    theta = np.linspace(0.0, 1.0, nt)
+    xs = np.linspace(0.0, 1.0, 5)
+    i_h = np.stack([np.cos(theta), np.zeros(nt), np.sin(theta)], axis=1)
+    line = (0.3 + xs)[None, :, None] * i_h[:, None, :]
+    m = np.broadcast_to([0.0, 1.0, 0.0], line.shape).copy()
+    n = np.cross(i_h[:, None, :], m)
+    beam = BeamTrack("b", "ancf", xs, np.full(5, 0.1), np.full(5, 0.01), line[0], line, m, n,
+                     np.tile(np.linspace(-1e-4, 2e-4, 5), (nt, 1)))
+    return RunState("made_up", np.linspace(0.0, 0.4, nt), theta, 0.3, (beam,))
+
+
+def test_ribbons_are_as_wide_as_the_section_along_m():
+    state = _state()
+    quads = animate.ribbon_quads(state, 0, 2)
+    assert quads.shape == (4, 4, 3)
+    np.testing.assert_allclose(quads[:, 1] - quads[:, 0], np.tile([0.0, 0.1, 0.0], (4, 1)), atol=1e-15)
+    np.testing.assert_allclose(0.5 * (quads[:, 0] + quads[:, 1]), state.beams[0].centre_line[2, :-1], atol=1e-15)
+
+
+def test_the_hub_turns_with_the_hub_angle():
+    state = _state()
+    disc = animate.hub_polygon(state, 4)
+    np.testing.assert_allclose(np.linalg.norm(disc, axis=1), 0.3)
+    np.testing.assert_allclose(disc[:, 1], 0.0, atol=1e-15)
+    # its first vertex (the spoke) lies along the beam's root direction i_h(theta)
+    np.testing.assert_allclose(disc[0], state.beams[0].centre_line[4, 0], atol=1e-12)
+
+
+def test_frames_limits_and_colours():
+    state = _state()
+    np.testing.assert_array_equal(animate.frame_indices(state, 2), [0, 2, 4])
+    fig, update, frames = animate.build(state, "strain", stride=2)
+    ax = fig.axes[0]
+    limits = [ax.get_xlim(), ax.get_ylim(), ax.get_zlim()]
+    spans = [hi - lo for lo, hi in limits]
+    assert spans == pytest.approx([spans[0]] * 3)  # equal scales
+    for i in frames:  # the limits hold every frame
+        update(i)
+        assert [ax.get_xlim(), ax.get_ylim(), ax.get_zlim()] == limits
+    # the plot's axes are (x, -z, y): the hub axis j0 is up
+    np.testing.assert_array_equal(animate._view(np.array([1.0, 2.0, 3.0])), [1.0, -3.0, 2.0])
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+    with pytest.raises(KeyError):
+        animate.build(state, "rainbow")
