@@ -20,8 +20,9 @@ def _beam(sensor, system: HubSystem) -> int:
 
 
 def section_point(sensor, system: HubSystem) -> tuple[float, float]:
-    """(y, z) of a strain gauge: 'upper' is z = +h/2 (the face whose normal is +n)."""
-    h = system.beams[_beam(sensor, system)].section.thickness
+    """(y, z) of a strain gauge: 'upper' is z = +h/2 (the face whose normal is +n), h the
+    thickness at the gauge's station."""
+    h = system.beams[_beam(sensor, system)].thickness_at(sensor.x)
     if sensor.surface == "upper":
         return 0.0, h / 2
     if sensor.surface == "lower":

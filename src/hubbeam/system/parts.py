@@ -17,6 +17,7 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
+from hubbeam.elements.section import COLUMN
 from hubbeam.system.mount import Mount
 
 
@@ -52,6 +53,14 @@ class BeamPart(ABC):
     def section(self):
         """The cross-section (:class:`hubbeam.elements.section.Section`)."""
         return self.beam.section
+
+    def thickness_at(self, station: float) -> float:
+        """The section's thickness h (m) at the station x (m from the root): the span-wise
+        table's (``beam.sections``) where the beam has one."""
+        sections = getattr(self.beam, "sections", None)  # a formulation without span-wise tables has none
+        if sections is None:
+            return float(self.section.thickness)
+        return float(sections.at(station)[COLUMN["thickness"]])
 
     @abstractmethod
     def initial_state(self, theta: float) -> tuple[np.ndarray, np.ndarray]:
