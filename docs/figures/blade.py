@@ -42,9 +42,7 @@ def time_history():
                       ("lag (tangential)", 1e3 * ds["tip_tangential"], "C1--")]),
         ("upper-face strain (1e-6)", [("x = 0.05 m", 1e6 * ds["root_strain"], "C0-"),
                                       ("x = 0.6 m", 1e6 * ds["mid_strain"], "C2--")]),
-        ("energy (J)", [("kinetic + strain + gravity", ds["energy_total"], "C0-"),
-                        ("dissipated (structural)", ds["energy_dissipated"], "C3--"),
-                        ("drive work", ds["energy_drive"], "k:")]),
+        ("drive torque (N m)", [("", ds["drive_torque"], "k-")]),
     ]
     fig, axes = plt.subplots(len(rows), 1, figsize=(8, 2.0 * len(rows) + 0.6), sharex=True)
     for ax, (label, curves) in zip(axes, rows):

@@ -117,8 +117,10 @@ class HubSystem:
         return b.section.stiffness[0] / b.beam.element_length
 
     def without_damping(self) -> "HubSystem":
-        """The same system without air drag."""
-        return HubSystem(self.beams, self.hub, self.gravity, (0.0, 0.0))
+        """The same system without air drag and without the beams' structural damping."""
+        beams = [replace(part, beam=replace(part.beam, structural_damping=0.0))
+                 if getattr(part.beam, "structural_damping", 0.0) else part for part in self.beams]
+        return HubSystem(beams, self.hub, self.gravity, (0.0, 0.0))
 
     def with_hub(self, **changes) -> "HubSystem":
         """The same beams on a hub with some fields changed (motion, drive, torque, inertia)."""
