@@ -159,3 +159,18 @@ def test_surface_strain_is_measured_from_the_pretwisted_state():
     for x in (0.0, 0.3, 0.5, 0.9, LENGTH):
         for y, z in ((0.0, 0.002), (0.02, -0.001)):
             assert abs(beam.surface_strain(q, F, x, y, z)) < 1e-12
+
+
+def test_a_change_of_chart_keeps_the_pretwisted_beam_stress_free():
+    """Remapping theta_1 to another chart moves no section: the stress-free state stays so."""
+    from hubbeam.elements.ancf.chart import frame_from_director
+    from hubbeam.system.ancf_part import AncfPart
+
+    part = AncfPart(blade(elements=4), Mount(0.0, 0.4))
+    q, F = part.initial_state(0.0)
+    F_new = frame_from_director(np.array([0.3, -0.8, 0.5]) / np.linalg.norm([0.3, -0.8, 0.5]))
+    q_new = part.remap(q, F, F_new)
+    assert not np.allclose(q_new, q)  # the twist coordinates did change
+    assert abs(part.beam.elastic(q_new, F_new)[0]) < 1e-20
+    for x in (0.2, 0.7, LENGTH):
+        assert np.allclose(part.frame_at(q_new, F_new, x), part.frame_at(q, F, x), atol=1e-12)

@@ -277,3 +277,29 @@ def test_the_blade_example_runs_with_all_its_sensors():
     # step-to-step velocity noise whose c e_dot^2 the trapezoidal work integral counts (0.1 % of E_gravity)
     assert max(balance) - min(balance) < 1e-3 * abs(energy[0]["gravity"])
     assert all(np.isfinite(v) for v in traj.records["root_strain"])
+
+
+def test_beams_of_different_meshes_and_tables_packed_together_keep_their_own_properties():
+    """A held hub with a pretwisted, damped beam (3 elements, 4 Gauss points) and a prismatic one
+    (5 elements, 5 points): the per-element and per-point arrays are padded to the larger beam; each
+    beam's static sag and the energies equal those of the beam alone."""
+    from hubbeam.system.ancf_part import AncfPart
+    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.mount import Mount
+
+    section = plate(width=0.05, thickness=0.004)
+    gravity = np.array([0.0, -9.81, 0.0])
+    a = AncfBeam(1.0, 3, section, gauss_points=4, sections=twisted(1.0, section, 40.0, 3).sections,
+                 structural_damping=2e-3)
+    b = AncfBeam(0.8, 5, section)
+    mounts = (Mount(0.2, np.radians(70.0), 0.0), Mount(0.2, np.radians(90.0), np.pi))
+    parts = [AncfPart(beam, mount, name=name) for beam, mount, name in zip((a, b), mounts, ("a", "b"))]
+    together = HubSystem(parts, Hub("fixed"), gravity=gravity)
+    both = solve_static(together)
+    for k, part in enumerate(parts):
+        alone = HubSystem([part], Hub("fixed"), gravity=gravity)
+        single = solve_static(alone)
+        assert together.tip_displacement(both.x, k) == pytest.approx(alone.tip_displacement(single.x), rel=1e-9)
+        e_both = together.energies(both.x, np.zeros_like(both.x), both.chart, beam=k)
+        e_alone = alone.energies(single.x, np.zeros_like(single.x), single.chart)
+        assert e_both["strain"] == pytest.approx(e_alone["strain"], rel=1e-8)

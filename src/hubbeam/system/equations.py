@@ -151,6 +151,9 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     derivative of the rotary-inertia force and the q-derivative of M(q) acc are left out
     (they slow Newton slightly and never change the answer). ``F`` holds every beam's chart.
 
+    f_int of an ANCF beam holds its structural damping (Kelvin-Voigt resultants c D e_dot,
+    :func:`hubbeam.elements.ancf.kernels.elastic_kernel`), whose damping matrix enters with coef_c.
+
     Returns (chart margin min(1 + d.tau) over all Gauss points, dissipated power W). A margin
     at or below :data:`CHART_SINGULAR` means the residual is not valid.
     """
