@@ -253,6 +253,7 @@ def span_sections(b: Beam, material):
     if b.sections is None:
         return None
     x = np.array([s.x for s in b.sections])
+    x[-1] = b.length  # validated to 1e-9: the beam's length exactly
     twist = np.radians([s.pretwist for s in b.sections])
     if b.sections[0].form == "rectangle":
         values = [[s.width, s.thickness] for s in b.sections]

@@ -73,7 +73,6 @@ class AncfBeam:
             props = np.broadcast_to(rectangle_constants(self.section), points.shape + (len(COLUMN),))
         else:
             props = self.sections.at(points)
-        self._properties = np.ascontiguousarray(props)
         self._stiffness = np.ascontiguousarray(props[..., _STIFFNESS])  # (n_el, ng, 4) N, N m^2
         self._inertia = np.ascontiguousarray(props[..., _INERTIA])  # (n_el, ng, 3) kg m
         self._rho_a = np.ascontiguousarray(props[..., COLUMN["rho_A"]])  # (n_el, ng) kg/m
@@ -103,12 +102,6 @@ class AncfBeam:
         right = slope[np.clip(np.searchsorted(tab.x, x, side="right") - 1, 0, last)]
         left = slope[np.clip(np.searchsorted(tab.x, x, side="left") - 1, 0, last)]
         return np.column_stack([angle, 0.5 * (left + right)])
-
-    def properties_at(self, x: float) -> np.ndarray:
-        """The section's :data:`~hubbeam.elements.section.COLUMNS` at station x (m from the root)."""
-        if self.sections is None:
-            return rectangle_constants(self.section)
-        return self.sections.at(float(x))
 
     def reference_strains(self, x: float) -> np.ndarray:
         """(eps0, kappa1, kappa2, kappa3) of the stress-free state at station x (1, 1/m)."""
