@@ -7,8 +7,13 @@ import numpy as np
 import pytest
 from scipy.linalg import eigh
 
+from hubbeam.elements.section import (
+    Section,
+    SectionForm,
+    SpanSections,
+    saint_venant_torsion_constant,
+)
 from hubbeam.io.scenario import Sensor
-from hubbeam.elements.section import Section, SectionForm, SpanSections, saint_venant_torsion_constant
 from hubbeam.simulation import simulate
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers.modal import modal_analysis
@@ -71,7 +76,7 @@ def test_a_small_tip_force_on_a_pretwisted_cantilever_bends_it_by_the_rotated_co
 
 
 #: MacNeal & Harder (1985), twisted beam: L = 12, b = 1.1, h = 0.32, 90 deg, E = 29e6, nu = 0.22
-MH = dict(length=12.0, width=1.1, thickness=0.32, E=29.0e6, nu=0.22)
+MH = {"length": 12.0, "width": 1.1, "thickness": 0.32, "E": 29.0e6, "nu": 0.22}
 #: the reference tip deflections along the load (beam theory; an in-plane load at the root is
 #: along the width, the stiff direction there)
 MH_PUBLISHED = {"in_plane": 1.754e-3, "out_of_plane": 5.424e-3}
@@ -149,8 +154,13 @@ def test_a_linearly_tapered_cantilever_has_the_frequencies_of_an_independent_her
     system = single_beam_system(beam, motion="fixed", gravity=NO_GRAVITY)
     modes = modal_analysis(system, solve_static(system, load_steps=1), count=8)
     got = np.array(modes.frequencies_hz)
-    width = lambda x: b0 + (b1 - b0) * x / length  # noqa: E731
-    thickness = lambda x: h0 + (h1 - h0) * x / length  # noqa: E731
+
+    def width(x):
+        return b0 + (b1 - b0) * x / length
+
+    def thickness(x):
+        return h0 + (h1 - h0) * x / length
+
     flap = hermite_fe_frequencies(length, mat.youngs_modulus, mat.density, width, thickness, "thickness")
     lag = hermite_fe_frequencies(length, mat.youngs_modulus, mat.density, width, thickness, "width")
     # the taper raises the first frequency above the prismatic root section's (1.875^2 / 2 pi sqrt(EI / rho A) / L^2)
