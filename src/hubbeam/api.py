@@ -82,11 +82,12 @@ def beam_part(spec):
         tb = spec.tip_body
         tip = TipBody(float(tb.mass), tuple(map(float, tb.inertia)), tuple(map(float, tb.offset)))
     loads = {"tip_force": np.array(spec.tip_force, dtype=float), "tip_moment": np.array(spec.tip_moment, dtype=float)}
+    span = {"sections": spec.sections, "structural_damping": spec.structural_damping}
     if spec.formulation == "ancf":
-        beam = AncfBeam(spec.length, spec.elements, section, spec.gauss_points or DEFAULT_GAUSS_POINTS)
+        beam = AncfBeam(spec.length, spec.elements, section, spec.gauss_points or DEFAULT_GAUSS_POINTS, **span)
         return AncfPart(beam, mount, tip_body=tip, name=spec.name, **loads)
     beam = FfrBeam(spec.length, spec.elements, section, geometric_stiffening=spec.geometric_stiffening, tip_body=tip,
-                   modes=spec.modes)
+                   modes=spec.modes, **span)
     return FfrPart(beam, mount, name=spec.name, **loads)
 
 

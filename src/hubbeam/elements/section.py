@@ -109,6 +109,15 @@ class SpanSections:
         object.__setattr__(self, "values", values)
         object.__setattr__(self, "pretwist", np.asarray(self.pretwist, dtype=float).reshape(x.size))
 
+    def __eq__(self, other) -> bool:
+        """The same stations, form, values, pretwist and material (arrays compared by value)."""
+        if not isinstance(other, SpanSections):
+            return NotImplemented
+        return (self.form is other.form and self.material == other.material and self.x.shape == other.x.shape
+                and all(np.array_equal(getattr(self, k), getattr(other, k)) for k in ("x", "values", "pretwist")))
+
+    __hash__ = None  # mutable arrays inside
+
     @classmethod
     def uniform(cls, section: Section, length: float) -> "SpanSections":
         """The prismatic beam of ``section`` over ``length`` (m), as two equal constant stations."""

@@ -9,9 +9,9 @@ A hub carries one beam (a ``[beam]`` table) or several (``[[beams]]`` tables). C
 builds a model reads :meth:`Scenario.resolved_beams`: every beam with its defaults filled in,
 SI units and angles in radians. ``scenario.beam`` is kept for single-beam scenarios.
 
-Room is left for span-wise sections (``[[beams.sections]]``), per-beam structural damping
-(``[beams.damping]``) and FFR modal reduction (``modes``): they will be fields of
-:class:`Beam`, resolved into :class:`ResolvedBeam`.
+Span-wise sections (``[[beams.sections]]``: :class:`SectionStation`) and per-beam structural
+damping (``[beams.damping]``) are fields of :class:`Beam`, resolved into a
+:class:`~hubbeam.elements.section.SpanSections` and a float of :class:`ResolvedBeam`.
 """
 
 from __future__ import annotations
@@ -111,6 +111,53 @@ class TipBody(_Strict):
         return self
 
 
+#: the keys of a station in the constants form (rho_I = [I_tau, I_m, I_n])
+STATION_CONSTANTS = ("EA", "GJ", "EI_y", "EI_z", "rho_A", "rho_I")
+
+
+class SectionStation(_Strict):
+    """One ``[[beams.sections]]`` station: ``x`` (m from the root), ``pretwist`` (deg, about the
+    beam axis in the sense of the beam's twist, relative to the root), and either a rectangle
+    (``width``, ``thickness``, m) or the constants EA (N), GJ, EI_y, EI_z (N m^2), rho_A (kg/m)
+    and rho_I = [I_tau, I_m, I_n] (kg m), with optional width and thickness (default the beam's)."""
+
+    x: NonNegative
+    pretwist: float = 0.0
+    width: Positive | None = None
+    thickness: Positive | None = None
+    EA: Positive | None = None
+    GJ: Positive | None = None
+    EI_y: Positive | None = None
+    EI_z: Positive | None = None
+    rho_A: Positive | None = None
+    rho_I: Annotated[list[Positive], Field(min_length=3, max_length=3)] | None = None
+
+    @property
+    def form(self) -> str:
+        """'constants' when any constant is given, else 'rectangle'."""
+        return "constants" if any(getattr(self, k) is not None for k in STATION_CONSTANTS) else "rectangle"
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        if self.form == "constants":
+            for key in STATION_CONSTANTS:
+                if getattr(self, key) is None:
+                    raise ValueError(f"{key}: required for a station given by its constants "
+                                     f"({', '.join(STATION_CONSTANTS)})")
+        else:
+            for key in ("width", "thickness"):
+                if getattr(self, key) is None:
+                    raise ValueError(f"{key}: required for a rectangle station (width and thickness), or give "
+                                     f"the constants {', '.join(STATION_CONSTANTS)}")
+        return self
+
+
+class BeamDamping(_Strict):
+    """``[beams.damping]``: ``stiffness_proportional`` c (s), Kelvin-Voigt structural damping."""
+
+    stiffness_proportional: NonNegative = 0.0
+
+
 class Beam(_Strict):
     """One beam: a ``[beam]`` table or one of the ``[[beams]]`` tables."""
 
@@ -135,6 +182,8 @@ class Beam(_Strict):
     twist: float | None = None  # deg, default hub.twist
     precone: float = 0.0  # deg
     tip_body: TipBody | None = None
+    sections: Annotated[list[SectionStation], Field(min_length=2, max_length=10000)] | None = None
+    damping: BeamDamping | None = None
 
     @model_validator(mode="after")
     def _keys(self):
@@ -151,11 +200,67 @@ class Beam(_Strict):
             raise ValueError(f"modes: at most the nodal model's 6 x elements = {6 * self.elements} coordinates "
                              f"(got {self.modes})")
         # --- end modal reduction
+        if self.sections is not None:
+            self._check_sections()
         if not abs(self.precone) < MAX_PRECONE_DEG:
             raise ValueError(
                 f"precone: must be between -{MAX_PRECONE_DEG:g} and {MAX_PRECONE_DEG:g} deg (got {self.precone}): "
                 "the FFR reference frame's Cardan angles become singular as the beam axis nears the hub axis (90 deg)")
         return self
+
+
+    def _check_sections(self) -> None:
+        st = self.sections
+        for i, station in enumerate(st):
+            if i == 0 and station.x != 0.0:
+                raise ValueError(f"sections[0].x: the first station must be at the root, x = 0 (got {station.x})")
+            if station.x > self.length * (1 + 1e-9):
+                raise ValueError(f"sections[{i}].x: station {station.x} m is beyond the beam's length {self.length} m")
+            if i > 0 and not station.x > st[i - 1].x:
+                raise ValueError(f"sections[{i}].x: stations must be in ascending order of x ({station.x} m after "
+                                 f"{st[i - 1].x} m)")
+            if station.form != st[0].form:
+                raise ValueError(f"sections[{i}]: a {station.form} station among {st[0].form} ones (one form per "
+                                 f"beam: width and thickness, or the constants {', '.join(STATION_CONSTANTS)})")
+        if not math.isclose(st[-1].x, self.length, rel_tol=1e-9):
+            raise ValueError(f"sections[{len(st) - 1}].x: the last station must be at the beam's length "
+                             f"{self.length} m (got {st[-1].x})")
+        if st[0].pretwist != 0.0:
+            raise ValueError(f"sections[0].pretwist: must be 0 at the root (pretwist is relative to the root; the "
+                             f"root's angle is the beam's twist) (got {st[0].pretwist})")
+        if st[0].form == "rectangle" and self.torsion_constant is not None:
+            raise ValueError("torsion_constant: not used with rectangle [[sections]] stations (each takes "
+                             "Saint-Venant's constant of its rectangle); give the constants (GJ) instead")
+
+    def size_at(self, x: float) -> tuple[float, float]:
+        """(width, thickness) (m) at station x: the sections' linear interpolation, else the beam's."""
+        if self.sections is None:
+            return self.width, self.thickness
+        import numpy as np
+
+        xs = [s.x for s in self.sections]
+        return (float(np.interp(x, xs, [s.width or self.width for s in self.sections])),
+                float(np.interp(x, xs, [s.thickness or self.thickness for s in self.sections])))
+
+
+def span_sections(b: Beam, material):
+    """The :class:`~hubbeam.elements.section.SpanSections` of a beam's stations (None without
+    them); ``material``: the beam's :class:`~hubbeam.elements.section.Section` (SI units)."""
+    import numpy as np
+
+    from hubbeam.elements.section import SectionForm, SpanSections
+
+    if b.sections is None:
+        return None
+    x = np.array([s.x for s in b.sections])
+    x[-1] = b.length  # validated to 1e-9: the beam's length exactly
+    twist = np.radians([s.pretwist for s in b.sections])
+    if b.sections[0].form == "rectangle":
+        values = [[s.width, s.thickness] for s in b.sections]
+        return SpanSections(x, SectionForm.RECTANGLE, np.array(values), twist, material=material)
+    values = [[s.EA, s.GJ, s.EI_y, s.EI_z, s.rho_A, *s.rho_I, s.width or b.width, s.thickness or b.thickness]
+              for s in b.sections]
+    return SpanSections(x, SectionForm.CONSTANTS, np.array(values), twist)
 
 
 @dataclass(frozen=True)
@@ -198,6 +303,8 @@ class ResolvedBeam:
     tip_force: tuple[float, float, float]  # N, global
     tip_moment: tuple[float, float, float]  # N m, global
     modes: int | None = None  # FFR only: kept clamped-free modes; None: nodal
+    sections: Any = None  # hubbeam.elements.section.SpanSections: span-wise properties; None: uniform
+    structural_damping: float = 0.0  # s, c of the Kelvin-Voigt resultants c D e_dot
 
 
 # ------------------------------------------------------------------------- hub
@@ -468,11 +575,11 @@ class Scenario(_Strict):
             else:
                 nu = 0.33 if b.poisson_ratio is None else b.poisson_ratio
                 g = b.youngs_modulus / (2.0 * (1.0 + nu))
+            from hubbeam.elements.section import Section, saint_venant_torsion_constant
+
             if b.torsion_constant is not None:
                 jt = b.torsion_constant
             else:
-                from hubbeam.elements.section import saint_venant_torsion_constant
-
                 jt = saint_venant_torsion_constant(b.width, b.thickness)
             tb = b.tip_body
             tip = None if tb is None else ResolvedTipBody(
@@ -489,6 +596,8 @@ class Scenario(_Strict):
                 tip_force=tuple(float(v) for v in self.loads.tip_force) if i == loaded else zero,
                 tip_moment=tuple(float(v) for v in self.loads.tip_moment) if i == loaded else zero,
                 modes=b.modes,
+                sections=span_sections(b, Section(b.width, b.thickness, b.density, b.youngs_modulus, g, jt)),
+                structural_damping=float(b.damping.stiffness_proportional) if b.damping is not None else 0.0,
             ))
         return out
 
@@ -600,12 +709,13 @@ def _cross_checks(s: Scenario) -> None:
         if sen.x is not None and sen.x > b.length:
             raise ScenarioError(f"sensors[{i}].x: station {sen.x} m is beyond the length of {label} "
                                 f"({of}.length = {b.length} m)")
-        if sen.y is not None and abs(sen.y) > b.width / 2 * (1 + 1e-12):
+        width, thickness = b.size_at(sen.x) if sen.x is not None else (b.width, b.thickness)
+        if sen.y is not None and abs(sen.y) > width / 2 * (1 + 1e-12):
             raise ScenarioError(f"sensors[{i}].y: {sen.y} m is outside the section of {label} "
-                                f"(|y| <= width/2 = {b.width / 2})")
-        if sen.z is not None and abs(sen.z) > b.thickness / 2 * (1 + 1e-12):
+                                f"(|y| <= width/2 = {width / 2})")
+        if sen.z is not None and abs(sen.z) > thickness / 2 * (1 + 1e-12):
             raise ScenarioError(
-                f"sensors[{i}].z: {sen.z} m is outside the section of {label} (|z| <= thickness/2 = {b.thickness / 2})")
+                f"sensors[{i}].z: {sen.z} m is outside the section of {label} (|z| <= thickness/2 = {thickness / 2})")
 
 
 _TYPE_PARTS = {"function-after", "function-before", "function-wrap", "list[float]", "float", "int", "str", "bool",
@@ -919,7 +1029,7 @@ def value_at(data: dict, key: str):
 
 
 #: the bundled scenarios (package data in hubbeam/examples)
-EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2", "rotor3", "spacecraft", "arm")
+EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2", "rotor3", "spacecraft", "arm", "blade")
 
 
 def example_text(name: str) -> str:

@@ -117,7 +117,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         _copy(xdd, xdd1)
         _copy(lam, lam1)
         t = t1
-        p_d = dissipated_power(model, x, v)
+        p_d = dissipated_power(model, F, x, v)
         p_h = hub_power(model, t, x, v, lam)
         work[0] += 0.5 * h * (power[0] + p_d)
         work[1] += 0.5 * h * (power[1] + p_h)

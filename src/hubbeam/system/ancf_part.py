@@ -123,7 +123,7 @@ class AncfPart(ChartedBeamPart):
         beam = self.beam
         kinetic = 0.5 * v @ beam.apply_mass(beam.mass_blocks(q, chart), v)
         strain = beam.elastic(q, chart, tangent=False)[0]
-        grav = -beam.distributed_load(beam.section.mass_per_length * np.asarray(gravity, dtype=float)) @ q
+        grav = -beam.gravity_load(np.asarray(gravity, dtype=float)) @ q
         if self.tip_body is not None:  # one evaluation of the tip body gives its mass and potential
             t = self.tip
             _, M, _, _, V = self._tip_body_terms(q, v, chart, gravity)

@@ -4,6 +4,13 @@ The beam has ``n`` equal elements and n + 1 nodes; its coordinate vector q (8 (n
 is node-major with the node layout of :data:`DOF_NAMES` (paper Eq. 14). The chart F
 (see :mod:`hubbeam.elements.ancf.frame`) is part of the *state*: every method that
 needs it takes it explicitly.
+
+Section properties are evaluated at every Gauss point of every element, from the beam's
+``section`` (a prismatic beam) or from a span-wise table (:class:`SpanSections`: taper,
+pretwist). The stress-free state is the straight beam with the table's pretwist: its
+theta_1 at node x_k is the root's minus pretwist(x_k) (pretwist turns the section about the
+axis in the sense of the mount's twist, which turns it by -beta), theta_1' = -pretwist'(x_k),
+and the strains are measured from those of this discrete state at each Gauss point.
 """
 
 from __future__ import annotations
@@ -17,7 +24,7 @@ from hubbeam.elements.ancf.chart import choose_director, frame_from_director
 from hubbeam.elements.ancf.frame import section_frame, section_frames
 from hubbeam.elements.ancf.strain import strain_measures, strain_measures_at
 from hubbeam.elements.hermite import gauss_legendre, hermite
-from hubbeam.elements.section import Section
+from hubbeam.elements.section import COLUMN, Section, SpanSections, rectangle_constants
 from hubbeam.errors import ChartSingularityError
 
 #: Names of the 8 coordinates of an ANCF node (Eq. 14).
@@ -30,14 +37,24 @@ NODE_DOFS = kernels.NODE_DOFS
 DEFAULT_GAUSS_POINTS = 5
 
 
+#: the properties of :data:`hubbeam.elements.section.COLUMNS` that the kernels read per Gauss point
+_STIFFNESS = [COLUMN[c] for c in ("EA", "GJ", "EI_y", "EI_z")]
+_INERTIA = [COLUMN[c] for c in ("I_tau", "I_m", "I_n")]
+
+
 @dataclass
 class AncfBeam:
-    """n equal ANCF elements over a beam of ``length`` (m) with one ``section``."""
+    """n equal ANCF elements over a beam of ``length`` (m) with one ``section`` (the material
+    and the uniform section), or, when ``sections`` is given, the span-wise properties of that
+    table (its length must be the beam's). ``structural_damping`` c (s): Kelvin-Voigt damping
+    of the section resultants, c D e_dot (stiffness-proportional)."""
 
     length: float
     elements: int
     section: Section
     gauss_points: int = DEFAULT_GAUSS_POINTS
+    sections: SpanSections | None = None
+    structural_damping: float = 0.0
     _tables: tuple = field(init=False, repr=False)
     _rows: dict = field(init=False, repr=False, compare=False, default_factory=dict)  # stations' Hermite rows, once each
 
@@ -45,10 +62,53 @@ class AncfBeam:
         xi, w = gauss_legendre(self.gauss_points)
         S, dS, d2S = hermite(xi, self.element_length)
         self._tables = (np.ascontiguousarray(S), np.ascontiguousarray(dS), np.ascontiguousarray(d2S), w)
-        self._stiffness = np.array(self.section.stiffness)
-        sec = self.section
-        self._trans_mass = kernels.translational_mass_block(self.element_length, S, w, sec.mass_per_length)
-        self._inertia = np.array([sec.density * (sec.i_y + sec.i_z), sec.density * sec.i_y, sec.density * sec.i_z])
+        if self.sections is not None and not np.isclose(self.sections.length, self.length, rtol=1e-12, atol=0.0):
+            raise ValueError(f"sections: the last station ({self.sections.length} m) is not at the beam's length "
+                             f"({self.length} m)")
+        self.structural_damping = float(self.structural_damping)
+        if not self.structural_damping >= 0.0:
+            raise ValueError(f"structural_damping: must be >= 0 s (got {self.structural_damping})")
+        #: the section's properties (:data:`~hubbeam.elements.section.COLUMNS`) at every Gauss point
+        points = (np.arange(self.elements)[:, None] + np.asarray(xi)[None, :]) * self.element_length
+        if self.sections is None:
+            props = np.broadcast_to(rectangle_constants(self.section), points.shape + (len(COLUMN),))
+        else:
+            props = self.sections.at(points)
+        self._stiffness = np.ascontiguousarray(props[..., _STIFFNESS])  # (n_el, ng, 4) N, N m^2
+        self._inertia = np.ascontiguousarray(props[..., _INERTIA])  # (n_el, ng, 3) kg m
+        self._rho_a = np.ascontiguousarray(props[..., COLUMN["rho_A"]])  # (n_el, ng) kg/m
+        self._width = np.ascontiguousarray(props[..., COLUMN["width"]])  # (n_el, ng) m, the drag's frontal width
+        self._trans_mass = np.array([kernels.translational_mass_block(self.element_length, S, w, rho)
+                                     for rho in self._rho_a])
+        # the stress-free state: straight along e_1, twisted by the pretwist
+        self._twist = self._node_pretwist()
+        self._reference = np.zeros_like(self._stiffness)
+        if np.any(self._twist):  # an untwisted straight beam's strains are exactly 0
+            q_ref, F_ref = self.straight_state(np.zeros(3), np.eye(3))
+            kernels.gauss_strains(q_ref, F_ref, self.element_length, S, dS, d2S, w, self._reference)
+            self._reference_state = (q_ref, F_ref)
+        else:
+            self._reference_state = None
+
+    def _node_pretwist(self) -> np.ndarray:
+        """(pretwist, its rate) at the nodes (rad, rad/m; the mean of the two segments' slopes
+        at a station where the slope changes), relative to the root."""
+        x = np.arange(self.nodes) * self.element_length
+        if self.sections is None:
+            return np.zeros((self.nodes, 2))
+        tab = self.sections
+        angle = np.interp(x, tab.x, tab.pretwist) - tab.pretwist[0]
+        slope = np.diff(tab.pretwist) / np.diff(tab.x)
+        last = slope.size - 1
+        right = slope[np.clip(np.searchsorted(tab.x, x, side="right") - 1, 0, last)]
+        left = slope[np.clip(np.searchsorted(tab.x, x, side="left") - 1, 0, last)]
+        return np.column_stack([angle, 0.5 * (left + right)])
+
+    def reference_strains(self, x: float) -> np.ndarray:
+        """(eps0, kappa1, kappa2, kappa3) of the stress-free state at station x (1, 1/m)."""
+        if self._reference_state is None:
+            return np.zeros(4)
+        return self._measures_at(*self._reference_state, [x])[0]
 
     # ---------------------------------------------------------------- layout
     @property
@@ -69,7 +129,8 @@ class AncfBeam:
 
     # ---------------------------------------------------------------- states
     def straight_state(self, root: np.ndarray, frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Undeformed straight beam from ``root`` along frame[:, 0] with section frame ``frame``.
+        """Undeformed straight beam from ``root`` along frame[:, 0] with root section frame ``frame``
+        (and the pretwist along the span: the stress-free state).
 
         Returns (q, F): the coordinates and a chart whose director is the beam axis.
         """
@@ -83,7 +144,8 @@ class AncfBeam:
             s = self.node_slice(k)
             q[s][0:3] = np.asarray(root, dtype=float) + k * self.element_length * frame[:, 0]
             q[s][3:6] = frame[:, 0]
-            q[s][6] = theta
+            q[s][6] = theta - self._twist[k, 0]
+            q[s][7] = -self._twist[k, 1]
         return q, F
 
     # ---------------------------------------------------------------- energies
@@ -92,18 +154,27 @@ class AncfBeam:
 
         Raises :class:`ChartSingularityError` where a tangent is at the chart's singular direction.
         """
+        U, force, blocks, _ = self.internal(q, np.zeros(self.ndof), F, 0.0, 1.0 if tangent else None)
+        return U, force, blocks
+
+    def internal(self, q: np.ndarray, qdot: np.ndarray, F: np.ndarray, coef_c: float = 0.0,
+                 coef_k: float | None = 1.0):
+        """The section resultants with structural damping (:func:`~hubbeam.elements.ancf.kernels.elastic_kernel`):
+        (U (J), internal force (n_dof, elastic plus damping), element blocks coef_k dforce/dq +
+        coef_c dforce/dqdot (n_el, 16, 16; None when coef_k is None), dissipated power (W))."""
         S, dS, d2S, w = self._tables
         force = np.empty(self.ndof)
-        blocks = np.zeros((self.elements if tangent else 0, 16, 16))
-        U, margin = kernels.elastic_kernel(
-            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(F), self.element_length, S, dS, d2S, w,
-            self._stiffness, 1.0, force, blocks,
+        blocks = np.zeros((self.elements if coef_k is not None else 0, 16, 16))
+        U, margin, power = kernels.elastic_kernel(
+            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(qdot, dtype=float), np.ascontiguousarray(F),
+            self.element_length, S, dS, d2S, w, self._stiffness, self._reference, self.structural_damping,
+            float(coef_c), float(coef_k or 0.0), force, blocks,
         )
         if not margin > 1e-6 or not np.isfinite(U):
             raise ChartSingularityError(
                 f"a beam tangent is at the singular direction of the rotation chart (1 + d.tau = {margin:.2e})"
             )
-        return U, force, (blocks if tangent else None)
+        return U, force, (blocks if coef_k is not None else None), power
 
     def chart_margin(self, q: np.ndarray, F: np.ndarray) -> float:
         """min over Gauss points of 1 + d.tau (2 best, 0 singular)."""
@@ -147,16 +218,23 @@ class AncfBeam:
         force = np.empty(self.ndof)
         blocks = np.zeros((self.elements, 16, 16))
         power = kernels.drag_kernel(
-            np.ascontiguousarray(qdot, dtype=float), self.element_length, S, w, self.section.width,
+            np.ascontiguousarray(qdot, dtype=float), self.element_length, S, w, self._width,
             float(linear), float(quadratic), 1.0, force, blocks,
         )
         return power, force, blocks
 
     def distributed_load(self, per_length: np.ndarray) -> np.ndarray:
-        """Generalized force of a constant load per unit length (N/m, global), e.g. rho A g (Eq. 32)."""
+        """Generalized force of a constant load per unit length (N/m, global) (Eq. 32)."""
+        return self._load(np.ones_like(self._rho_a), per_length)
+
+    def gravity_load(self, gravity: np.ndarray) -> np.ndarray:
+        """Generalized force of gravity (m/s^2, global) on the beam's own mass, int S^T rho A g dx (Eq. 32)."""
+        return self._load(self._rho_a, gravity)
+
+    def _load(self, density, load) -> np.ndarray:
         S, _, _, w = self._tables
         out = np.empty(self.ndof)
-        kernels.distributed_load(self.elements, self.element_length, S, w, np.asarray(per_length, dtype=float), out)
+        kernels.distributed_load(self.elements, self.element_length, S, w, density, np.asarray(load, dtype=float), out)
         return out
 
     # ---------------------------------------------------------------- stations
@@ -206,14 +284,22 @@ class AncfBeam:
         return F @ section_frames(np.ascontiguousarray(u @ F), phi)  # u @ F: chart components F^T r0'
 
     def surface_strain(self, q: np.ndarray, F: np.ndarray, x: float, y: float, z: float) -> float:
-        """Fibre axial strain eps0 - y kappa3 + z kappa2 at section point (y, z) of station x."""
+        """Fibre axial strain eps0 - y kappa3 + z kappa2 at section point (y, z) of station x, the
+        strains measured from the stress-free state's."""
         return float(self.surface_strains(q, F, [x], [y], [z])[0])
 
     def surface_strains(self, q: np.ndarray, F: np.ndarray, xs, y, z) -> np.ndarray:
-        """Fibre axial strains at the section points (y_i, z_i) (m) of the stations xs (m)."""
-        _, u, v, phi, psi = self.interpolate_at(q, xs)
-        measures = strain_measures_at(np.ascontiguousarray(u @ F), np.ascontiguousarray(v @ F), phi, psi)
+        """Fibre axial strains at the section points (y_i, z_i) (m) of the stations xs (m), measured
+        from the stress-free state's."""
+        measures = self._measures_at(q, F, xs)
+        if self._reference_state is not None:
+            measures = measures - self._measures_at(*self._reference_state, xs)
         return measures[:, 0] - np.asarray(y, dtype=float) * measures[:, 3] + np.asarray(z, dtype=float) * measures[:, 2]
+
+    def _measures_at(self, q: np.ndarray, F: np.ndarray, xs) -> np.ndarray:
+        """(eps0, kappa1, kappa2, kappa3) (n x 4; 1, 1/m) at the stations xs (m)."""
+        _, u, v, phi, psi = self.interpolate_at(q, xs)
+        return strain_measures_at(np.ascontiguousarray(u @ F), np.ascontiguousarray(v @ F), phi, psi)
 
     def gauss_tangents(self, q: np.ndarray) -> np.ndarray:
         """Unit tangents at every Gauss point and node (rows)."""

@@ -106,10 +106,12 @@ class SystemModel(NamedTuple):
     d2S: np.ndarray
     w: np.ndarray  # (nb, ng) Gauss weights on [0, 1] (0 on padding points)
     element_length: np.ndarray  # (nb,) m
-    stiffness: np.ndarray  # (nb, 4) EA, GJ_t, EI_y, EI_z (N, N m^2)
-    trans_mass: np.ndarray  # (nb, 16, 16) translational element mass (kg)
-    inertia: np.ndarray  # (nb, 3) rho (I_y + I_z), rho I_y, rho I_z (kg m)
-    width: np.ndarray  # (nb,) frontal width of the drag (m)
+    stiffness: np.ndarray  # (nb, n_el, ng, 4) EA, GJ_t, EI_y, EI_z at each Gauss point (N, N m^2)
+    reference: np.ndarray  # (nb, n_el, ng, 4) strains of the stress-free (pretwisted) state (1, 1/m)
+    structural_damping: np.ndarray  # (nb,) c of the Kelvin-Voigt resultants c D e_dot (s)
+    trans_mass: np.ndarray  # (nb, n_el, 16, 16) translational element masses (kg)
+    inertia: np.ndarray  # (nb, n_el, ng, 3) rho (I_y + I_z), rho I_y, rho I_z (kg m)
+    width: np.ndarray  # (nb, n_el, ng) frontal width of the drag (m)
     mount: np.ndarray  # (nb, 4) radius, twist, azimuth, precone (m, rad)
     tip_force: np.ndarray  # (nb, 3) N
     tip_moment: np.ndarray  # (nb, 3) N m
@@ -150,6 +152,9 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     ``ab`` the band of the rest in gbtrf layout with kl = ku = model.bandwidth). The small velocity
     derivative of the rotary-inertia force and the q-derivative of M(q) acc are left out
     (they slow Newton slightly and never change the answer). ``F`` holds every beam's chart.
+
+    f_int of an ANCF beam holds its structural damping (Kelvin-Voigt resultants c D e_dot,
+    :func:`hubbeam.elements.ancf.kernels.elastic_kernel`), whose damping matrix enters with coef_c.
 
     Returns (chart margin min(1 + d.tau) over all Gauss points, dissipated power W). A margin
     at or below :data:`CHART_SINGULAR` means the residual is not valid.
@@ -198,8 +203,10 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         S, dS, d2S, w, le = model.S[k], model.dS[k], model.d2S[k], model.w[k], model.element_length[k]
         blocks = np.zeros((n_el if want_matrix else 0, 16, 16))
         fq = np.empty(nq)
-        _, mk = kernels.elastic_kernel(q, Fk, le, S, dS, d2S, w, model.stiffness[k], coef_k, fq, blocks)
+        _, mk, pk = kernels.elastic_kernel(q, qd, Fk, le, S, dS, d2S, w, model.stiffness[k], model.reference[k],
+                                           model.structural_damping[k], coef_c, coef_k, fq, blocks)
         margin = min(margin, mk)
+        power += pk
         if not mk > CHART_SINGULAR:
             return margin, 0.0
         term = np.empty(nq)
@@ -390,9 +397,9 @@ def applied_load(model, k, q, F, factor, Q, tip_jacobian):
 
 
 @njit(cache=True)
-def dissipated_power(model, x, v):
-    """Power of the drag of Eq. 37 on every beam and of the FFR beams' structural damping at the
-    state (x, v) (W, >= 0)."""
+def dissipated_power(model, F, x, v):
+    """Power of the drag of Eq. 37 on every beam and of the beams' structural damping (ANCF and
+    FFR) at the state (x, v) in the charts F (W, >= 0)."""
     power = 0.0
     ff = model.ffr
     zero = np.zeros(x.shape[0])
@@ -409,6 +416,11 @@ def dissipated_power(model, x, v):
         force = np.empty(nq)
         power += kernels.drag_kernel(qd, model.element_length[k], model.S[k], model.w[k], model.width[k],
                                      model.drag[0], model.drag[1], 0.0, force, np.empty((0, 16, 16)))
+        if model.structural_damping[k] > 0.0:
+            power += kernels.elastic_kernel(x[x0 : x0 + nq], qd, F[model.beam_index[k]], model.element_length[k],
+                                            model.S[k], model.dS[k], model.d2S[k], model.w[k], model.stiffness[k],
+                                            model.reference[k], model.structural_damping[k], 0.0, 0.0, force,
+                                            np.empty((0, 16, 16)))[2]
     return power
 
 

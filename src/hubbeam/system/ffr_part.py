@@ -291,12 +291,6 @@ class FfrPart(BeamPart):
             frames[i] = A0 @ rotations_about(Phi @ p)[0] @ self._pretwisted_axes([x])[0]
         return frames, vel, omega
 
-    def without_structural_damping(self) -> "FfrPart":
-        """The same beam part with structural_damping = 0 (itself when it has none)."""
-        if not self.beam.structural_damping:
-            return self
-        return replace(self, beam=replace(self.beam, structural_damping=0.0))
-
     def centre_line_at(self, q, chart, stations) -> np.ndarray:
         """Eq. 42 at (x, 0, 0) of every station."""
         A0, _ = self._body(q)

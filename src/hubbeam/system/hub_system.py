@@ -208,17 +208,28 @@ class HubSystem:
         ancf = [(k, b) for k, b in enumerate(self.beams) if isinstance(b, AncfPart)]
         nb = len(ancf)
         ng = max((b.beam.gauss_points for _, b in ancf), default=1)
+        ne = max((b.beam.elements for _, b in ancf), default=1)
         S, dS, d2S = np.zeros((nb, ng, 4)), np.zeros((nb, ng, 4)), np.zeros((nb, ng, 4))
         w = np.zeros((nb, ng))
+        # per element and Gauss point (zero on padding elements and points, whose weight is 0)
+        stiffness, reference = np.zeros((nb, ne, ng, 4)), np.zeros((nb, ne, ng, 4))
+        inertia, width = np.zeros((nb, ne, ng, 3)), np.zeros((nb, ne, ng))
+        trans_mass = np.zeros((nb, ne, 16, 16))
         gravity_load = np.zeros(self.nx)
         for i, (k, b) in enumerate(ancf):
-            tS, tdS, td2S, tw = b.beam._tables
-            n = tw.shape[0]
+            beam = b.beam
+            tS, tdS, td2S, tw = beam._tables
+            n, m = tw.shape[0], beam.elements
             for arr, table in ((S, tS), (dS, tdS), (d2S, td2S)):
                 arr[i, :n] = table
                 arr[i, n:] = table[0]  # padding points repeat a real one, with weight 0
             w[i, :n] = tw
-            gravity_load[layout.beam_x(k)] = b.beam.distributed_load(b.section.mass_per_length * self.gravity)
+            stiffness[i, :m, :n] = beam._stiffness
+            reference[i, :m, :n] = beam._reference
+            inertia[i, :m, :n] = beam._inertia
+            width[i, :m, :n] = beam._width
+            trans_mass[i, :m] = beam._trans_mass
+            gravity_load[layout.beam_x(k)] = beam.gravity_load(self.gravity)
         # a fixed hub is held at theta = 0: the profile 'rest'
         drive = self.hub.drive if self.motion == "prescribed" else DriveProfile("rest")
         torque = self.hub.torque if (not held and self.hub.torque.compilable) else TorqueLaw()
@@ -230,10 +241,8 @@ class HubSystem:
             ints([layout.clamp_lambda(k).start for k, _ in ancf]), ints([b.beam.elements for _, b in ancf]),
             S, dS, d2S, w,
             np.array([b.beam.element_length for _, b in ancf], dtype=float).reshape(nb),
-            np.array([b.beam._stiffness for _, b in ancf], dtype=float).reshape(nb, 4),
-            np.array([b.beam._trans_mass for _, b in ancf], dtype=float).reshape(nb, 16, 16),
-            np.array([b.beam._inertia for _, b in ancf], dtype=float).reshape(nb, 3),
-            np.array([b.section.width for _, b in ancf], dtype=float).reshape(nb),
+            stiffness, reference, np.array([b.beam.structural_damping for _, b in ancf], dtype=float).reshape(nb),
+            trans_mass, inertia, width,
             np.array([b.mount.params() for _, b in ancf], dtype=float).reshape(nb, 4),
             np.array([b.tip_force for _, b in ancf], dtype=float).reshape(nb, 3),
             np.array([b.tip_moment for _, b in ancf], dtype=float).reshape(nb, 3),
@@ -470,9 +479,9 @@ class HubSystem:
         return float(h)
 
     def dissipated_power(self, x, v, F) -> float:
-        """Power of the drag of Eq. 37 on every beam (W, >= 0)."""
-        return float(dissipated_power(self.model(), np.ascontiguousarray(x, dtype=float),
-                                      np.ascontiguousarray(v, dtype=float)))
+        """Power of the drag of Eq. 37 and of the beams' structural damping (W, >= 0)."""
+        return float(dissipated_power(self.model(), np.ascontiguousarray(F, dtype=float),
+                                      np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float)))
 
     def hub_power(self, t, x, v, lam) -> float:
         """Power of the drive reaction and the applied torque on the hub (W)."""

@@ -14,12 +14,12 @@ margins and replacements.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from dataclasses import replace
 
 import numpy as np
 
-from hubbeam.elements.section import COLUMN
-
 from hubbeam.elements.hermite import gauss_legendre
+from hubbeam.elements.section import COLUMN
 from hubbeam.system.mount import Mount, axis_frame
 
 #: the parts of a beam's kinetic energy (:meth:`BeamPart.kinetic_energy_split`), in the order
@@ -91,8 +91,11 @@ class BeamPart(ABC):
         """Fibre axial strain at section point (y, z) of the station x (m from the root)."""
 
     def without_structural_damping(self) -> "BeamPart":
-        """The same beam without its structural damping (itself when it has none)."""
-        return self
+        """The same part with its beam's structural damping c = 0 (itself when it has none);
+        parts are dataclasses holding their beam as ``beam``."""
+        if not self.beam.structural_damping:
+            return self
+        return replace(self, beam=replace(self.beam, structural_damping=0.0))
 
     @abstractmethod
     def centre_line_at(self, q: np.ndarray, chart: np.ndarray, stations) -> np.ndarray:
@@ -115,7 +118,7 @@ class BeamPart(ABC):
         """Width b (m, along m) and thickness h (m, along n) of the section at the station
         (m from the root), from the beam's span-wise table when it has one. What draws or samples
         a section (a strain gauge's 'upper' face z = +h/2) asks here, not the section itself."""
-        sections = getattr(self.beam, "sections", None)
+        sections = self.beam.sections
         if sections is None:
             return float(self.section.width), float(self.section.thickness)
         row = sections.at(float(station))

@@ -105,48 +105,76 @@ def _matrix_to_global(F, A, tmp, out):
 
 
 @njit(cache=True, error_model="numpy")
-def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, scale, force, blocks):
-    """Strain energy (Eq. 19), internal force dU/dq and (when ``blocks`` has n_el rows) tangent.
+def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damping, coef_c, scale, force, blocks):
+    """Strain energy (Eq. 19), internal force and (when ``blocks`` has n_el rows) its Newton
+    matrix, with Kelvin-Voigt structural damping.
 
-    stiffness = (EA, GJ_t, EI_y, EI_z) in N, N m^2. ``force`` (n_dof) is overwritten with
-    dU/dq (the internal force, opposite to Q_f of Eq. 36); ``scale`` times the element
-    Hessians is added to ``blocks`` (n_el, 16, 16) unless ``blocks`` is empty.
-    Returns (U, min(1 + d.tau)).
+    Per element and Gauss point: ``stiffness[el, g]`` = D = (EA, GJ_t, EI_y, EI_z) (N, N m^2) and
+    ``reference[el, g]`` = e_ref, the strains (eps0, kappa1, kappa2, kappa3) of the stress-free
+    state (a pretwisted beam's kappa1 = its twist rate). The energy is
+    U = 1/2 int (e - e_ref)^T D (e - e_ref) dx, so the stress-free state carries none. ``damping``
+    c (s) adds the resultants c D e_dot, e_dot = G X_dot (G = de/dX at the Gauss point, X_dot from
+    ``qdot``): the force int G^T D (e - e_ref + c e_dot) dx overwrites ``force`` (n_dof, the
+    internal force, opposite to Q_f of Eq. 36). Unless ``blocks`` is empty, it gains ``scale``
+    times d(force)/dq (the elastic tangent and the damping force's dependence on q through G
+    and H) plus ``coef_c`` times the damping matrix c int G^T D G dx.
+    Returns (U, min(1 + d.tau), dissipated power c int e_dot^T D e_dot dx (W)).
     """
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
     want_tangent = blocks.shape[0] == n_el
+    damped = damping != 0.0
     force[:] = 0.0
     X = np.empty(8)
+    Xd = np.zeros(8)
     e = np.empty(4)
+    ed = np.zeros(4)
+    r = np.empty(4)
     G = np.empty((4, 8))
     H = np.empty((4, 8, 8))
     gW = np.empty(8)
     gY = np.empty(8)
     HW = np.empty((8, 8))
     HY = np.empty((8, 8))
+    AW = np.empty((8, 8))
+    AY = np.empty((8, 8))
+    HXd = np.empty((4, 8))
     tmp = np.empty((8, 8))
     R = np.empty((8, ELEMENT_DOFS))
     Ke = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
+    Kn = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
     w1 = np.empty(ELEMENT_DOFS)
     w2 = np.empty(ELEMENT_DOFS)
     energy = 0.0
+    power = 0.0
     chart_margin = 2.0
     for el in range(n_el):
         o = NODE_DOFS * el
         Ke[:, :] = 0.0
+        Kn[:, :] = 0.0
         for g in range(w.shape[0]):
+            D = stiffness[el, g]
             dof_weights(S, dS, d2S, g, w1, w2)
             gauss_variables(q, o, F, w1, w2, gY, X)
             s0 = strain_jet(X, e, G, H, want_tangent)
             L = np.sqrt(X[0] ** 2 + X[1] ** 2 + X[2] ** 2)
             chart_margin = min(chart_margin, s0 / L)
             jw = w[g] * length
+            if damped:
+                gauss_variables(qdot, o, F, w1, w2, gY, Xd)
+                for k in range(4):
+                    acc = 0.0
+                    for i in range(8):
+                        acc += G[k, i] * Xd[i]
+                    ed[k] = acc
             for k in range(4):
-                energy += 0.5 * jw * stiffness[k] * e[k] * e[k]
+                strain = e[k] - reference[el, g, k]
+                energy += 0.5 * jw * D[k] * strain * strain
+                power += jw * damping * D[k] * ed[k] * ed[k]
+                r[k] = D[k] * (strain + damping * ed[k])  # the section resultant
             for i in range(8):
                 acc = 0.0
                 for k in range(4):
-                    acc += stiffness[k] * e[k] * G[k, i]
+                    acc += r[k] * G[k, i]
                 gW[i] = acc
             _to_global(F, gW, gY)
             for j in range(ELEMENT_DOFS):
@@ -156,14 +184,70 @@ def elastic_kernel(q, F, length, S, dS, d2S, w, stiffness, scale, force, blocks)
                     for j in range(i, 8):
                         acc = 0.0
                         for k in range(4):
-                            acc += stiffness[k] * (G[k, i] * G[k, j] + e[k] * H[k, i, j])
+                            acc += (scale + coef_c * damping) * D[k] * G[k, i] * G[k, j] + scale * r[k] * H[k, i, j]
                         HW[i, j] = acc
                         HW[j, i] = acc
                 _matrix_to_global(F, HW, tmp, HY)
-                _add_sandwich(Ke, HY, w1, w2, scale * jw, R)
+                _add_sandwich(Ke, HY, w1, w2, jw, R)
+                if damped:  # c D e_dot through G: G^T c D (H X_dot), not symmetric
+                    for k in range(4):
+                        for j in range(8):
+                            acc = 0.0
+                            for i in range(8):
+                                acc += H[k, j, i] * Xd[i]
+                            HXd[k, j] = acc
+                    for i in range(8):
+                        for j in range(8):
+                            acc = 0.0
+                            for k in range(4):
+                                acc += D[k] * G[k, i] * HXd[k, j]
+                            AW[i, j] = scale * damping * acc
+                    _matrix_to_global(F, AW, tmp, AY)
+                    _add_sandwich_full(Kn, AY, w1, w2, jw, R)
         if want_tangent:
             _add_symmetric(blocks, el, Ke)
-    return energy, chart_margin
+            if damped:
+                for i in range(ELEMENT_DOFS):
+                    for j in range(ELEMENT_DOFS):
+                        blocks[el, i, j] += Kn[i, j]
+    return energy, chart_margin, power
+
+
+@njit(cache=True, error_model="numpy")
+def gauss_strains(q, F, length, S, dS, d2S, w, out):
+    """The strains (eps0, kappa1, kappa2, kappa3) of the state q at every Gauss point: ``out``
+    (n_el, ng, 4), computed exactly as :func:`elastic_kernel` computes them (the stress-free
+    state's reference strains)."""
+    n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
+    X = np.empty(8)
+    Y = np.empty(8)
+    e = np.empty(4)
+    G = np.empty((4, 8))
+    H = np.empty((4, 8, 8))
+    w1 = np.empty(ELEMENT_DOFS)
+    w2 = np.empty(ELEMENT_DOFS)
+    for el in range(n_el):
+        for g in range(w.shape[0]):
+            dof_weights(S, dS, d2S, g, w1, w2)
+            gauss_variables(q, NODE_DOFS * el, F, w1, w2, Y, X)
+            strain_jet(X, e, G, H, False)
+            for k in range(4):
+                out[el, g, k] = e[k]
+
+
+@njit(cache=True, error_model="numpy")
+def _add_sandwich_full(Kn, AY, w1, w2, factor, R):
+    """Kn += factor B^T AY B for a matrix AY that need not be symmetric (B as in :func:`_add_sandwich`)."""
+    for i in range(ELEMENT_DOFS):
+        a1, a2 = DOF_FIRST[i], DOF_SECOND[i]
+        u1, u2 = factor * w1[i], factor * w2[i]
+        for c in range(8):
+            R[c, i] = u1 * AY[a1, c] + u2 * AY[a2, c]
+    for j in range(ELEMENT_DOFS):
+        b1, b2 = DOF_FIRST[j], DOF_SECOND[j]
+        v1, v2 = w1[j], w2[j]
+        for i in range(ELEMENT_DOFS):
+            Kn[i, j] += v1 * R[b1, i] + v2 * R[b2, i]
 
 
 @njit(cache=True, error_model="numpy")
@@ -195,11 +279,11 @@ def _add_symmetric(blocks, el, Ke):
 
 @njit(cache=True, error_model="numpy")
 def translational_mass_block(length, S, w, rho_a):
-    """The element's translational mass rho A int S^T S dx (Eq. 35, first term): 16 x 16,
-    the same for every element of equal length and independent of q."""
+    """An element's translational mass int rho A S^T S dx (Eq. 35, first term): 16 x 16,
+    independent of q; ``rho_a`` (ng,): rho A (kg/m) at the element's Gauss points."""
     out = np.zeros((ELEMENT_DOFS, ELEMENT_DOFS))
     for g in range(w.shape[0]):
-        jw = w[g] * length * rho_a
+        jw = w[g] * length * rho_a[g]
         for a in range(4):
             for b in range(4):
                 val = jw * S[g, a] * S[g, b]
@@ -209,38 +293,40 @@ def translational_mass_block(length, S, w, rho_a):
 
 
 @njit(cache=True, error_model="numpy")
-def add_translational_mass(block, n_el, scale, blocks):
-    """blocks[e] += scale * block for every element."""
+def add_translational_mass(mass, n_el, scale, blocks):
+    """blocks[e] += scale * mass[e] for every element (``mass``: (>= n_el, 16, 16))."""
     for el in range(n_el):
         for i in range(ELEMENT_DOFS):
             for j in range(ELEMENT_DOFS):
-                blocks[el, i, j] += scale * block[i, j]
+                blocks[el, i, j] += scale * mass[el, i, j]
 
 
 @njit(cache=True, error_model="numpy")
-def translational_mass_product(block, u, out):
-    """out += M_trans u (the same element block on every element)."""
+def translational_mass_product(mass, u, out):
+    """out += M_trans u (element blocks ``mass`` (>= n_el, 16, 16))."""
     n_el = (u.shape[0] - NODE_DOFS) // NODE_DOFS
     for el in range(n_el):
         o = NODE_DOFS * el
         for i in range(ELEMENT_DOFS):
             acc = 0.0
             for j in range(ELEMENT_DOFS):
-                acc += block[i, j] * u[o + j]
+                acc += mass[el, i, j] * u[o + j]
             out[o + i] += acc
 
 
 @njit(cache=True, error_model="numpy")
-def distributed_load(n_el, length, S, w, load, out):
-    """Generalized force of a constant load per unit length ``load`` (N/m, global): int S1^T p dx (Eq. 32)."""
+def distributed_load(n_el, length, S, w, density, load, out):
+    """Generalized force of the load per unit length density[el, g] * ``load`` (``load`` global,
+    e.g. rho A (kg/m) times g (m/s^2): N/m): int S1^T p dx (Eq. 32)."""
     out[:] = 0.0
     for el in range(n_el):
         for g in range(w.shape[0]):
             jw = w[g] * length
+            rho = density[el, g]
             for a in range(4):
                 o = _VEC_OFFSETS[a]
                 for i in range(3):
-                    out[NODE_DOFS * el + o + i] += jw * S[g, a] * load[i]
+                    out[NODE_DOFS * el + o + i] += jw * S[g, a] * (rho * load[i])
 
 
 @njit(cache=True, error_model="numpy")
@@ -252,7 +338,8 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
     curvature (kappa1, kappa2, kappa3) is of (r0', r0'', theta_1, theta_1') (compare
     Eqs. 8 and 25), so :func:`strain_jet` gives omega = B(X) Xdot with B = d omega / d Xdot
     and d omega / dX, X = (r0', theta_1). With J = diag(rho (I_y + I_z), rho I_y, rho I_z)
-    (``inertia``, kg m) the kinetic energy is T_rot = 1/2 int omega^T J omega dx, and
+    (``inertia[el, g]``, kg m, at each Gauss point) the kinetic energy is
+    T_rot = 1/2 int omega^T J omega dx, and
     Lagrange's equations for a body-frame angular velocity are Euler's equations projected
     by B: B^T (J omega_dot + omega x J omega) with omega_dot = B Xddot + (d omega / dX) Xdot.
     Hence the mass M_rot = int B^T J B dx (Eq. 35's rotary terms, rho I_z |m_s|^2 +
@@ -283,7 +370,6 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
     w2 = np.empty(ELEMENT_DOFS)
     xi = (0, 1, 2, PHI)  # X = (U, phi) inside Z = (U, Udot, phi, phidot)
     vi = (3, 4, 5, PSI)  # Xdot
-    J0, J1, J2 = inertia[0], inertia[1], inertia[2]
     energy = 0.0
     Ke = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
     for el in range(n_el):
@@ -301,6 +387,8 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
             Z[6] = Xq[6]
             Z[7] = Xv[6]
             strain_jet(Z, e, G, H, H.shape[0] > 0)  # H is empty: gradients only
+            J = inertia[el, g]
+            J0, J1, J2 = J[0], J[1], J[2]
             om0, om1, om2 = e[1], e[2], e[3]
             # omega x J omega
             gy0 = (J2 - J1) * om1 * om2
@@ -311,7 +399,7 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
                 for k in range(4):
                     B[i, k] = G[i + 1, vi[k]]
                     rate += G[i + 1, xi[k]] * Z[vi[k]] + B[i, k] * Xa[xi[k]]
-                h[i] = inertia[i] * rate
+                h[i] = J[i] * rate
             h[0] += gy0
             h[1] += gy1
             h[2] += gy2
@@ -353,7 +441,7 @@ def _mass_to_global(F, Mx, Mg):
 @njit(cache=True, error_model="numpy")
 def drag_kernel(qdot, length, S, w, frontal_width, c1, c2, scale, force, blocks):
     """Damping of Eq. 37-39: f_d = -(c1 + c2 |v|) v per unit frontal area on the centre-line
-    velocity v, times the frontal width b per unit length.
+    velocity v, times the frontal width b per unit length (``frontal_width[el, g]``, m).
 
     ``force`` (n_dof) is overwritten with Q_d; ``scale`` times -dQ_d/dqdot (the damping
     matrix) is added to ``blocks`` (n_el, 16, 16) unless ``blocks`` is empty.
@@ -375,7 +463,7 @@ def drag_kernel(qdot, length, S, w, frontal_width, c1, c2, scale, force, blocks)
                 for k in range(3):
                     v[k] += S[g, a] * ve[o + k]
             speed = np.sqrt(v[0] ** 2 + v[1] ** 2 + v[2] ** 2)
-            jw = w[g] * length * frontal_width
+            jw = w[g] * length * frontal_width[el, g]
             coef = c1 + c2 * speed
             power += jw * coef * speed * speed
             for a in range(4):
