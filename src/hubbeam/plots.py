@@ -112,7 +112,8 @@ def plot_comparison(datasets: dict, path, variables: list[str], title: str = "")
     fig, axes = plt.subplots(len(variables), 1, figsize=(9, 2.4 * len(variables) + 0.6), sharex=True, squeeze=False)
     for ax, name in zip(axes[:, 0], variables):
         for k, (label, ds) in enumerate(datasets.items()):
-            ax.plot(ds["time"].values, ds[name].values, lw=1, color=f"C{k}", label=label)
+            ax.plot(ds["time"].values, ds[name].values, lw=1, color=f"C{k}", ls=("-", "--", "-.", ":")[k % 4],
+                    label=label)
         units = next(iter(datasets.values()))[name].attrs.get("units", "")
         ax.set_ylabel(f"{name}\n({units})", fontsize=8)
         ax.grid(alpha=0.3)
@@ -127,8 +128,9 @@ def plot_comparison(datasets: dict, path, variables: list[str], title: str = "")
 def plot_xy(series: dict, path, xlabel: str, ylabel: str, title: str = "", vline: float | None = None) -> None:
     """Curves y(x) ({label: (x, y)}) with markers; an optional dashed vertical line."""
     fig, ax = plt.subplots(figsize=(7, 4.2))
-    for k, (label, (x, y)) in enumerate(series.items()):
-        ax.plot(x, y, "o-", color=f"C{k}", label=label, lw=1.2, ms=4)
+    for k, (label, (x, y)) in enumerate(series.items()):  # marker and dashes differ, so that equal curves show
+        ax.plot(x, y, marker="osv^D"[k % 5], ls=("-", "--", "-.", ":")[k % 4], color=f"C{k}", label=label, lw=1.2,
+                ms=6 - k % 3)
     if vline is not None:
         ax.axvline(vline, color="k", ls="--", lw=0.8)
     _finish_single(fig, ax, path, xlabel, ylabel, title)

@@ -38,7 +38,8 @@ def test_files_and_tables_json_shape(reduced):
     for table, value in (("table2", "frequency_hz"), ("table5", "tip_deflection_m")):
         (row,) = data[table]["ffr_modal"]
         assert (row["modes"], row["elements"], row["dof"]) == (4, 3, 7) and row[value] is not None
-    assert all(r["ffr_modal_frequency_hz"] is not None for r in data["table3"]["rows"])
+    assert all(r["ffr_modal_frequency_hz"] is not None and r["ffr_stiffened_frequency_hz"] is not None
+               for r in data["table3"]["rows"])
     assert all(r["ffr_modal_tip_deflection_m"] is not None for r in data["table6"]["rows"])
     assert "FFR, 4 modes + stiffening" in text
 
@@ -64,10 +65,10 @@ def test_physical_orderings(reduced):
 
 def test_modal_ffr_follows_the_nodal_ffr_it_reduces(reduced):
     """Four modes (plus the axial coordinates of the stiffening) keep the first frequency of the
-    thick plates and the stiffened tip lag of experiment 2 (docs/ffr.md: 1.3e-4 of the peak lag
-    at N = 4 in a spin-up)."""
+    stiffened nodal FFR after release and its tip lag in experiment 2 (docs/ffr.md: 1.3e-4 of the
+    peak lag at N = 4 in a spin-up)."""
     _, _, t = reduced
-    for r in t["table3"]["rows"][:2]:  # h = 4 and 2.5 mm (the hub barely turns: stiffening changes nothing)
-        assert abs(r["ffr_modal_frequency_hz"] / r["ffr_frequency_hz"] - 1) < 0.02, r
+    for r in t["table3"]["rows"]:
+        assert abs(r["ffr_modal_frequency_hz"] / r["ffr_stiffened_frequency_hz"] - 1) < 0.01, r
     for r in t["table6"]["rows"]:
-        assert abs(r["ffr_modal_tip_deflection_m"] / r["ffr_stiffened_tip_deflection_m"] - 1) < 0.02, r
+        assert abs(r["ffr_modal_tip_deflection_m"] / r["ffr_stiffened_tip_deflection_m"] - 1) < 0.01, r

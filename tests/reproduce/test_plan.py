@@ -20,12 +20,12 @@ def test_modal_column_beside_nodal_ffr_in_every_table():
     plan = Plan.quick()
     fine = plan.fine["ffr"]
     assert ("ffr-modal", fine) in plan.table2_cases() and ("ffr-modal", fine) in plan.table5_cases()
-    assert {form for _, form in plan.table3_cases()} == {"ancf", "ffr", "ffr-modal"}
+    assert {form for _, form in plan.table3_cases()} == {"ancf", "ffr", "ffr+", "ffr-modal"}
     assert {(omega, "ffr-modal") for omega in plan.speeds} <= set(plan.table6_cases())
     # the modal FFR runs reduce the fine nodal FFR mesh
     assert all(c.elements == fine for (_, form), c in plan.table6_cases().items() if form.startswith("ffr"))
     keys = [c.key for c in plan.cases()]
-    assert len(keys) == len(set(keys)) == 43  # 34 before: + exp1 x 3 thicknesses + exp2 x 6 speeds
+    assert len(keys) == len(set(keys)) == 46  # 34 before: + exp1 x 3 thicknesses x 2 + exp2 x 6 speeds
     assert set(FORMULATIONS) == {"ancf", "ffr", "ffr+", "ffr-modal"}
 
 

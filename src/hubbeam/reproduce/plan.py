@@ -84,7 +84,7 @@ class Plan:
 
     def table3_cases(self):
         return {(example, form): self._exp1(example, form, self.fine[mesh_of(form)])
-                for example in ("exp1_h4", "exp1", "exp1_h1") for form in ("ancf", "ffr", "ffr-modal")}
+                for example in ("exp1_h4", "exp1", "exp1_h1") for form in ("ancf", "ffr", "ffr+", "ffr-modal")}
 
     def table5_cases(self):
         cases = {(form, n): self._exp2(form, n) for form, meshes in self.table5.items() for n in meshes}

@@ -92,17 +92,19 @@ def table2(plan: Plan, outcomes) -> dict:
 def table3(plan: Plan, outcomes) -> dict:
     rows = []
     for example in ("exp1_h4", "exp1", "exp1_h1"):
-        ds = {form: outcomes[plan.table3_cases()[example, form].key].dataset for form in ("ancf", "ffr", "ffr-modal")}
+        ds = {form: outcomes[plan.table3_cases()[example, form].key].dataset
+              for form in ("ancf", "ffr", "ffr+", "ffr-modal")}
         if ds["ancf"] is None:
             continue
         beam = _beam(ds["ancf"])
         length = beam.length
         fa, ff = _frequency(ds["ancf"], "strain_P1"), _frequency(ds["ffr"], "strain_P1")
-        fm = _frequency(ds["ffr-modal"], "strain_P1")
+        fs, fm = _frequency(ds["ffr+"], "strain_P1"), _frequency(ds["ffr-modal"], "strain_P1")
         wm = float(np.max(np.abs(_deflection_along_kb(ds["ancf"]))))
         rows.append({
             "thickness_m": beam.thickness,
             "ancf_frequency_hz": fa, "ffr_frequency_hz": ff, "ffr_vs_ancf_pct": _pct(ff, fa),
+            "ffr_stiffened_frequency_hz": fs, "ffr_stiffened_vs_ancf_pct": _pct(fs, fa),
             "ffr_modal_frequency_hz": fm, "ffr_modal_vs_ancf_pct": _pct(fm, fa),
             "w_m": wm, "w_m_over_L": wm / length,
             "ffr_w_m": float(np.max(np.abs(_deflection_along_kb(ds["ffr"])))) if ds["ffr"] is not None else None,
