@@ -69,6 +69,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--plot", help="figure (PNG, PDF, SVG, ...)")
     run.add_argument("--state", action="store_true", help="also store the hub angle and every beam's geometry in the "
                                                           "NetCDF file (-o), for animate and vtk")
+    run.add_argument("--plot-vars", metavar="A,B,...",
+                     help="variables (or sensors) to draw with --plot (default: every one that is not zero throughout)")
     st = scenario_cmd("static", "static equilibrium under gravity and loads (hub held at theta = 0)")
     st.add_argument("--plot", help="figure of the deformed beam")
     mod = scenario_cmd("modes", "natural frequencies about the static equilibrium (steady rotation for a constant drive)")
@@ -355,6 +357,7 @@ def _cmd_run(args, scenario) -> dict:
         raise ScenarioError("--state: the state is stored in the NetCDF file; give -o OUT.nc")
     if args.plot is not None and not scenario.sensors:
         raise ScenarioError(f"--plot {args.plot}: the scenario has no sensors, so there is nothing to draw")
+    plot_vars = _plot_vars(args.plot_vars, args.plot, scenario)
     size = limits.check_run(scenario)
     if size.note:
         _say(f"hubbeam: note: {size.note}")
@@ -367,7 +370,7 @@ def _cmd_run(args, scenario) -> dict:
         traj, failure = exc.partial, exc
     finally:
         finish()
-    _finish_run(targets, scenario, traj, failure)
+    _finish_run(targets, scenario, traj, failure, plot_vars)
     final = {name: values[-1] for name, values in traj.records.items()}
     summary = {"steps": traj.steps, "newton_iterations": traj.newton_iterations,
                "newton_iterations_per_step": traj.newton_iterations / max(traj.steps, 1),
@@ -385,7 +388,27 @@ def _cmd_run(args, scenario) -> dict:
     return summary
 
 
-def _finish_run(targets, scenario, traj, failure) -> None:
+def _plot_vars(text, plot, scenario) -> list[str] | None:
+    """The variables ``--plot-vars`` names (a sensor stands for all its columns); ScenarioError
+    naming an unknown one, or the option without --plot."""
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.sensors import columns
+
+    if text is None:
+        return None
+    if plot is None:
+        raise ScenarioError("--plot-vars: needs --plot (the figure to draw them in)")
+    known = {s.name: columns(s) for s in scenario.sensors}
+    known.update({c: [c] for cols in list(known.values()) for c in cols})
+    chosen = []
+    for name in (n.strip() for n in text.split(",")):
+        if name not in known:
+            raise ScenarioError(f"--plot-vars: unknown variable {name!r} (this run has: {', '.join(known)})")
+        chosen += [c for c in known[name] if c not in chosen]
+    return chosen
+
+
+def _finish_run(targets, scenario, traj, failure, plot_vars=None) -> None:
     """Write a run's results (complete or partial) and raise its failure with one line that
     says how far it got and what was written."""
     from hubbeam import interrupt
@@ -409,7 +432,8 @@ def _finish_run(targets, scenario, traj, failure) -> None:
     def plot(path):
         from hubbeam import plots
 
-        plots.plot_timeseries(dataset(), path, title=scenario.name + (" (partial)" if status else ""))
+        plots.plot_timeseries(dataset(), path, title=scenario.name + (" (partial)" if status else ""),
+                              variables=plot_vars)
 
     writers = {"-o": lambda p: results.write_trajectory_netcdf(traj, scenario, p, status),
                "--csv": lambda p: results.write_csv(dataset(), p), "--plot": plot}
@@ -622,9 +646,8 @@ def _cmd_identify(args, scenario) -> dict:
 
     targets = _check([Target("-o", args.output, "figure")], args, ("measured file", args.measured))
     times, measured = _read_measured(args.measured, args.signal)
-    from hubbeam import interrupt
-
-    fit = identify(scenario, times, measured, args.fit, signal=args.signal, progress=lambda n: interrupt.check())
+    progress, _ = _progress_bar(None, label="identify", unit="simulations")
+    fit = identify(scenario, times, measured, args.fit, signal=args.signal, progress=progress)
     d = fit.to_dict()
     if targets:
         from hubbeam import plots
@@ -717,7 +740,8 @@ def _cmd_reproduce(args) -> int:
 
     def progress(done, total, outcome):
         state = "failed" if outcome.failure else "done"
-        _say(f"[{done}/{total}] {outcome.case.key}: {state} in {outcome.wall_time_s:.0f} s")
+        _say(f"hubbeam: note: reproduce {done} of {total} runs ({100 * done / total:.0f} %): {outcome.case.key} "
+             f"{state} in {outcome.wall_time_s:.0f} s")
 
     out = Path(args.output)
     try:
@@ -812,10 +836,46 @@ def _cmd_vtk(args) -> dict:
 def _progress_bar(t_end: float, label: str = "simulating", unit: str = "s"):
     """(update(t), finish()): a rich progress bar on a terminal; in any case ``update`` is
     where a signal whose exception a library swallowed is raised again (interrupt.check)."""
+
+#: seconds between two progress lines when stderr is not a terminal (none before the first interval)
+PROGRESS_EVERY = 10.0
+
+
+def _compile_note() -> None:
+    """One line before numba compiles the solver into its on-disk cache (the first run on a machine)."""
+    from hubbeam.solvers.compiled_alpha import cache_is_cold
+
+    if cache_is_cold():
+        _say("hubbeam: note: compiling the solver for this machine (first run only, about 2 minutes)")
+
+
+def _progress_bar(t_end: float | None, label: str = "run", unit: str = "s"):
+    """(update(t), finish()): a rich progress bar on a terminal; otherwise a plain line
+    ``hubbeam: note: LABEL ...`` every PROGRESS_EVERY seconds from the first report (so a short
+    command prints none, even when it compiled first);
+    in any case ``update`` is where a signal whose exception a library swallowed is raised
+    again (interrupt.check). ``t_end`` None: the total is not known (a count so far)."""
     from hubbeam import interrupt
 
-    if not sys.stderr.isatty():
-        return (lambda t: interrupt.check()), lambda: None
+    if t_end is None or not sys.stderr.isatty():
+        import time
+
+        last = [None]  # the clock starts at the first report (not before a first compile)
+
+        def line(done):
+            interrupt.check()
+            if last[0] is None:
+                last[0] = time.monotonic()
+            if time.monotonic() - last[0] < PROGRESS_EVERY:
+                return
+            last[0] = time.monotonic()
+            if t_end is None:
+                _say(f"hubbeam: note: {label}: {done:g} {unit} so far")
+            else:
+                where = f"t = {done:.4g} of {t_end:g} s" if unit == "s" else f"{done:g} of {t_end:g} {unit}"
+                _say(f"hubbeam: note: {label} {where} ({100 * done / max(t_end, 1e-300):.0f} %)")
+
+        return line, lambda: None
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
     done = "t = {task.completed:.2f} s" if unit == "s" else "{task.completed:.0f} / {task.total:.0f} " + unit
@@ -870,13 +930,16 @@ def _main(argv) -> int:
             sys.stdout.write(example_text(args.name))
             return 0
         if args.command == "reproduce":
+            _compile_note()
             return _cmd_reproduce(args)
         if args.command == "applicability":
+            _compile_note()
             result = _cmd_applicability(args)
         elif args.command in ("animate", "vtk"):
             result = {"animate": _cmd_animate, "vtk": _cmd_vtk}[args.command](args)
         else:
             scenario = _load(args)
+            _compile_note()
             handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
                        "linearize": _cmd_linearize,
                        "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]

@@ -32,20 +32,80 @@ def plot_deformed(system, x_ref, F_ref, x, F, path, title: str = "") -> None:
     plt.close(fig)
 
 
-def plot_timeseries(ds, path, title: str = "", variables: list[str] | None = None) -> None:
-    """Variables of a result dataset over time (default: every time series, not a recorded
-    state), one panel each."""
+#: at most this many panels in a figure of a run's results drawn without a choice of variables
+MAX_PANELS = 6
+
+#: the axis label of a panel of each sensor kind
+KIND_LABELS = {"surface_strain": "surface strain", "hub_angle": "hub angle", "hub_angular_velocity": "hub speed",
+               "hub_torque": "drive torque", "applied_torque": "applied torque", "tip_deflection": "tip deflection",
+               "energy": "energy", "angular_momentum": "angular momentum", "constraint_violation": "constraint violation"}
+
+
+def _sensor_kinds(ds) -> dict[str, str]:
+    """{sensor name: kind} from the scenario stored in a run's attributes ({} if there is none)."""
+    import json
+
+    try:
+        return {s["name"]: s["kind"] for s in json.loads(ds.attrs["scenario"]).get("sensors", [])}
+    except (KeyError, TypeError, ValueError):
+        return {}
+
+
+def _is_flat_zero(values, scale: float) -> bool:
+    """No finite value, or every value zero to 1e-12 of the panel's largest (round-off)."""
+    finite = np.asarray(values, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    return finite.size == 0 or float(np.max(np.abs(finite))) <= 1e-12 * scale
+
+
+def timeseries_panels(ds, variables: list[str] | None = None) -> list[tuple[str, list[str]]]:
+    """[(axis label, variable names)]: a run's variables grouped one panel per sensor kind and
+    unit (the three tip components together, all strains together, the energies together), in
+    the order they first appear. Without ``variables``: every time series (not a recorded
+    state), leaving out those that
+    are zero throughout (to round-off) and panels beyond :data:`MAX_PANELS`."""
     from hubbeam.io.results import time_series
 
+    kinds = _sensor_kinds(ds)
     names = time_series(ds) if variables is None else list(variables)
-    fig, axes = plt.subplots(len(names), 1, figsize=(9, 1.9 * len(names) + 0.6), sharex=True, squeeze=False)
-    for ax, name in zip(axes[:, 0], names):
-        ax.plot(ds["time"].values, ds[name].values, lw=1)
-        ax.set_ylabel(f"{name}\n({ds[name].attrs.get('units', '')})", fontsize=8)
+    groups: dict[tuple[str, str], list[str]] = {}
+    for name in names:
+        units = str(ds[name].attrs.get("units", ""))
+        kind = kinds.get(str(ds[name].attrs.get("sensor", name)), units)
+        groups.setdefault((kind, units), []).append(name)
+    panels = []
+    for (kind, units), members in groups.items():
+        if variables is None:
+            scale = max([float(np.nanmax(np.abs(ds[n].values), initial=0.0)) for n in members] + [0.0])
+            members = [n for n in members if not _is_flat_zero(ds[n].values, scale)]
+            if not members or scale == 0.0:
+                continue
+        label = KIND_LABELS.get(kind, members[0] if len(members) == 1 else kind)
+        panels.append((f"{label}\n({units or '-'})", members))
+    return panels if variables is not None else panels[:MAX_PANELS]
+
+
+def plot_timeseries(ds, path, title: str = "", variables: list[str] | None = None) -> None:
+    """A run's variables over time, grouped into panels by :func:`timeseries_panels` (default:
+    every variable that is not zero throughout, at most MAX_PANELS panels)."""
+    panels = timeseries_panels(ds, variables)
+    if not panels:
+        raise ValueError("nothing to plot: every variable is zero throughout the run")
+    fig, axes = plt.subplots(len(panels), 1, figsize=(9, 2.0 * len(panels) + 0.7), sharex=True, squeeze=False)
+    for ax, (label, members) in zip(axes[:, 0], panels):
+        for name in members:
+            ax.plot(ds["time"].values, ds[name].values, lw=1, label=name)
+        ax.set_ylabel(label, fontsize=8)
         ax.grid(alpha=0.3)
+        if len(members) > 1:
+            ax.legend(loc="best", fontsize=7, ncol=min(len(members), 3))
     axes[-1, 0].set_xlabel("time (s)")
+    left_out = [n for n in (ds.data_vars if variables is None else ()) if not any(n in m for _, m in panels)]
+    if left_out:
+        fig.text(0.01, 0.005, "not drawn (zero throughout, or beyond " f"{MAX_PANELS} panels): " + ", ".join(left_out),
+                 fontsize=7, color="0.4")
     fig.suptitle(title)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.02 if left_out else 0, 1, 1))
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
@@ -55,7 +115,8 @@ def plot_comparison(datasets: dict, path, variables: list[str], title: str = "")
     fig, axes = plt.subplots(len(variables), 1, figsize=(9, 2.4 * len(variables) + 0.6), sharex=True, squeeze=False)
     for ax, name in zip(axes[:, 0], variables):
         for k, (label, ds) in enumerate(datasets.items()):
-            ax.plot(ds["time"].values, ds[name].values, lw=1, color=f"C{k}", label=label)
+            ax.plot(ds["time"].values, ds[name].values, lw=1, color=f"C{k}", ls=("-", "--", "-.", ":")[k % 4],
+                    label=label)
         units = next(iter(datasets.values()))[name].attrs.get("units", "")
         ax.set_ylabel(f"{name}\n({units})", fontsize=8)
         ax.grid(alpha=0.3)
@@ -70,8 +131,9 @@ def plot_comparison(datasets: dict, path, variables: list[str], title: str = "")
 def plot_xy(series: dict, path, xlabel: str, ylabel: str, title: str = "", vline: float | None = None) -> None:
     """Curves y(x) ({label: (x, y)}) with markers; an optional dashed vertical line."""
     fig, ax = plt.subplots(figsize=(7, 4.2))
-    for k, (label, (x, y)) in enumerate(series.items()):
-        ax.plot(x, y, "o-", color=f"C{k}", label=label, lw=1.2, ms=4)
+    for k, (label, (x, y)) in enumerate(series.items()):  # marker and dashes differ, so that equal curves show
+        ax.plot(x, y, marker="osv^D"[k % 5], ls=("-", "--", "-.", ":")[k % 4], color=f"C{k}", label=label, lw=1.2,
+                ms=6 - k % 3)
     if vline is not None:
         ax.axvline(vline, color="k", ls="--", lw=0.8)
     _finish_single(fig, ax, path, xlabel, ylabel, title)

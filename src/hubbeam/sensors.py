@@ -14,6 +14,21 @@ UNITS = {
     "constraint_violation": "m",
 }
 
+#: the parts of a sensor that gives several values (its columns are NAME_PART)
+PARTS = {"tip_deflection": ("radial", "vertical", "tangential"),
+         "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive")}
+
+
+def columns(sensor) -> list[str]:
+    """The result columns of a sensor: its name, or NAME_PART for each of its parts (the energy
+    of one beam has no dissipated or drive part)."""
+    parts = PARTS.get(sensor.kind)
+    if parts is None:
+        return [sensor.name]
+    if sensor.kind == "energy" and getattr(sensor, "beam", None) is not None:
+        parts = parts[:4]
+    return [f"{sensor.name}_{part}" for part in parts]
+
 
 def _beam(sensor, system: HubSystem) -> int:
     return system.beam_index(getattr(sensor, "beam", None))

@@ -280,3 +280,20 @@ def test_timing_against_python(capsys):
     with capsys.disabled():
         print(f"\nFFR forces (nf = {n - 6}, drag, stiffening, matrix): kernel {t_kernel * 1e6:.1f} us, "
               f"FfrPart.forces {t_python * 1e6:.1f} us, ratio {t_python / t_kernel:.0f}x")
+
+
+@pytest.mark.parametrize("damping", [(0.0, 0.0), (0.4, 1.7), (0.0, 2.5)])
+def test_drag_power_alone_is_the_python_dissipated_power(damping):
+    """ffr_drag_power (the energy balance after each compiled step) gives FfrPart's dissipated
+    power without evaluating the rest of the body terms."""
+    part = make_part(stiffening=True, tip_body=BODY)
+    arrays = fk.pack(part)
+    rng = np.random.default_rng(7)
+    for _ in range(3):
+        q, v, _ = random_state(part, rng)
+        power = fk.ffr_drag_power(q, v, arrays.drag(damping))
+        if damping == (0.0, 0.0):
+            assert power == 0.0
+        else:
+            assert power == pytest.approx(part.dissipated_power(q, v, damping), rel=1e-12)
+            assert power > 0.0

@@ -64,3 +64,28 @@ def test_output_times_are_multiples_of_the_output_step_and_the_end():
     traj = simulate(system, [TIP], t_end=0.105, dt=5e-3, output_dt=0.02)
     assert traj.times == pytest.approx([0.0, 0.02, 0.04, 0.06, 0.08, 0.1, 0.105])
     assert traj.steps == 21 and traj.factorisations >= 1
+
+
+def test_cache_is_cold_reads_numbas_cache_index(tmp_path, monkeypatch):
+    """cache_is_cold (the CLI's note before the first compile): True before a cached function's
+    first compile, False once its code is on disk (also for a fresh import, as in a new
+    process), True again when its source changes."""
+    import importlib
+    import sys
+    import time
+
+    from hubbeam.solvers.compiled_alpha import advance, cache_is_cold
+
+    source = tmp_path / "cold_probe.py"
+    source.write_text("from numba import njit\n\n@njit(cache=True)\ndef f(x):\n    return x + 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    module = importlib.import_module("cold_probe")
+    assert cache_is_cold(module.f)
+    assert module.f(1) == 2
+    assert not cache_is_cold(module.f)
+    assert not cache_is_cold(importlib.reload(module).f)
+    time.sleep(0.01)
+    source.write_text("from numba import njit\n\n@njit(cache=True)\ndef f(x):\n    return x + 20\n")
+    assert cache_is_cold(importlib.reload(module).f)
+    sys.modules.pop("cold_probe", None)
+    assert isinstance(cache_is_cold(), bool) and cache_is_cold() == cache_is_cold(advance)

@@ -4,16 +4,34 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from hubbeam.studies.variants import FORMULATIONS as STUDY_FORMULATIONS
+
 #: Table 6's drive speeds omega_s (rad/s)
 TABLE6_SPEEDS = (0.5, 1.0, 1.5, 2.0, 2.5, 3.05)
 
 
+#: modes kept by the modal FFR column
+MODAL_MODES = 4
+
+#: the formulations of the tables -> the scenario overrides that make each: the studies' three (the
+#: paper's ANCF and FFR, and FFR with geometric stiffening, "ffr+") and that stiffened FFR reduced to
+#: its MODAL_MODES lowest clamped-free modes ("ffr-modal"; with the stiffening its basis also keeps
+#: the nodal axial coordinates, docs/ffr.md)
+FORMULATIONS = {**STUDY_FORMULATIONS, "ffr-modal": STUDY_FORMULATIONS["ffr+"] + [f"beams[*].modes={MODAL_MODES}"]}
+
+
+def mesh_of(formulation: str) -> str:
+    """The formulation whose meshes a formulation uses ("ancf" or "ffr": modal FFR reduces the nodal one)."""
+    return "ancf" if formulation == "ancf" else "ffr"
+
+
 @dataclass(frozen=True)
 class Case:
-    """One run: a bundled scenario, the formulation, the mesh and further overrides."""
+    """One run: a bundled scenario, the formulation (a key of FORMULATIONS), the mesh and further
+    overrides."""
 
     example: str
-    formulation: str  # "ancf" | "ffr" | "ffr+" (FFR with geometric stiffening)
+    formulation: str
     elements: int
     extra: tuple[str, ...] = ()
 
@@ -22,11 +40,7 @@ class Case:
         return "/".join([self.example, self.formulation, str(self.elements), *self.extra])
 
     def overrides(self) -> list[str]:
-        form = "ffr" if self.formulation.startswith("ffr") else "ancf"
-        out = [f'beam.formulation="{form}"', f"beam.elements={self.elements}"]
-        if self.formulation == "ffr+":
-            out.append("beam.geometric_stiffening=true")
-        return out + list(self.extra)
+        return list(FORMULATIONS[self.formulation]) + [f"beam.elements={self.elements}"] + list(self.extra)
 
 
 @dataclass
@@ -64,23 +78,25 @@ class Plan:
         return Case("exp2", form, n, tuple(extra))
 
     def table2_cases(self):
-        return {(form, n): self._exp1("exp1", form, n) for form, meshes in self.table2.items() for n in meshes}
+        cases = {(form, n): self._exp1("exp1", form, n) for form, meshes in self.table2.items() for n in meshes}
+        cases["ffr-modal", self.fine["ffr"]] = self._exp1("exp1", "ffr-modal", self.fine["ffr"])
+        return cases
 
     def table3_cases(self):
-        return {(example, form): self._exp1(example, form, self.fine[form])
-                for example in ("exp1_h4", "exp1", "exp1_h1") for form in ("ancf", "ffr")}
+        return {(example, form): self._exp1(example, form, self.fine[mesh_of(form)])
+                for example in ("exp1_h4", "exp1", "exp1_h1") for form in ("ancf", "ffr", "ffr+", "ffr-modal")}
 
     def table5_cases(self):
         cases = {(form, n): self._exp2(form, n) for form, meshes in self.table5.items() for n in meshes}
-        cases["ffr+", self.fine["ffr"]] = self._exp2("ffr+", self.fine["ffr"])
+        for form in ("ffr+", "ffr-modal"):
+            cases[form, self.fine["ffr"]] = self._exp2(form, self.fine["ffr"])
         return cases
 
     def table6_cases(self):
         out = {}
         for omega in self.speeds:
-            for form in ("ancf", "ffr", "ffr+"):
-                n = self.fine["ffr" if form.startswith("ffr") else "ancf"]
-                out[omega, form] = self._exp2(form, n, None if omega == 3.05 else omega)
+            for form in ("ancf", "ffr", "ffr+", "ffr-modal"):
+                out[omega, form] = self._exp2(form, self.fine[mesh_of(form)], None if omega == 3.05 else omega)
         return out
 
     def cases(self) -> list[Case]:

@@ -23,6 +23,18 @@ from hubbeam.system.assembly import bordered_factor, bordered_solve
 from hubbeam.system.equations import CHART_SINGULAR, dissipated_power, hub_power, system_equations
 
 
+def cache_is_cold(function=None) -> bool:
+    """True when ``function`` (a ``cache=True`` numba function; default :func:`advance`) has no
+    usable compiled code in numba's on-disk cache: its index file (``*.nbi`` in the module's
+    ``__pycache__`` or numba's cache directory) is missing or was made for other sources or
+    another numba, so that its first call compiles it -- for :func:`advance`, the time loop and
+    the equations: about 2 minutes. False if that cannot be told."""
+    try:
+        return not (advance if function is None else function)._cache._cache_file._load_index()
+    except (AttributeError, OSError, EOFError, ValueError):  # numba's internals changed: say nothing
+        return False
+
+
 @njit(cache=True)
 def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scale, chart_limit,
             matrix, reuse, work, power, counters, schedule, records):
@@ -63,13 +75,16 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     lam1 = np.empty_like(lam)
     res = np.empty(n)
     size = 0.0
+    # no exact load stiffness in a time step; a run-time False, not the literal: numba compiles a
+    # function once per literal argument, and system_equations is the largest compile of all
+    exact = n < 0
     for k in range(n_steps):
         t1 = t + h
         predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
         _copy(lam1, lam)
         stale = newton_start(update, reuse)
         fresh = not stale
-        margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, False,
+        margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
                                      fresh, res, ab, brow, bcol, bb)
         previous = np.inf
         converged = False
@@ -105,7 +120,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             if fresh:
                 stale = False
             margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
-                                         False, fresh, res, ab, brow, bcol, bb)
+                                         exact, fresh, res, ab, brow, bcol, bb)
             previous = np.inf if fresh else size
         if not converged:
             reuse[REUSE_VALID] = 0

@@ -297,6 +297,54 @@ def _to_q(block, D, n):
 
 # ---------------------------------------------------------------------------- the equations
 @njit(cache=True, error_model="numpy")
+def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
+    """Drag point k of the centre line: its body-frame position r_b = [x_k, 0, 0] + N_k p (m, into
+    ``rb``), u_b = omega x r_b + N_k p' (``ub``) and its absolute velocity rdot = r_C' + A0 u_b
+    (m/s, ``rd``); vb = [r_C', omega^b, ...] (v-space rates)."""
+    nf = p.shape[0]
+    for i in range(3):
+        s = xpts[k] if i == 0 else 0.0
+        s2 = 0.0
+        for f in range(nf):
+            s += Npts[k, i, f] * p[f]
+            s2 += Npts[k, i, f] * pd[f]
+        rb[i] = s
+        ub[i] = s2
+    w0, w1, w2 = vb[3], vb[4], vb[5]
+    ub[0] += w1 * rb[2] - w2 * rb[1]
+    ub[1] += w2 * rb[0] - w0 * rb[2]
+    ub[2] += w0 * rb[1] - w1 * rb[0]
+    for i in range(3):
+        rd[i] = vb[i] + A[i, 0] * ub[0] + A[i, 1] * ub[1] + A[i, 2] * ub[2]
+
+
+@njit(cache=True, error_model="numpy")
+def ffr_drag_power(q, v, drag):
+    """The power dissipated by the drag (Eq. 64) at (q, q'), -Q_d . v (W, >= 0): what
+    :func:`ffr_body_terms` returns, without the body's other terms (for the energy balance
+    after each step)."""
+    Npts, xpts, wpts, width, dc1, dc2 = drag
+    if dc1 == 0.0 and dc2 == 0.0:
+        return 0.0
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    cardan(q[3], q[4], q[5], A, D)
+    vb = np.empty(6)
+    for i in range(3):
+        vb[i] = v[i]
+        vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
+    rb = np.empty(3)
+    ub = np.empty(3)
+    rd = np.empty(3)
+    power = 0.0
+    for k in range(Npts.shape[0]):
+        _drag_point(Npts, xpts, k, q[6:], v[6:], A, vb, rb, ub, rd)
+        speed = math.sqrt(rd[0] * rd[0] + rd[1] * rd[1] + rd[2] * rd[2])
+        power += width * wpts[k] * (dc1 + dc2 * speed) * speed * speed
+    return power
+
+
+@njit(cache=True, error_model="numpy")
 def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, load_factor, want_matrix,
                    force, block):
     """The FFR beam's generalized force and iteration matrix (what FfrPart.forces computes).
@@ -437,20 +485,7 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
         for i in range(6):
             cols[i] = i
         for k in range(Npts.shape[0]):
-            for i in range(3):
-                s = xpts[k] if i == 0 else 0.0
-                s2 = 0.0
-                for f in range(nf):
-                    s += Npts[k, i, f] * p[f]
-                    s2 += Npts[k, i, f] * pd[f]
-                rb[i] = s
-                ub[i] = s2
-            # u_b = omega x r + N p'; rdot = r_C' + A0 u_b
-            ub[0] += w1 * rb[2] - w2 * rb[1]
-            ub[1] += w2 * rb[0] - w0 * rb[2]
-            ub[2] += w0 * rb[1] - w1 * rb[0]
-            for i in range(3):
-                rd[i] = vb[i] + A[i, 0] * ub[0] + A[i, 1] * ub[1] + A[i, 2] * ub[2]
+            _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd)
             speed = math.sqrt(rd[0] * rd[0] + rd[1] * rd[1] + rd[2] * rd[2])
             weight = width[k] * wpts[k]
             fac = weight * (dc1 + dc2 * speed)
