@@ -282,17 +282,18 @@ def test_timing_against_python(capsys):
               f"FfrPart.forces {t_python * 1e6:.1f} us, ratio {t_python / t_kernel:.0f}x")
 
 
+@pytest.mark.parametrize("structural", [0.0, 2e-3])
 @pytest.mark.parametrize("damping", [(0.0, 0.0), (0.4, 1.7), (0.0, 2.5)])
-def test_drag_power_alone_is_the_python_dissipated_power(damping):
-    """ffr_drag_power (the energy balance after each compiled step) gives FfrPart's dissipated
-    power without evaluating the rest of the body terms."""
-    part = make_part(stiffening=True, tip_body=BODY)
+def test_dissipated_power_alone_is_the_python_dissipated_power(damping, structural):
+    """ffr_dissipated_power (the energy balance after each compiled step: drag and structural
+    damping) gives FfrPart's dissipated power without evaluating the rest of the body terms."""
+    part = make_part(stiffening=True, tip_body=BODY, structural_damping=structural)
     arrays = fk.pack(part)
     rng = np.random.default_rng(7)
     for _ in range(3):
         q, v, _ = random_state(part, rng)
-        power = fk.ffr_drag_power(q, v, arrays.drag(damping))
-        if damping == (0.0, 0.0):
+        power = fk.ffr_dissipated_power(q, v, arrays.inv, arrays.drag(damping))
+        if damping == (0.0, 0.0) and not structural:
             assert power == 0.0
         else:
             assert power == pytest.approx(part.dissipated_power(q, v, damping), rel=1e-12)

@@ -24,7 +24,7 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ancf import kernels
-from hubbeam.elements.ffr.kernels import ffr_body_terms, ffr_drag_power, ffr_load_stiffness
+from hubbeam.elements.ffr.kernels import ffr_body_terms, ffr_dissipated_power, ffr_load_stiffness
 from hubbeam.system.assembly import add_element_blocks_banded, add_entry
 from hubbeam.system.clamp import clamp_equations
 from hubbeam.system.laws import drive_values, torque_values
@@ -405,8 +405,8 @@ def dissipated_power(model, F, x, v):
     for k in range(ff.nf.shape[0]):
         n = 6 + ff.nf[k]
         x0 = ff.x0[k]
-        _, _, drag = ffr_arguments(model, k)
-        power += ffr_drag_power(x[x0 : x0 + n], v[x0 : x0 + n], drag)
+        inv, _, drag = ffr_arguments(model, k)
+        power += ffr_dissipated_power(x[x0 : x0 + n], v[x0 : x0 + n], inv, drag)
     for k in range(model.beam_index.shape[0]):
         nq = NODE_DOFS * (model.beam_elements[k] + 1)
         x0 = model.beam_x0[k]

@@ -319,13 +319,22 @@ def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
 
 
 @njit(cache=True, error_model="numpy")
-def ffr_drag_power(q, v, drag):
-    """The power dissipated by the drag (Eq. 64) at (q, q'), -Q_d . v (W, >= 0): what
-    :func:`ffr_body_terms` returns, without the body's other terms (for the energy balance
-    after each step)."""
+def ffr_dissipated_power(q, v, inv, drag):
+    """The power dissipated by the drag (Eq. 64) and the structural damping at (q, q'),
+    -Q_d . v + p'^T C_struct p' (W, >= 0): what :func:`ffr_body_terms` returns, without the
+    body's other terms (for the energy balance after each step)."""
+    power = 0.0
+    Cs, damped = inv[12], inv[13]
+    if damped != 0.0:
+        nf = q.shape[0] - 6
+        for f in range(nf):
+            s = 0.0
+            for g in range(nf):
+                s += Cs[f, g] * v[6 + g]
+            power += v[6 + f] * s
     Npts, xpts, wpts, width, dc1, dc2 = drag
     if dc1 == 0.0 and dc2 == 0.0:
-        return 0.0
+        return power
     A = np.empty((3, 3))
     D = np.empty((3, 3))
     cardan(q[3], q[4], q[5], A, D)
@@ -336,11 +345,10 @@ def ffr_drag_power(q, v, drag):
     rb = np.empty(3)
     ub = np.empty(3)
     rd = np.empty(3)
-    power = 0.0
     for k in range(Npts.shape[0]):
         _drag_point(Npts, xpts, k, q[6:], v[6:], A, vb, rb, ub, rd)
         speed = math.sqrt(rd[0] * rd[0] + rd[1] * rd[1] + rd[2] * rd[2])
-        power += width * wpts[k] * (dc1 + dc2 * speed) * speed * speed
+        power += width[k] * wpts[k] * (dc1 + dc2 * speed) * speed * speed
     return power
 
 
