@@ -13,7 +13,8 @@ ROOT = Path(__file__).resolve().parents[1]
 SOURCES = ROOT / "src" / "hubbeam"
 
 #: import name -> distribution name, where they differ
-DISTRIBUTION = {"yaml": "pyyaml", "PIL": "pillow", "sklearn": "scikit-learn", "imageio_ffmpeg": "imageio-ffmpeg"}
+DISTRIBUTION = {"yaml": "pyyaml", "PIL": "pillow", "sklearn": "scikit-learn", "imageio_ffmpeg": "imageio-ffmpeg",
+                "mpl_toolkits": "matplotlib"}  # mpl_toolkits.mplot3d ships with matplotlib
 #: core dependencies that no module imports, and why they are declared
 NOT_IMPORTED = {"h5py": "the HDF5 library h5netcdf writes NetCDF with"}
 
