@@ -188,7 +188,7 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
                         HW[i, j] = acc
                         HW[j, i] = acc
                 _matrix_to_global(F, HW, tmp, HY)
-                _add_sandwich(Ke, HY, w1, w2, jw, R)
+                _add_sandwich(Ke, HY, w1, w2, jw, R, True)
                 if damped:  # c D e_dot through G: G^T c D (H X_dot), not symmetric
                     for k in range(4):
                         for j in range(8):
@@ -203,7 +203,7 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
                                 acc += D[k] * G[k, i] * HXd[k, j]
                             AW[i, j] = scale * damping * acc
                     _matrix_to_global(F, AW, tmp, AY)
-                    _add_sandwich_full(Kn, AY, w1, w2, jw, R)
+                    _add_sandwich(Kn, AY.T, w1, w2, jw, R, False)  # Kn[j, i] += (B^T AY^T B)[j, i] = (B^T AY B)[i, j]
         if want_tangent:
             _add_symmetric(blocks, el, Ke)
             if damped:
@@ -236,25 +236,11 @@ def gauss_strains(q, F, length, S, dS, d2S, w, out):
 
 
 @njit(cache=True, error_model="numpy")
-def _add_sandwich_full(Kn, AY, w1, w2, factor, R):
-    """Kn += factor B^T AY B for a matrix AY that need not be symmetric (B as in :func:`_add_sandwich`)."""
-    for i in range(ELEMENT_DOFS):
-        a1, a2 = DOF_FIRST[i], DOF_SECOND[i]
-        u1, u2 = factor * w1[i], factor * w2[i]
-        for c in range(8):
-            R[c, i] = u1 * AY[a1, c] + u2 * AY[a2, c]
-    for j in range(ELEMENT_DOFS):
-        b1, b2 = DOF_FIRST[j], DOF_SECOND[j]
-        v1, v2 = w1[j], w2[j]
-        for i in range(ELEMENT_DOFS):
-            Kn[i, j] += v1 * R[b1, i] + v2 * R[b2, i]
-
-
-@njit(cache=True, error_model="numpy")
-def _add_sandwich(Ke, HY, w1, w2, factor, R):
-    """Lower triangle of Ke += factor B^T HY B (Ke[j, i], i <= j) for the two-entry columns
-    of B (:func:`dof_weights`); R (8 x 16): scratch for (B^T HY)^T, so that the inner loops
-    run along contiguous memory."""
+def _add_sandwich(Ke, HY, w1, w2, factor, R, lower):
+    """Ke[j, i] += factor (B^T HY B)[i, j] for the two-entry columns of B (:func:`dof_weights`):
+    for a symmetric HY only the lower triangle (i <= j) when ``lower``; else every entry, which
+    adds factor (B^T HY^T B);
+    R (8 x 16): scratch for (B^T HY)^T, so that the inner loops run along contiguous memory."""
     for i in range(ELEMENT_DOFS):
         a1, a2 = DOF_FIRST[i], DOF_SECOND[i]
         u1, u2 = factor * w1[i], factor * w2[i]
@@ -263,7 +249,7 @@ def _add_sandwich(Ke, HY, w1, w2, factor, R):
     for j in range(ELEMENT_DOFS):
         b1, b2 = DOF_FIRST[j], DOF_SECOND[j]
         v1, v2 = w1[j], w2[j]
-        for i in range(j + 1):
+        for i in range(j + 1 if lower else ELEMENT_DOFS):
             Ke[j, i] += v1 * R[b1, i] + v2 * R[b2, i]
 
 
