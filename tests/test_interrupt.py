@@ -25,6 +25,15 @@ exec(
 )
 
 
+@pytest.fixture(autouse=True)
+def sigint_not_ignored():
+    """A background job (CI's, or ``cmd &``) starts with SIGINT ignored, and handling() keeps an
+    ignored signal ignored: give the test process Python's ordinary SIGINT handler."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
 def test_a_signal_inside_llvmlite_is_raised_after_it():
     finished = []
     with pytest.raises(interrupt.Interrupted) as info:
