@@ -52,3 +52,24 @@ def test_section_angular_velocity_is_the_rate_of_the_section_frame(beam_class):
     # the velocity is the rate of the centre line's points
     line = lambda qq: np.array([part.centre_line(qq, F[0], 1)[-1]])
     assert np.allclose((line(q + h * u) - line(q - h * u)) / (2 * h), vel[-1], atol=1e-7)
+
+
+@pytest.mark.parametrize("formulation", ["ancf", "ffr"])
+def test_undeformed_section_frames_follow_the_pretwist(formulation):
+    """The bundled blade (root twist 85 deg, pretwist -25 deg at the tip) undeformed at theta = 0:
+    each station's section axes are the mount's convention m = cos b j0 - sin b k0,
+    n = sin b j0 + cos b k0 with b = twist + pretwist(x), in both formulations."""
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+
+    system = api.build_system(load_example("blade", [f'beam.formulation="{formulation}"']))
+    x, charts = system.initial_state(0.0)
+    part = system.beams[0]
+    length = part.beam.length
+    stations = np.array([0.0, 0.3 * length, length])
+    frames = part.frames_at(x[system.layout.beam_x(0)], charts[0], stations)
+    for frame, s in zip(frames, stations):
+        b = np.radians(85.0 - 25.0 * s / length)
+        assert frame[:, 0] == pytest.approx([1.0, 0.0, 0.0], abs=1e-12)
+        assert frame[:, 1] == pytest.approx([0.0, np.cos(b), -np.sin(b)], abs=1e-9)
+        assert frame[:, 2] == pytest.approx([0.0, np.sin(b), np.cos(b)], abs=1e-9)
