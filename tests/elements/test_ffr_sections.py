@@ -13,7 +13,7 @@ from scipy.integrate import quad
 from scipy.linalg import eigh, expm
 
 from hubbeam.elements.ffr.body import FfrBeam, skew
-from hubbeam.elements.section import Section, SectionForm, SpanSections, saint_venant_torsion_constant
+from hubbeam.elements.section import COLUMN, Section, SectionForm, SpanSections, saint_venant_torsion_constant
 from hubbeam.elements.ffr.shape import displacement_matrix, line_shapes
 from tests.conftest import E, H, L, RHO, B, plate, tapered_sections
 
@@ -242,6 +242,6 @@ def test_surface_strain_of_a_pretwisted_tapered_cantilever_under_a_tip_force():
         beta = np.pi / 2 * x / L
         n_axis = np.array([np.sin(beta), np.cos(beta)])
         expected = -(h / 2) * (L - x) * (n_axis @ force[1:]) / (E * b * h**3 / 12)
-        assert beam.thickness_at(x) == pytest.approx(h, rel=1e-14)
+        assert beam.properties(x)[COLUMN["thickness"]] == pytest.approx(h, rel=1e-14)
         scale = (h / 2) * (L - x) * np.linalg.norm(force) / (E * b * h**3 / 12)
         assert abs(beam.surface_strain(p, x, 0.0, h / 2) - expected) < 1e-3 * scale

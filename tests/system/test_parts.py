@@ -10,15 +10,19 @@ from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.hub_system import single_beam_system
 from hubbeam.system.tip_body import TipBody
-from tests.conftest import L, plate
+from tests.conftest import L, plate, tapered_sections
 
 
-@pytest.mark.parametrize("beam_class, rel", [(AncfBeam, 1e-9), (FfrBeam, 1e-3)])
-def test_split_adds_up_to_the_mass_matrix_energy(beam_class, rel):
-    """About a bent, twisted, preconed beam with a tip body, the four parts sum to u^T M u / 2 of
-    the system's own mass matrix for any u (ANCF exactly; FFR to first order in the section's
-    small rotation, which its angular velocity keeps)."""
-    system = single_beam_system(beam_class(L, 6, plate()), radius=0.35, twist=np.radians(30), motion="fixed",
+@pytest.mark.parametrize("beam_class, rel, tapered", [(AncfBeam, 1e-9, False), (AncfBeam, 1e-9, True),
+                                                      (FfrBeam, 1e-3, False)])
+def test_split_adds_up_to_the_mass_matrix_energy(beam_class, rel, tapered):
+    """About a bent, twisted, preconed beam with a tip body, prismatic or (ANCF) tapered and
+    pretwisted, the four parts sum to u^T M u / 2 of the system's own mass matrix for any u (ANCF
+    exactly; FFR to first order in the section's small rotation, which its angular velocity
+    keeps). A pretwisted FFR beam leaves a gap of 2.5e-4 that does not vanish with the
+    deformation: not yet explained, so not asserted here."""
+    sections = tapered_sections() if tapered else None
+    system = single_beam_system(beam_class(L, 6, plate(), sections=sections), radius=0.35, twist=np.radians(30), motion="fixed",
                                 precone=np.radians(5), gravity=(0, -9.81, 0),
                                 tip_body=TipBody(0.05, (1e-5, 2e-5, 2.5e-5), (0.01, 0.002, -0.001)))
     st = solve_static(system, load_steps=3)

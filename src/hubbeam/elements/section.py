@@ -155,3 +155,23 @@ class SpanSections:
         xs = np.clip(np.asarray(x, dtype=float), 0.0, self.length)
         k = np.clip(np.searchsorted(self.x, xs, side="right") - 1, 0, self.x.size - 2)
         return (self.pretwist[k + 1] - self.pretwist[k]) / (self.x[k + 1] - self.x[k])
+
+
+def span_properties(section: Section, sections: SpanSections | None, x) -> np.ndarray:
+    """The :data:`COLUMNS` of a beam at stations ``x`` (m from the root; scalar or array), shape
+    (..., 11): from its span-wise table ``sections`` when it has one, else the uniform ``section``
+    throughout (pretwist 0)."""
+    if sections is None:
+        return np.broadcast_to(rectangle_constants(section), np.shape(x) + (len(COLUMNS),)).copy()
+    return sections.at(x)
+
+
+def check_span(length: float, sections: SpanSections | None, structural_damping: float) -> float:
+    """ValueError unless the table's last station is at the beam's ``length`` (m) and the
+    structural damping c (s) is finite and >= 0; returns c as a float."""
+    if sections is not None and not np.isclose(sections.length, length, rtol=1e-12, atol=0.0):
+        raise ValueError(f"sections: the last station ({sections.length} m) must be at the beam's length ({length} m)")
+    c = float(structural_damping)
+    if not (np.isfinite(c) and c >= 0.0):
+        raise ValueError(f"structural_damping: must be >= 0 s (got {structural_damping!r})")
+    return c

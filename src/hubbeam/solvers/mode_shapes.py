@@ -69,11 +69,6 @@ def match_modes(previous: np.ndarray, current: np.ndarray) -> tuple[np.ndarray, 
     return index, mac[np.arange(mac.shape[0]), index]
 
 
-def span_stations(part, points_per_element: int = 8) -> np.ndarray:
-    """Equally spaced stations (m from the root, root and tip included) of a beam part."""
-    return np.linspace(0.0, part.length, part.beam.elements * points_per_element + 1)
-
-
 def span_shapes(system, x, F, shapes, points_per_element: int = 8):
     """Each beam's centre-line displacement (axial, flap, lag) and section twist along its span
     for every mode (columns of ``shapes``): a list over beams of (stations (n,) m,
@@ -81,7 +76,7 @@ def span_shapes(system, x, F, shapes, points_per_element: int = 8):
     modal coordinate), complex for complex shapes."""
     out = []
     for k, part, q, chart in system.parts(x, F):
-        xs = span_stations(part, points_per_element)
+        xs = part.stations(points_per_element)
         disp, twist = [], []
         for u in np.asarray(shapes).T:
             d, t = part.span_shape(q, chart, u[system.layout.beam_x(k)], x[0], xs)

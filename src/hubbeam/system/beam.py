@@ -24,7 +24,7 @@ from hubbeam.elements.ancf.chart import choose_director, frame_from_director
 from hubbeam.elements.ancf.frame import section_frame, section_frames
 from hubbeam.elements.ancf.strain import strain_measures, strain_measures_at
 from hubbeam.elements.hermite import gauss_legendre, hermite
-from hubbeam.elements.section import COLUMN, Section, SpanSections, rectangle_constants
+from hubbeam.elements.section import COLUMN, Section, SpanSections, check_span, span_properties
 from hubbeam.errors import ChartSingularityError
 
 #: Names of the 8 coordinates of an ANCF node (Eq. 14).
@@ -62,18 +62,10 @@ class AncfBeam:
         xi, w = gauss_legendre(self.gauss_points)
         S, dS, d2S = hermite(xi, self.element_length)
         self._tables = (np.ascontiguousarray(S), np.ascontiguousarray(dS), np.ascontiguousarray(d2S), w)
-        if self.sections is not None and not np.isclose(self.sections.length, self.length, rtol=1e-12, atol=0.0):
-            raise ValueError(f"sections: the last station ({self.sections.length} m) is not at the beam's length "
-                             f"({self.length} m)")
-        self.structural_damping = float(self.structural_damping)
-        if not self.structural_damping >= 0.0:
-            raise ValueError(f"structural_damping: must be >= 0 s (got {self.structural_damping})")
+        self.structural_damping = check_span(self.length, self.sections, self.structural_damping)
         #: the section's properties (:data:`~hubbeam.elements.section.COLUMNS`) at every Gauss point
         points = (np.arange(self.elements)[:, None] + np.asarray(xi)[None, :]) * self.element_length
-        if self.sections is None:
-            props = np.broadcast_to(rectangle_constants(self.section), points.shape + (len(COLUMN),))
-        else:
-            props = self.sections.at(points)
+        props = span_properties(self.section, self.sections, points)
         self._stiffness = np.ascontiguousarray(props[..., _STIFFNESS])  # (n_el, ng, 4) N, N m^2
         self._inertia = np.ascontiguousarray(props[..., _INERTIA])  # (n_el, ng, 3) kg m
         self._rho_a = np.ascontiguousarray(props[..., COLUMN["rho_A"]])  # (n_el, ng) kg/m

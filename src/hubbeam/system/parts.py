@@ -19,7 +19,7 @@ from dataclasses import replace
 import numpy as np
 
 from hubbeam.elements.hermite import gauss_legendre
-from hubbeam.elements.section import COLUMN
+from hubbeam.elements.section import COLUMN, span_properties
 from hubbeam.system.mount import Mount, axis_frame
 
 #: the parts of a beam's kinetic energy (:meth:`BeamPart.kinetic_energy_split`), in the order
@@ -118,11 +118,13 @@ class BeamPart(ABC):
         """Width b (m, along m) and thickness h (m, along n) of the section at the station
         (m from the root), from the beam's span-wise table when it has one. What draws or samples
         a section (a strain gauge's 'upper' face z = +h/2) asks here, not the section itself."""
-        sections = self.beam.sections
-        if sections is None:
-            return float(self.section.width), float(self.section.thickness)
-        row = sections.at(float(station))
+        row = self.properties(float(station))
         return float(row[COLUMN["width"]]), float(row[COLUMN["thickness"]])
+
+    def properties(self, stations) -> np.ndarray:
+        """The section's :data:`~hubbeam.elements.section.COLUMNS` at the stations (m from the
+        root; scalar or array), from the beam's span-wise table when it has one."""
+        return span_properties(self.section, self.beam.sections, stations)
 
     def centre_line(self, q: np.ndarray, chart: np.ndarray, points_per_element: int = 8) -> np.ndarray:
         """Points of the deformed centre line (global, m), root to tip, at :meth:`stations`."""
@@ -136,14 +138,9 @@ class BeamPart(ABC):
         section's angular velocity (rad/s), global). Both are linear in u; with u a mode shape
         they are the centre line's displacement and the section's small rotation."""
 
-    def section_inertia(self) -> np.ndarray:
-        """The section's rotary inertia per length about (tau, m, n): rho (I_y + I_z, I_y, I_z) (kg m)."""
-        sec = self.section
-        return sec.density * np.array([sec.i_y + sec.i_z, sec.i_y, sec.i_z])
-
-    def span_stations(self, gauss_points: int = 4) -> tuple[np.ndarray, np.ndarray]:
+    def span_quadrature(self, gauss_points: int) -> tuple[np.ndarray, np.ndarray]:
         """Gauss stations along the span (m from the root) and their weights (m): ``gauss_points``
-        per element of the mesh (4: exact for the cubic centre-line velocities' squares)."""
+        per element of the mesh."""
         xi, w = gauss_legendre(gauss_points)
         le = self.length / self.beam.elements
         e = np.arange(self.beam.elements)[:, None]
@@ -161,8 +158,8 @@ class BeamPart(ABC):
         - ``axial``: centre-line motion along a_1;
         - ``torsion``: section rotation about a_1.
 
-        Per length the energy is rho A |v|^2 / 2 + omega . J omega / 2 (J the section's rotary
-        inertia, its frame at q); the rotary part is split as sum_i (omega . a_i)(J omega . a_i) / 2,
+        Per length the energy is rho A |v|^2 / 2 + omega . J omega / 2 (rho A and J, the rotary
+        inertia, of the local section; its frame at q); the rotary part is split as sum_i (omega . a_i)(J omega . a_i) / 2,
         so the four parts add up to the whole kinetic energy. A tip body adds m |v_cm|^2 / 2
         (v_cm = v + omega x (R c), c its offset) and omega . J_b omega / 2 the same way."""
         u = np.asarray(u)
@@ -170,11 +167,12 @@ class BeamPart(ABC):
             re, im = (self.kinetic_energy_split(q, chart, part, theta) for part in (u.real, u.imag))
             return {k: re[k] + im[k] for k in BEAM_MOTIONS}
         a = axis_frame(self.mount.params(), float(theta))
-        x, w = self.span_stations()
+        x, w = self.span_quadrature(self.beam.gauss_points)  # the beam's own rule: its mass matrix's quadrature
         frames, vel, omega = self.section_motion(q, chart, u, x)
-        J = self.section_inertia()
-        J_omega = np.einsum("nij,j,nkj,nk->ni", frames, J, frames, omega)  # R J R^T omega
-        trans = 0.5 * self.section.mass_per_length * np.einsum("n,ni->i", w, (vel @ a) ** 2)
+        props = self.properties(x)  # the local section: rho A (kg/m), rotary inertias about (tau, m, n) (kg m)
+        J = props[:, [COLUMN["I_tau"], COLUMN["I_m"], COLUMN["I_n"]]]
+        J_omega = np.einsum("nij,nj,nkj,nk->ni", frames, J, frames, omega)  # R J R^T omega
+        trans = 0.5 * np.einsum("n,ni->i", w * props[:, COLUMN["rho_A"]], (vel @ a) ** 2)
         rot = 0.5 * np.einsum("n,ni->i", w, (omega @ a) * (J_omega @ a))
         body = self.tip_body
         if body is not None:

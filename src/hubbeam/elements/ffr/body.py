@@ -62,7 +62,7 @@ import numpy as np
 
 from hubbeam.elements.ffr.shape import NODE_DOFS, displacement_matrix, line_shapes
 from hubbeam.elements.hermite import gauss_legendre
-from hubbeam.elements.section import COLUMN, Section, SpanSections, rectangle_constants
+from hubbeam.elements.section import COLUMN, Section, SpanSections, check_span, span_properties
 
 
 def skew(a: np.ndarray) -> np.ndarray:
@@ -93,11 +93,7 @@ class FfrBeam:
     _rows: dict = field(init=False, repr=False, compare=False, default_factory=dict)  # station rows, once each
 
     def __post_init__(self) -> None:
-        if self.sections is not None and not np.isclose(self.sections.length, self.length, rtol=1e-9, atol=0.0):
-            raise ValueError(f"sections: the last station ({self.sections.length} m) must be at the beam's length "
-                             f"({self.length} m)")
-        if not (np.isfinite(self.structural_damping) and self.structural_damping >= 0.0):
-            raise ValueError(f"structural_damping: must be >= 0 s, got {self.structural_damping!r}")
+        self.structural_damping = check_span(self.length, self.sections, self.structural_damping)
         #: p = basis @ eta for a modally reduced beam (nodal ndof x ndof); None: nodal
         self.basis = None
         #: a reduced beam's kept clamped-free modes: shapes over p (columns) and frequencies (Hz)
@@ -155,9 +151,7 @@ class FfrBeam:
         """The section columns (:data:`~hubbeam.elements.section.COLUMNS`: EA, GJ, EI_y, EI_z (N, N m^2),
         rho_A (kg/m), I_tau, I_m, I_n (kg m), width, thickness (m), pretwist (rad)) at stations ``x``
         (m; scalar or array): from ``sections``, or ``section`` throughout. Shape (..., 11)."""
-        if self.sections is None:
-            return np.broadcast_to(rectangle_constants(self.section), np.shape(x) + (len(COLUMN),)).copy()
-        return self.sections.at(x)
+        return span_properties(self.section, self.sections, x)
 
     def section_axes(self, x: float) -> np.ndarray:
         """The local section axes m', n' at station x as columns of a 2 x 2 matrix over the body's
@@ -172,10 +166,6 @@ class FfrBeam:
             return float(y), float(z)
         yb, zb = self.section_axes(x) @ np.array([y, z], dtype=float)
         return float(yb), float(zb)
-
-    def thickness_at(self, x: float) -> float:
-        """The section's thickness h (m, along n') at station x."""
-        return float(self.properties(float(x))[COLUMN["thickness"]])
 
     @property
     def damping_matrix(self) -> np.ndarray:
