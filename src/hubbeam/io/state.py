@@ -57,12 +57,10 @@ class RunState:
 
 
 def hub_rotation(theta) -> np.ndarray:
-    """A_h(theta) (nt x 3 x 3) of Eq. 74 for every hub angle (rad): i_h = (cos, 0, sin)."""
-    theta = np.atleast_1d(np.asarray(theta, dtype=float))
-    c, s = np.cos(theta), np.sin(theta)
-    out = np.zeros((theta.size, 3, 3))
-    out[:, 0, 0], out[:, 0, 2], out[:, 1, 1], out[:, 2, 0], out[:, 2, 2] = c, -s, 1.0, s, c
-    return out
+    """A_h(theta) (nt x 3 x 3) of Eq. 74 (:func:`hubbeam.system.hub.hub_frame`) for every hub angle (rad)."""
+    from hubbeam.system.hub import hub_frame
+
+    return np.array([hub_frame(float(t)) for t in np.atleast_1d(np.asarray(theta, dtype=float))]).reshape(-1, 3, 3)
 
 
 def _text(value) -> str:
