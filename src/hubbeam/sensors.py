@@ -6,7 +6,7 @@ it names one) measure the beam their ``beam`` key names (default: the first).
 
 from __future__ import annotations
 
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.hub_system import HubSystem, energy_sums
 
 UNITS = {
     "surface_strain": "1", "hub_angle": "rad", "hub_angular_velocity": "rad/s", "hub_torque": "N m",
@@ -45,36 +45,65 @@ def section_point(sensor, system: HubSystem) -> tuple[float, float]:
     return sensor.y, sensor.z
 
 
-def _energy(sensor, system, state, work):
+def _energy(sensor, system):
     beam = getattr(sensor, "beam", None)
-    e = system.energies(state.x, state.v, state.chart, None if beam is None else system.beam_index(beam))
-    e["total"] = e["kinetic"] + e["strain"] + e["gravity"]
-    if beam is None:
-        e["dissipated"] = work["dissipated"]
-        e["drive"] = work["drive"]
-    return e
+    index = None if beam is None else system.beam_index(beam)
+
+    def energy(state, work):
+        given = work.get("energies")  # (hub, beams) computed for a whole chunk of records
+        e = (energy_sums(*given, index) if given is not None
+             else system.energies(state.x, state.v, state.chart, index))
+        e["total"] = e["kinetic"] + e["strain"] + e["gravity"]
+        if beam is None:
+            e["dissipated"] = work["dissipated"]
+            e["drive"] = work["drive"]
+        return e
+    return energy
 
 
-def _surface_strain(sensor, system, state, work):
+def _surface_strain(sensor, system):
     y, z = section_point(sensor, system)
-    return system.surface_strain(state.x, state.chart, sensor.x, y, z, _beam(sensor, system))
+    beam = _beam(sensor, system)
+    return lambda state, work: system.surface_strain(state.x, state.chart, sensor.x, y, z, beam)
 
 
-#: sensor kind -> function(sensor, system, state, work) giving a float or a dict of parts
+def _tip_deflection(sensor, system):
+    beam = _beam(sensor, system)
+
+    def tip(state, work):
+        given = work.get("tips")  # computed for a whole chunk of records
+        if given is None:
+            return system.tip_displacement(state.x, beam)
+        return {"radial": float(given[beam, 0]), "vertical": float(given[beam, 1]),
+                "tangential": float(given[beam, 2])}
+    return tip
+
+
+#: sensor kind -> factory(sensor, system) of its measurement function(state, work), which
+#: gives a float or a dict of parts; what depends on the sensor alone is found once
 MEASURES = {
     "surface_strain": _surface_strain,
-    "hub_angle": lambda sensor, system, state, work: float(state.x[0]),
-    "hub_angular_velocity": lambda sensor, system, state, work: float(state.v[0]),
-    "hub_torque": lambda sensor, system, state, work: system.drive_torque(state.lam),
-    "applied_torque": lambda sensor, system, state, work: system.applied_torque(state.t, state.x, state.v),
-    "tip_deflection": lambda sensor, system, state, work: system.tip_displacement(state.x, _beam(sensor, system)),
+    "hub_angle": lambda sensor, system: lambda state, work: float(state.x[0]),
+    "hub_angular_velocity": lambda sensor, system: lambda state, work: float(state.v[0]),
+    "hub_torque": lambda sensor, system: lambda state, work: system.drive_torque(state.lam),
+    "applied_torque": lambda sensor, system: lambda state, work: system.applied_torque(state.t, state.x, state.v),
+    "tip_deflection": _tip_deflection,
     "energy": _energy,
-    "angular_momentum": lambda sensor, system, state, work: system.angular_momentum(state.x, state.v, state.chart),
-    "constraint_violation": lambda sensor, system, state, work: system.constraint_violation(state.x, state.chart,
-                                                                                             state.t),
+    "angular_momentum": lambda sensor, system: lambda state, work: system.angular_momentum(state.x, state.v,
+                                                                                            state.chart),
+    "constraint_violation": lambda sensor, system: lambda state, work: system.constraint_violation(
+        state.x, state.chart, state.t),
 }
+
+
+def prepare(sensor, system: HubSystem):
+    """The measurement function(state, work) of one sensor on ``system``: the value (float, or
+    dict of parts) at an integrator state; ``work`` holds the dissipated and drive work (J) up
+    to it and, optionally, what :meth:`HubSystem.record_measures` gave for the state:
+    ``energies`` = (hub, beams) and ``tips``."""
+    return MEASURES[sensor.kind](sensor, system)
 
 
 def measure(sensor, system: HubSystem, state, work: dict[str, float]):
     """The value (float, or dict of parts) of one sensor at an integrator state."""
-    return MEASURES[sensor.kind](sensor, system, state, work)
+    return prepare(sensor, system)(state, work)

@@ -9,7 +9,7 @@ from decimal import Decimal
 import numpy as np
 
 from hubbeam import interrupt
-from hubbeam.sensors import measure
+from hubbeam.sensors import prepare
 from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.errors import ChartSingularityError, ComputationError, ConvergenceError
@@ -108,8 +108,12 @@ class PythonSteps:
     :meth:`advance` takes a chunk of steps and returns the states at the output steps in
     it, each with the work done up to then."""
 
-    def __init__(self, system: HubSystem, params, newton, dt, state: ga.AlphaState) -> None:
+    def __init__(self, system: HubSystem, params, newton, dt, state: ga.AlphaState,
+                 measures: tuple[bool, bool] = (False, False)) -> None:
         self.system, self.params, self.newton, self.dt = system, params, newton, dt
+        # (energies, tip displacements): the compiled steps add them to the records' work
+        # (the sensors then read them there)
+        self.measures = measures
         self.work = {"dissipated": 0.0, "drive": 0.0}
         self.kept = None  # the iteration matrix kept between steps
         self.power = self._power(state)
@@ -150,8 +154,8 @@ class CompiledSteps(PythonSteps):
     """The same steps in compiled code (:func:`hubbeam.solvers.compiled_alpha.advance`) for
     systems whose every term compiles (every beam ANCF): a chunk of steps is one call."""
 
-    def __init__(self, system, params, newton, dt, state) -> None:
-        super().__init__(system, params, newton, dt, state)
+    def __init__(self, system, params, newton, dt, state, measures: tuple[bool, bool] = (False, False)) -> None:
+        super().__init__(system, params, newton, dt, state, measures)
         self.model = system.model()
         layout = system.layout
         storage = BorderedBandMatrix.empty(layout.nz, layout.border, system.bandwidth)
@@ -186,6 +190,13 @@ class CompiledSteps(PythonSteps):
         rt, rx, rv, rxdd, ra, rlam, rwork = records
         out = [(ga.AlphaState(rt[i], rx[i], rv[i], rxdd[i], ra[i], rlam[i], state.chart),
                 {"dissipated": rwork[i, 0], "drive": rwork[i, 1]}) for i in range(n_rec)]
+        energies, tips = self.measures
+        if (energies or tips) and n_rec:
+            measured = self.system.record_measures(rx, rv, chart, n_rec, energies)
+            for i, (_, work) in enumerate(out):
+                work["tips"] = measured["tips"][i]
+                if energies:
+                    work["energies"] = (measured["hub"][i], measured["beams"][i])
         new = ga.AlphaState(t, x, v, xdd, a, lam, state.chart)
         message = ga.OUTCOME_MESSAGES.get(ga.Outcome(status))
         error = None
@@ -230,14 +241,17 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
     # the double nearest the decimal t0 + step * dt (not the sum of steps, which drifts: 20.00000000000146)
     t0_decimal, dt_decimal = Decimal(repr(float(state.t))), Decimal(repr(float(dt)))
 
+    measures = [(s.name, prepare(s, system)) for s in sensors]
+
     def record(st, work):
         st = replace(st, t=float(t0_decimal + dt_decimal * min(len(traj.times) * every, n_steps)))
-        traj.append(st.t, {s.name: measure(s, system, st, work) for s in sensors},
+        traj.append(st.t, {name: measure(st, work) for name, measure in measures},
                     None if recorder is None else recorder(system, st))
 
     record(state, {"dissipated": 0.0, "drive": 0.0})
     steps_class = CompiledSteps if system.compiled else PythonSteps
-    stepper = steps_class(system, params, newton, dt, state)
+    kinds = {s.kind for s in sensors}
+    stepper = steps_class(system, params, newton, dt, state, ("energy" in kinds, "tip_deflection" in kinds))
     chunk_size = max(1, -(-n_steps // PROGRESS_UPDATES))
     chunk = min(chunk_size, 8)  # the first chunks are short; later ones last about CHUNK_SECONDS
     start = time.perf_counter()

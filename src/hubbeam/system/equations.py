@@ -24,11 +24,13 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ancf import kernels
-from hubbeam.elements.ffr.kernels import ffr_body_terms, ffr_dissipated_power, ffr_load_stiffness
+from hubbeam.elements.ffr.kernels import (cardan, ffr_body_terms, ffr_dissipated_power, ffr_energies,
+                                          ffr_load_stiffness)
 from hubbeam.system.assembly import add_element_blocks_banded, add_entry
 from hubbeam.system.clamp import clamp_equations
 from hubbeam.system.laws import drive_values, torque_values
 from hubbeam.system.loads import tip_moment_terms
+from hubbeam.system.mount import axis_frame, beam_hub_frame
 from hubbeam.system.tip_body import ancf_tip_body_terms
 
 NODE_DOFS = kernels.NODE_DOFS
@@ -55,6 +57,7 @@ class FfrStack(NamedTuple):
     """The FFR beams' constants (:func:`hubbeam.elements.ffr.kernels.pack`), one row per FFR
     beam, zero-padded to the largest beam (the kernels read the leading nf entries)."""
 
+    index: np.ndarray  # int64 (nb,): the beam's place among all beams
     x0: np.ndarray  # int64 (nb,): where q_k starts in x
     lambda0: np.ndarray  # int64 (nb,): where its clamp multipliers start in lambda
     nf: np.ndarray  # int64 (nb,): elastic coordinates
@@ -420,6 +423,113 @@ def dissipated_power(model, F, x, v):
                                             model.reference[k], model.structural_damping[k], 0.0, 0.0, force,
                                             np.empty((0, 16, 16)))[2]
     return power
+
+
+@njit(cache=True)
+def beam_energies(model, F, x, v, out):
+    """Kinetic, strain and gravity energy (J) of every beam at (x, v) in the charts F, tip
+    bodies included: out[k] = (T, U, V) of beam k (its place among all beams). Returns the
+    hub's kinetic energy J theta'^2 / 2 (J)."""
+    z8 = np.zeros(8)
+    force8 = np.empty(8)
+    no_block = np.empty((0, 0))
+    for k in range(model.beam_index.shape[0]):
+        n_el = model.beam_elements[k]
+        nq = NODE_DOFS * (n_el + 1)
+        x0 = model.beam_x0[k]
+        Fk = F[model.beam_index[k]]
+        q = x[x0 : x0 + nq]
+        qd = v[x0 : x0 + nq]
+        S, dS, d2S, w, le = model.S[k], model.dS[k], model.d2S[k], model.w[k], model.element_length[k]
+        term = np.zeros(nq)
+        kernels.translational_mass_product(model.trans_mass[k], qd, term)
+        kinetic = 0.0
+        potential = 0.0
+        for j in range(nq):
+            kinetic += 0.5 * qd[j] * term[j]
+            potential -= model.gravity_load[x0 + j] * q[j]
+        kinetic += kernels.rotary_inertia_kernel(q, qd, np.zeros(nq), Fk, le, S, dS, w, model.inertia[k], 0.0, term,
+                                                 np.empty((0, 16, 16)))
+        strain = kernels.elastic_kernel(q, qd, Fk, le, S, dS, d2S, w, model.stiffness[k], model.reference[k], 0.0, 0.0,
+                                        0.0, term, np.empty((0, 16, 16)))[0]
+        tb = model.tip_body[k]
+        if tb[0] > 0.0 or tb[1] > 0.0 or tb[2] > 0.0 or tb[3] > 0.0:
+            tip = nq - NODE_DOFS
+            t_tb, v_tb = ancf_tip_body_terms(tb, Fk, q[tip : tip + 8], qd[tip : tip + 8], z8, model.gravity, 0.0, 0.0,
+                                             force8, no_block)
+            kinetic += t_tb
+            potential += v_tb
+        i = model.beam_index[k]
+        out[i, 0] = kinetic
+        out[i, 1] = strain
+        out[i, 2] = potential
+    ff = model.ffr
+    for k in range(ff.nf.shape[0]):
+        n = 6 + ff.nf[k]
+        x0 = ff.x0[k]
+        inv, _, _ = ffr_arguments(model, k)
+        kinetic, strain, potential = ffr_energies(inv, x[x0 : x0 + n], v[x0 : x0 + n], model.gravity)
+        i = ff.index[k]
+        out[i, 0] = kinetic
+        out[i, 1] = strain
+        out[i, 2] = potential
+    return 0.5 * model.hub_inertia * v[0] * v[0]
+
+
+@njit(cache=True)
+def tip_displacements(model, x, out):
+    """Each beam's tip centroid displacement from its undeformed place along its own hub
+    frame i_k (radial), j0 (vertical), k_k (tangential) at x (m): out[k] for beam k (its place
+    among all beams)."""
+    theta = x[0]
+    tip_at = np.empty(3)
+    for k in range(model.beam_index.shape[0]):
+        tip = model.beam_x0[k] + NODE_DOFS * model.beam_elements[k]
+        for i in range(3):
+            tip_at[i] = x[tip + i]
+        _tip_from_mount(model.mount[k], theta, model.element_length[k] * model.beam_elements[k], tip_at,
+                        out[model.beam_index[k]])
+    ff = model.ffr
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    for k in range(ff.nf.shape[0]):
+        x0 = ff.x0[k]
+        nf = ff.nf[k]
+        cardan(x[x0 + 3], x[x0 + 4], x[x0 + 5], A, D)
+        rows = ff.tip_rows[k]
+        local = np.empty(3)
+        for i in range(3):
+            s = 0.0
+            for f in range(nf):
+                s += rows[i, f] * x[x0 + 6 + f]
+            local[i] = s
+        local[0] += ff.length[k]
+        for i in range(3):
+            tip_at[i] = x[x0 + i] + A[i, 0] * local[0] + A[i, 1] * local[1] + A[i, 2] * local[2]
+        _tip_from_mount(ff.mount[k], theta, ff.length[k], tip_at, out[ff.index[k]])
+
+
+@njit(cache=True)
+def _tip_from_mount(mount, theta, length, tip_at, out):
+    """out = A_k^T (tip_at - R i_k - L a_1): the tip's displacement on the beam's hub frame."""
+    A = beam_hub_frame(mount, theta)
+    a = axis_frame(mount, theta)
+    d = np.empty(3)
+    for i in range(3):
+        d[i] = tip_at[i] - mount[0] * A[i, 0] - length * a[i, 0]
+    for j in range(3):
+        out[j] = A[0, j] * d[0] + A[1, j] * d[1] + A[2, j] * d[2]
+
+
+@njit(cache=True)
+def record_measures(model, F, xs, vs, count, energies, hub, beams, tips):
+    """For the first ``count`` rows of xs, vs (one state each): when ``energies``, the hub's
+    kinetic energy into hub[r] and the beams' (:func:`beam_energies`) into beams[r] (J); the
+    beams' tip displacements (:func:`tip_displacements`) into tips[r] (m)."""
+    for r in range(count):
+        if energies:
+            hub[r] = beam_energies(model, F, xs[r], vs[r], beams[r])
+        tip_displacements(model, xs[r], tips[r])
 
 
 @njit(cache=True)

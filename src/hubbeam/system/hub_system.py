@@ -20,7 +20,7 @@ from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.assembly import BorderedBandMatrix, add_element_blocks_banded
 from hubbeam.elements.ffr.kernels import ffr_spin_stiffness, pack
 from hubbeam.system.equations import (CHART_SINGULAR, FFR_FIELD_NDIM, FfrStack, SystemModel, bandwidth_for, dissipated_power,
-                                      hub_power, system_equations)
+                                      hub_power, record_measures, system_equations)
 from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.layout import CLAMP_EQUATIONS, Layout
@@ -50,6 +50,17 @@ class Hub:
     @property
     def held(self) -> bool:
         return self.motion != "free"
+
+
+def energy_sums(hub: float, beams: np.ndarray, beam: int | None = None) -> dict[str, float]:
+    """{kinetic, strain, gravity} (J) from the hub's kinetic energy and the beams' rows
+    (kinetic, strain, gravity): of the whole system, or of beam number ``beam`` alone."""
+    if beam is not None:
+        return dict(zip(("kinetic", "strain", "gravity"), (float(e) for e in beams[beam])))
+    kinetic, strain, gravity = float(hub), 0.0, 0.0
+    for row in beams:  # in the beams' order, as a sum over the parts
+        kinetic, strain, gravity = kinetic + float(row[0]), strain + float(row[1]), gravity + float(row[2])
+    return {"kinetic": kinetic, "strain": strain, "gravity": gravity}
 
 
 class HubSystem:
@@ -264,7 +275,7 @@ class HubSystem:
                 stacked[(i,) + tuple(slice(0, n) for n in v.shape)] = v
             fields[name] = stacked
         ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
-        return FfrStack(ints([layout.beam_x(k).start for k, _ in ffr]),
+        return FfrStack(ints([k for k, _ in ffr]), ints([layout.beam_x(k).start for k, _ in ffr]),
                         ints([layout.clamp_lambda(k).start for k, _ in ffr]), ints([b.beam.ndof for _, b in ffr]),
                         np.array([b.mount.params() for _, b in ffr], dtype=float).reshape(len(ffr), 4),
                         **fields)
@@ -435,15 +446,24 @@ class HubSystem:
     def energies(self, x, v, F, beam: int | None = None) -> dict[str, float]:
         """Kinetic (hub and beams, rotary inertia and tip bodies included), strain and gravity
         energy (J); of one beam when ``beam`` is its index."""
-        total = {"kinetic": 0.0, "strain": 0.0, "gravity": 0.0}
-        if beam is None:
-            total["kinetic"] = 0.5 * self.hub.inertia * v[0] ** 2
-        for k, part, q, chart in self.parts(x, F):
-            if beam is not None and k != beam:
-                continue
-            for key, value in part.energies(q, v[self.layout.beam_x(k)], chart, self.gravity).items():
-                total[key] += value
-        return total
+        hub = 0.5 * self.hub.inertia * v[0] ** 2
+        beams = np.array([[e["kinetic"], e["strain"], e["gravity"]]
+                          for e in (part.energies(q, v[self.layout.beam_x(k)], chart, self.gravity)
+                                    for k, part, q, chart in self.parts(x, F))])
+        return energy_sums(hub, beams, beam)
+
+    def record_measures(self, xs, vs, F, count: int, energies: bool = True) -> dict[str, np.ndarray]:
+        """Measures of the first ``count`` states (rows of xs, vs; charts F) in compiled code
+        (:func:`~hubbeam.system.equations.record_measures`): ``tips`` (count, beams, 3) each
+        beam's tip displacement (radial, vertical, tangential, m); with ``energies`` also
+        ``hub`` (count,) the hub's kinetic energy and ``beams`` (count, beams, 3) each beam's
+        (kinetic, strain, gravity) energy (J), for :func:`energy_sums`."""
+        nb = len(self.beams)
+        out = {"hub": np.zeros(count if energies else 0), "beams": np.zeros((count if energies else 0, nb, 3)),
+               "tips": np.empty((count, nb, 3))}
+        record_measures(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(xs, dtype=float),
+                        np.ascontiguousarray(vs, dtype=float), count, energies, out["hub"], out["beams"], out["tips"])
+        return out
 
     def kinetic_energy_split(self, x, F, u) -> dict[str, float]:
         """The kinetic energy (J) of the system moving at the rate u about the configuration x

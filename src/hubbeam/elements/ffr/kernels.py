@@ -353,6 +353,58 @@ def ffr_dissipated_power(q, v, inv, drag):
 
 
 @njit(cache=True, error_model="numpy")
+def ffr_energies(inv, q, v, gravity):
+    """(kinetic, strain, gravity) energy of the FFR body (J) at the coordinates q and rates v
+    (6 + nf; a tip body is in the invariants): v^T H^T M_v H v / 2 (Eq. 66), the strain energy
+    of :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>` (p^T K p / 2, plus
+    (int_e EA dx) eps_e^2 / 2 per element with geometric stiffening) and -g . (m r_C + A0 S_t)."""
+    n = q.shape[0]
+    nf = n - 6
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    cardan(q[3], q[4], q[5], A, D)
+    vb = np.empty(n)
+    for i in range(3):
+        vb[i] = v[i]
+        vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
+    for f in range(nf):
+        vb[6 + f] = v[6 + f]
+    p = q[6:]
+    St = np.empty(3)
+    Q2 = np.empty((3, 3, nf))
+    R2 = np.empty((3, 3))
+    _moments(inv, p, p, False, nf, St, Q2, Q2, R2)
+    Mv = np.empty((n, n))
+    _mass_matrix(inv, nf, A, St, Q2, R2, Mv)
+    kinetic = 0.0
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s += Mv[i, j] * vb[j]
+        kinetic += 0.5 * vb[i] * s
+    K, EAl, a, G, stiff = inv[7], inv[8], inv[9], inv[10], inv[11]
+    strain = 0.0
+    for i in range(nf):
+        s = 0.0
+        for j in range(nf):
+            s += K[i, j] * p[j]
+        strain += 0.5 * p[i] * s
+    if stiff != 0.0:
+        for e in range(a.shape[0]):
+            eps = 0.0
+            for f in range(nf):
+                s = 0.0
+                for g in range(nf):
+                    s += G[e, f, g] * p[g]
+                eps += (a[e, f] + 0.5 * s) * p[f]
+            strain += 0.5 * EAl[e] * eps * eps
+    potential = 0.0
+    for i in range(3):
+        potential -= gravity[i] * (inv[0] * q[i] + A[i, 0] * St[0] + A[i, 1] * St[1] + A[i, 2] * St[2])
+    return kinetic, strain, potential
+
+
+@njit(cache=True, error_model="numpy")
 def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, load_factor, want_matrix,
                    force, block):
     """The FFR beam's generalized force and iteration matrix (what FfrPart.forces computes).

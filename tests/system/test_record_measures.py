@@ -1,0 +1,103 @@
+"""The compiled measures of recorded states (energies and tip displacements of every beam,
+:func:`hubbeam.system.equations.record_measures`) that the sensors read during a compiled run.
+
+Checked against the Python parts' own energies and tip positions (an assembled mass matrix,
+numpy invariants and frames: other code), and the new FFR energy kernel against derivatives
+it must have: the elastic force is the gradient of its strain energy, the Newton matrix's mass
+block is the Hessian of its kinetic energy in the rates, and the gravity load is minus the
+gradient of its potential (finite differences).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hubbeam import api
+from hubbeam.elements.ffr.kernels import ffr_body_terms, ffr_energies, pack
+from hubbeam.io.scenario import load_example
+from hubbeam.simulation import initial_state
+from hubbeam.system.hub_system import energy_sums
+
+CASES = {
+    "ancf exp1": ("exp1", []),
+    "ffr nodal, stiffened": ("exp1", ['beam.formulation="ffr"', "beam.geometric_stiffening=true"]),
+    "ffr modal, stiffened": ("exp1", ['beam.formulation="ffr"', "beam.modes=4", "beam.geometric_stiffening=true"]),
+    "three blades, tip bodies": ("rotor3", []),
+    "ancf and ffr panels, tip body": ("spacecraft", ['beams[1].formulation="ffr"']),
+    "pretwisted tapered blade": ("blade", []),
+}
+
+
+def perturbed_states(system, count=3, seed=0):
+    rng = np.random.default_rng(seed)
+    st = initial_state(system)
+    xs = np.array([st.x + 1e-3 * rng.standard_normal(st.x.size) for _ in range(count)])
+    vs = np.array([st.v + 0.1 * rng.standard_normal(st.v.size) for _ in range(count)])
+    return xs, vs, st.chart
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_compiled_measures_are_the_parts_energies_and_tips(case):
+    name, overrides = CASES[case]
+    system = api.build_system(load_example(name, overrides))
+    xs, vs, chart = perturbed_states(system)
+    got = system.record_measures(xs, vs, chart, len(xs))
+    for r in range(len(xs)):
+        for beam in [None, *range(len(system.beams))]:
+            want = system.energies(xs[r], vs[r], chart, beam)
+            have = energy_sums(got["hub"][r], got["beams"][r], beam)
+            for key, value in want.items():
+                assert have[key] == pytest.approx(value, rel=1e-13, abs=1e-15), (beam, key)
+        for k in range(len(system.beams)):
+            tip = system.tip_displacement(xs[r], k)
+            assert np.allclose(got["tips"][r, k], [tip["radial"], tip["vertical"], tip["tangential"]],
+                               rtol=0, atol=1e-15)
+
+
+def test_without_energies_only_tips_are_measured():
+    system = api.build_system(load_example("rotor3"))
+    xs, vs, chart = perturbed_states(system, 2)
+    got = system.record_measures(xs, vs, chart, 2, energies=False)
+    assert got["hub"].shape == (0,) and got["beams"].shape == (0, 3, 3) and got["tips"].shape == (2, 3, 3)
+
+
+@pytest.mark.parametrize("modes", [None, 3])
+def test_ffr_energies_are_the_potentials_of_its_forces(modes):
+    overrides = ['beam.formulation="ffr"', "beam.geometric_stiffening=true", "beam.elements=4"]
+    system = api.build_system(load_example("exp1", overrides + ([f"beam.modes={modes}"] if modes else [])))
+    arrays = pack(system.beams[0])
+    inv, tip, drag = arrays.inv, arrays.tip, arrays.drag()
+    rng = np.random.default_rng(1)
+    n = 6 + system.beams[0].beam.ndof
+    q = 0.05 * rng.standard_normal(n)
+    v = rng.standard_normal(n)
+    g = np.array([0.3, -9.81, 0.2])
+    zero = np.zeros(n)
+
+    def energies(qq, vv, gg=g):
+        return np.array(ffr_energies(inv, qq, vv, gg))
+
+    # elastic force = dU/dp: the body force at rest without gravity or
+    # tip loads (load factor 0) is the elastic force on p
+    force = np.empty(n)
+    ffr_body_terms(inv, q, zero, zero, np.zeros(3), tip, drag, 0.0, 0.0, 0.0, 0.0, False, force,
+                   np.empty((0, 0)))
+    h = 1e-6
+    for f in range(6, n):
+        e = np.zeros(n)
+        e[f] = h
+        dU = (energies(q + e, v)[1] - energies(q - e, v)[1]) / (2 * h)
+        assert dU == pytest.approx(force[f], rel=1e-6, abs=1e-9 * np.max(np.abs(force)))
+    # kinetic energy = v^T M v / 2 with M the Newton matrix's mass block (coef_m = 1)
+    M = np.empty((n, n))
+    ffr_body_terms(inv, q, zero, zero, g, tip, drag, 1.0, 0.0, 0.0, 1.0, True, np.empty(n), M)
+    assert energies(q, v)[0] == pytest.approx(0.5 * v @ M @ v, rel=1e-12)
+    # gravity potential: dV/dq = -Q_g, the difference of the body force at rest with and without gravity
+    with_g = np.empty(n)
+    ffr_body_terms(inv, q, zero, zero, g, tip, drag, 0.0, 0.0, 0.0, 1.0, False, with_g, np.empty((0, 0)))
+    for i in range(n):
+        e = np.zeros(n)
+        e[i] = h
+        dV = (energies(q + e, v)[2] - energies(q - e, v)[2]) / (2 * h)
+        assert dV == pytest.approx(with_g[i] - force[i], rel=1e-6, abs=1e-9 * np.max(np.abs(with_g - force)))
