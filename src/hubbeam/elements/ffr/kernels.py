@@ -319,6 +319,18 @@ def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
 
 
 @njit(cache=True, error_model="numpy")
+def _frame_and_rates(q, v, A, D, vb):
+    """The body frame A0 and the Cardan rate matrix D at q (into A, D), and the v-space rates
+    vb = H q' = [r_C', omega^b = D Theta', p'] (the first vb.shape[0] of them: 6 for the frame's)."""
+    cardan(q[3], q[4], q[5], A, D)
+    for i in range(3):
+        vb[i] = v[i]
+        vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
+    for f in range(6, vb.shape[0]):
+        vb[f] = v[f]
+
+
+@njit(cache=True, error_model="numpy")
 def ffr_dissipated_power(q, v, inv, drag):
     """The power dissipated by the drag (Eq. 64) and the structural damping at (q, q'),
     -Q_d . v + p'^T C_struct p' (W, >= 0): what :func:`ffr_body_terms` returns, without the
@@ -337,11 +349,8 @@ def ffr_dissipated_power(q, v, inv, drag):
         return power
     A = np.empty((3, 3))
     D = np.empty((3, 3))
-    cardan(q[3], q[4], q[5], A, D)
     vb = np.empty(6)
-    for i in range(3):
-        vb[i] = v[i]
-        vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
+    _frame_and_rates(q, v, A, D, vb)
     rb = np.empty(3)
     ub = np.empty(3)
     rd = np.empty(3)
@@ -362,13 +371,8 @@ def ffr_energies(inv, q, v, gravity):
     nf = n - 6
     A = np.empty((3, 3))
     D = np.empty((3, 3))
-    cardan(q[3], q[4], q[5], A, D)
     vb = np.empty(n)
-    for i in range(3):
-        vb[i] = v[i]
-        vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
-    for f in range(nf):
-        vb[6 + f] = v[6 + f]
+    _frame_and_rates(q, v, A, D, vb)
     p = q[6:]
     St = np.empty(3)
     Q2 = np.empty((3, 3, nf))
@@ -424,20 +428,17 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     nf = n - 6
     A = np.empty((3, 3))
     D = np.empty((3, 3))
-    cardan(q[3], q[4], q[5], A, D)
 
     # v-space rates and accelerations
     vb = np.empty(n)
+    _frame_and_rates(q, v, A, D, vb)
     vdot = np.empty(n)
     h = np.empty(3)
     cardan_rate(q[4], q[5], v[3], v[4], v[5], h)
     for i in range(3):
-        vb[i] = v[i]
-        vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
         vdot[i] = acc[i]
         vdot[3 + i] = D[i, 0] * acc[3] + D[i, 1] * acc[4] + D[i, 2] * acc[5] + h[i]
     for f in range(nf):
-        vb[6 + f] = v[6 + f]
         vdot[6 + f] = acc[6 + f]
     p = q[6:]
     pd = v[6:]
