@@ -21,3 +21,22 @@ def test_a_fast_drive_above_the_kept_modes_is_reported():
     assert not any("excites" in w for w in api.reduction_warnings(slow))
     fast = load_example("exp2", FFR + ["beam.modes=2", "hub.drive.T=0.05", "hub.drive.t1=0.04"])
     assert any("excites up to about 40 Hz" in w for w in api.reduction_warnings(fast))
+
+
+def test_a_python_torque_law_says_it_takes_the_python_steps():
+    """Only a Python-callable torque law leaves the compiled path, and api.run says so; the
+    same scenario with its own (compiled) PD law runs without a word."""
+    import warnings
+
+    import pytest
+
+    from hubbeam.system.laws import TorqueLaw
+
+    arm = load_example("arm", ["beam.elements=2", "analysis.t_end=0.02", 'analysis.start="rest"'])
+    with pytest.warns(UserWarning, match="Python step path"):
+        traj, failure = api.run(arm, torque=TorqueLaw.callable(lambda t, theta, omega: 1.0 - theta))
+    assert failure is None and traj.factorisations is None  # the Python steps count no factorisations
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        traj, failure = api.run(arm)
+    assert failure is None and traj.factorisations > 0

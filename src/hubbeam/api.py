@@ -352,6 +352,11 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
         system = build_system(scenario, torque)
+        if not system.compiled:  # the one model that cannot integrate in compiled code says so
+            import warnings
+
+            warnings.warn(f"{system.hub.torque!r} is a Python function: the run takes the Python step path, "
+                          "several times slower than the compiled laws of a scenario file", stacklevel=2)
         recorder = None
         if state:
             from hubbeam.snapshots import StateRecorder

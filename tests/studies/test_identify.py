@@ -41,3 +41,20 @@ def test_two_coefficients_truth_inside_the_band_and_the_correlation_is_reported(
     assert np.all(np.abs(fit.values - TRUTH) < 3 * fit.ci95)
     assert fit.correlation[0, 1] < -0.9
     assert fit.rms < 0.015 * np.std(clean)
+
+
+def test_a_part_of_a_sensor_with_underscores_on_a_two_beam_model():
+    """spacecraft's sensors are called tip_a, tip_b, root_strain_a: the column tip_b_tangential is
+    the part 'tangential' of the sensor 'tip_b' (a signal used to be split at its first '_' and
+    refused). The tip mass of the second panel, by name, is recovered from its own tip's lag."""
+    from hubbeam.studies.identify import signal_columns
+
+    base = load_example("spacecraft", ["beams[*].elements=2", "analysis.dt=0.01", "analysis.t_end=3",
+                                       "analysis.output_dt=0.05"])
+    assert "tip_b_tangential" in signal_columns(base)
+    times = np.arange(0.0, 3.0 + 1e-9, 0.05)
+    measured = model_signal(base, ["beams.panel_b.tip_body.mass"], [1.4], "tip_b_tangential", times)
+    assert np.max(np.abs(measured)) > 1e-4
+    fit = identify(base, times, measured, ["beams.panel_b.tip_body.mass"], signal="tip_b_tangential")
+    assert fit.initial[0] == 1.0
+    assert fit.values[0] == pytest.approx(1.4, rel=1e-4)

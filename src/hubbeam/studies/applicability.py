@@ -63,13 +63,14 @@ def model_errors(data: dict, thickness: float, ratio: float) -> dict:
 
     sc = validate(apply_overrides(data, [f"beams[0].thickness={float(thickness)!r}"]))
     rest = api.build_system(with_formulation(sc, "ancf", ['hub.motion="fixed"']))
-    omega1 = 2 * np.pi * modal_analysis(rest, solve_static(rest), count=1).frequencies_hz[0]
+    load_steps = sc.analysis.load_steps
+    omega1 = 2 * np.pi * modal_analysis(rest, solve_static(rest, load_steps=load_steps), count=1).frequencies_hz[0]
     omega = ratio * omega1
     out = {"omega_1": float(omega1), "omega": float(omega)}
     for form in ("ancf", "ffr"):
         system = api.build_system(with_formulation(sc, form, [
             'hub.motion="prescribed"', 'hub.drive.profile="constant"', f"hub.drive.omega_s={float(max(omega, 1e-12))!r}"]))
-        steady = solve_static(system, spin=omega)
+        steady = solve_static(system, load_steps=load_steps, spin=omega)
         out[f"{form}_deflection"] = float(np.linalg.norm(list(system.tip_displacement(steady.x).values())))
         out[f"{form}_frequency"] = float(rotating_modal_analysis(system, steady, omega, count=1).frequencies_hz[0])
     out["frequency_error_pct"] = 100 * (out["ffr_frequency"] / out["ancf_frequency"] - 1)

@@ -135,14 +135,11 @@ def check_fit_keys(scenario: Scenario, names: list[str]) -> np.ndarray:
 
 
 def signal_columns(scenario: Scenario) -> list[str]:
-    """The columns a run of the scenario has (sensors, multi-part ones as NAME_PART)."""
-    from hubbeam.limits import PART_NAMES
+    """The columns a run of the scenario has (sensors, multi-part ones as NAME_PART; a beam's
+    energy has no dissipated or drive part)."""
+    from hubbeam.sensors import columns
 
-    out = []
-    for s in scenario.sensors:
-        parts = PART_NAMES.get(s.kind)
-        out += [f"{s.name}_{p}" for p in parts] if parts else [s.name]
-    return out
+    return [c for s in scenario.sensors for c in columns(s)]
 
 
 def _lookup(data: dict, key: str) -> float:
@@ -166,7 +163,7 @@ def model_signal(scenario: Scenario, names, values, signal: str, times: np.ndarr
     if failure is not None:
         raise failure
     t = np.array(traj.times)
-    name, _, part = signal.partition("_")
+    name, _, part = signal.rpartition("_")  # parts have no '_', sensor names may (tip_b_tangential)
     if signal in traj.records:
         y = np.array(traj.records[signal], dtype=float)
     elif name in traj.records and part:

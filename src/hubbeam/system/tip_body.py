@@ -290,10 +290,7 @@ def ancf_tip_body_terms(params, F, q8, v8, a8, gravity, coef_m, coef_k, force8, 
                         acc += B[i, r] * Jp[i, j] * B[j, s]
                 Mx[r, s] = acc
                 Mx[s, r] = acc
-        _mass_to_global(F, Mx, Mg)
-        for r in range(4):
-            for s in range(4):
-                block[_QX[r], _QX[s]] += coef_m * Mg[r, s]
+        _add_x_block(F, Mx, coef_m, Mg, block)
         # r0 - X coupling: column k is m R (B_k x c) (chart X), then columns to global
         Mrx = np.empty((3, 4))
         for k in range(4):
@@ -335,8 +332,15 @@ def ancf_tip_body_terms(params, F, q8, v8, a8, gravity, coef_m, coef_k, force8, 
                 sym = 0.5 * (Mx[l, k] + Mx[k, l])
                 Mx[l, k] = sym
                 Mx[k, l] = sym
-        _mass_to_global(F, Mx, Mg)
-        for r in range(4):
-            for s in range(4):
-                block[_QX[r], _QX[s]] += coef_k * Mg[r, s]
+        _add_x_block(F, Mx, coef_k, Mg, block)
     return energy, potential
+
+
+@njit(cache=True)
+def _add_x_block(F, Mx, coef, Mg, block):
+    """ADD coef times the symmetric 4 x 4 matrix Mx on X = (U, theta_1) (chart components), mapped
+    to the tip node's global (r0', theta_1) rows and columns, to ``block`` (Mg: 4 x 4 work space)."""
+    _mass_to_global(F, Mx, Mg)
+    for r in range(4):
+        for s in range(4):
+            block[_QX[r], _QX[s]] += coef * Mg[r, s]
