@@ -292,3 +292,13 @@ def test_applied_work():
 def test_validation(make, match):
     with pytest.raises(ValueError, match=match):
         make()
+
+
+def test_a_callable_torque_law_takes_the_python_step_only_on_a_free_hub():
+    """A held hub ignores its torque law, so a Python function there keeps the compiled loop."""
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+
+    law = TorqueLaw.callable(lambda t, theta, omega: 0.0)
+    assert api.build_system(load_example("exp2"), law).compiled  # prescribed spin-up: held
+    assert not api.build_system(load_example("exp1"), law).compiled  # free hub

@@ -61,10 +61,17 @@ class AlphaState:
     chart: np.ndarray
 
 
-#: when the iteration matrix is rebuilt and factorised (NewtonOptions.update), and their
-#: codes in compiled code
-UPDATES = ("iteration", "step", "adaptive")
-UPDATE_ITERATION, UPDATE_STEP, UPDATE_ADAPTIVE = 0, 1, 2
+class MatrixUpdate(enum.IntEnum):
+    """When the iteration matrix is rebuilt and factorised (:attr:`NewtonOptions.update`,
+    by name in lower case); the members are what compiled code compares."""
+
+    ITERATION = 0
+    STEP = 1
+    ADAPTIVE = 2
+
+
+#: the names of :class:`MatrixUpdate` that NewtonOptions.update takes
+UPDATES = tuple(m.name.lower() for m in MatrixUpdate)
 
 
 @dataclass(frozen=True)
@@ -102,8 +109,8 @@ class NewtonOptions:
 
     @property
     def update_code(self) -> int:
-        """0, 1, 2 for "iteration", "step", "adaptive" (for compiled code)."""
-        return UPDATES.index(self.update)
+        """The :class:`MatrixUpdate` of ``update`` as an int (for compiled code)."""
+        return int(MatrixUpdate[self.update.upper()])
 
 
 @dataclass(frozen=True)
@@ -273,7 +280,7 @@ class NewtonAction(enum.IntEnum):
 @njit(cache=True)
 def newton_start(update, reuse):
     """Whether a step starts with the matrix kept from earlier steps (update "adaptive")."""
-    return update == UPDATE_ADAPTIVE and use_kept_matrix(reuse)
+    return update == MatrixUpdate.ADAPTIVE and use_kept_matrix(reuse)
 
 
 @njit(cache=True)
@@ -282,12 +289,12 @@ def newton_decide(size, previous, it, stale, update, refresh_rate, refresh_itera
     size ``size`` (``previous``: the last one since the matrix was refreshed, inf right after
     a refresh; ``stale``: the matrix is from earlier steps) decide what comes next
     (:class:`NewtonAction`) and update the reuse state (see :class:`NewtonOptions`)."""
-    reused = update != UPDATE_ITERATION
+    reused = update != MatrixUpdate.ITERATION
     error, rate = newton_error(size, previous, reused)
     if error <= tol:
         if stale:
             kept_matrix_worked(reuse)
-        if update != UPDATE_ADAPTIVE or it > refresh_iterations:
+        if update != MatrixUpdate.ADAPTIVE or it > refresh_iterations:
             reuse[REUSE_VALID] = 0
         return NewtonAction.CONVERGED
     fresh = not reused or rate > refresh_rate

@@ -29,11 +29,14 @@ from hubbeam.elements.ffr.kernels import (cardan, ffr_body_terms, ffr_dissipated
 from hubbeam.system.assembly import add_element_blocks_banded, add_entry
 from hubbeam.system.clamp import clamp_equations
 from hubbeam.system.laws import drive_values, torque_values
+from hubbeam.system.layout import Layout
 from hubbeam.system.loads import tip_moment_terms
 from hubbeam.system.mount import axis_frame, beam_hub_frame
 from hubbeam.system.tip_body import ancf_tip_body_terms
 
 NODE_DOFS = kernels.NODE_DOFS
+#: the hub angle's place in x (the layout's)
+THETA = Layout.theta
 #: below this value of 1 + d.tau a beam tangent is at the chart's singular direction
 CHART_SINGULAR = 1e-6
 #: half-bandwidth of an ANCF beam block (16 x 16 element blocks; the clamp rows reach 12 ahead)
@@ -97,6 +100,7 @@ class SystemModel(NamedTuple):
     z_of_x: np.ndarray  # int64 (nx,)
     z_of_lambda: np.ndarray  # int64 (n_lambda,)
     held: bool
+    drive_lambda: int  # the drive multiplier's place in lambda (the layout's; -1 for a free hub)
     hub_inertia: float  # kg m^2
     drive: tuple  # CompiledDrive of hubbeam.system.laws
     torque: tuple  # CompiledTorque of hubbeam.system.laws
@@ -176,17 +180,20 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     margin = 2.0
     power = 0.0
     # ---------------------------------------------------------------- hub
-    torque, d_theta, d_omega = applied_torque(model, t, x[0], v[0])
-    hub_row = model.hub_inertia * acc[0] - load_factor * torque
+    z_theta = zx[THETA]
+    theta, omega = x[THETA], v[THETA]
+    torque, d_theta, d_omega = applied_torque(model, t, theta, omega)
+    hub_row = model.hub_inertia * acc[THETA] - load_factor * torque
     if model.held:
-        hub_row += lam[0]
-        res[1] = scale * (x[0] - drive_angle(model, t))
+        z_drive = zl[model.drive_lambda]
+        hub_row += lam[model.drive_lambda]
+        res[z_drive] = scale * (theta - drive_angle(model, t))
     if want_matrix:
-        add_entry(ab, brow, bcol, bb, ku, 0, 0,
+        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta,
                   coef_m * model.hub_inertia - load_factor * (coef_k * d_theta + coef_c * d_omega))
         if model.held:
-            add_entry(ab, brow, bcol, bb, ku, 0, 1, scale)
-            add_entry(ab, brow, bcol, bb, ku, 1, 0, scale)
+            add_entry(ab, brow, bcol, bb, ku, z_theta, z_drive, scale)
+            add_entry(ab, brow, bcol, bb, ku, z_drive, z_theta, scale)
     # ---------------------------------------------------------------- ANCF beams
     phi = np.empty(6)
     jac = np.empty((6, 8))
@@ -242,7 +249,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
                     for j in range(8):
                         blocks[n_el - 1, 8 + i, 8 + j] += block8[i, j]
         # clamp of the root to the hub
-        c[0] = x[0]
+        c[0] = theta
         for j in range(7):
             c[1 + j] = q[j]
         for i in range(6):
@@ -261,11 +268,11 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         q_start = zx[x0]  # z index of the beam's first coordinate
         add_element_blocks_banded(ab, blocks, q_start - nb_border, ku, 1.0)
         # clamp: Jacobian in the multiplier rows and columns, Hessian on [theta, root coordinates]
-        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 7, scale, zl, l0, q_start)
-        add_entry(ab, brow, bcol, bb, ku, 0, 0, coef_k * hess[0, 0])
+        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 7, scale, zl, l0, q_start, z_theta)
+        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta, coef_k * hess[0, 0])
         for a in range(7):
-            add_entry(ab, brow, bcol, bb, ku, 0, q_start + a, coef_k * hess[0, 1 + a])
-            add_entry(ab, brow, bcol, bb, ku, q_start + a, 0, coef_k * hess[1 + a, 0])
+            add_entry(ab, brow, bcol, bb, ku, z_theta, q_start + a, coef_k * hess[0, 1 + a])
+            add_entry(ab, brow, bcol, bb, ku, q_start + a, z_theta, coef_k * hess[1 + a, 0])
             for b in range(7):
                 add_entry(ab, brow, bcol, bb, ku, q_start + a, q_start + b, coef_k * hess[1 + a, 1 + b])
     # ---------------------------------------------------------------- FFR beams
@@ -283,7 +290,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
                                 coef_k, load_factor, want_matrix, force, block)
         for i in range(6):
             lam_k[i] = lam[l0 + i]
-        ffr_clamp(ff.mount[k], x[0], q, lam_k, phi, jac, hess)
+        ffr_clamp(ff.mount[k], theta, q, lam_k, phi, jac, hess)
         hub_row += clamp_residual(lam_k, phi, jac, 6, scale, zl, l0, force, res)
         for j in range(n):
             res[zx[x0 + j]] = coef_k * force[j]
@@ -299,9 +306,9 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         for i in range(n):
             for j in range(n):
                 add_entry(ab, brow, bcol, bb, ku, q_start + i, q_start + j, block[i, j])
-        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 6, scale, zl, l0, q_start)
-        add_entry(ab, brow, bcol, bb, ku, 0, 0, coef_k * hess[0, 0])
-    res[0] = coef_k * hub_row
+        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 6, scale, zl, l0, q_start, z_theta)
+        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta, coef_k * hess[0, 0])
+    res[z_theta] = coef_k * hub_row
     return margin, power
 
 
@@ -323,13 +330,13 @@ def clamp_residual(lam_k, phi, jac, n_root, scale, zl, l0, force, res):
 
 
 @njit(cache=True)
-def add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, n_root, scale, zl, l0, q_start):
-    """scale times a clamp's Jacobian (6 x (1 + n_root), on [theta, q_root]) in its multiplier rows
-    and, transposed, in their columns."""
+def add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, n_root, scale, zl, l0, q_start, z_theta):
+    """scale times a clamp's Jacobian (6 x (1 + n_root), on [theta, q_root]; theta at z_theta,
+    q_root from q_start) in its multiplier rows and, transposed, in their columns."""
     for i in range(6):
         ri = zl[l0 + i]
-        add_entry(ab, brow, bcol, bb, ku, ri, 0, scale * jac[i, 0])
-        add_entry(ab, brow, bcol, bb, ku, 0, ri, scale * jac[i, 0])
+        add_entry(ab, brow, bcol, bb, ku, ri, z_theta, scale * jac[i, 0])
+        add_entry(ab, brow, bcol, bb, ku, z_theta, ri, scale * jac[i, 0])
         for j in range(n_root):
             add_entry(ab, brow, bcol, bb, ku, ri, q_start + j, scale * jac[i, 1 + j])
             add_entry(ab, brow, bcol, bb, ku, q_start + j, ri, scale * jac[i, 1 + j])
@@ -473,7 +480,7 @@ def beam_energies(model, F, x, v, out):
         out[i, 0] = kinetic
         out[i, 1] = strain
         out[i, 2] = potential
-    return 0.5 * model.hub_inertia * v[0] * v[0]
+    return 0.5 * model.hub_inertia * v[THETA] * v[THETA]
 
 
 @njit(cache=True)
@@ -481,7 +488,7 @@ def tip_displacements(model, x, out):
     """Each beam's tip centroid displacement from its undeformed place along its own hub
     frame i_k (radial), j0 (vertical), k_k (tangential) at x (m): out[k] for beam k (its place
     among all beams)."""
-    theta = x[0]
+    theta = x[THETA]
     tip_at = np.empty(3)
     for k in range(model.beam_index.shape[0]):
         tip = model.beam_x0[k] + NODE_DOFS * model.beam_elements[k]
@@ -535,7 +542,7 @@ def record_measures(model, F, xs, vs, count, energies, hub, beams, tips):
 @njit(cache=True)
 def hub_power(model, t, x, v, lam):
     """Power of the drive and the applied torque on the hub (W): (T_applied - lambda_drive) theta'."""
-    torque = applied_torque(model, t, x[0], v[0])[0]
+    torque = applied_torque(model, t, x[THETA], v[THETA])[0]
     if model.held:
-        torque -= lam[0]
-    return torque * v[0]
+        torque -= lam[model.drive_lambda]
+    return torque * v[THETA]

@@ -204,8 +204,9 @@ class HubSystem:
     @property
     def compiled(self) -> bool:
         """Whether the time integration runs in compiled code: every beam does; a torque law
-        that is a Python function takes the Python step."""
-        return self.hub.torque.compilable
+        that is a Python function takes the Python step (on a free hub: a held hub ignores
+        its torque law)."""
+        return self.hub.held or self.hub.torque.compilable
 
     def model(self, held: bool | None = None) -> SystemModel:
         """The constants of the compiled equations for the hub held or not (default: its motion)."""
@@ -246,7 +247,8 @@ class HubSystem:
         torque = self.hub.torque if (not held and self.hub.torque.compilable) else TorqueLaw()
         ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
         return SystemModel(
-            layout.border, layout.z_of_x, layout.z_of_lambda, held, float(self.hub.inertia),
+            layout.border, layout.z_of_x, layout.z_of_lambda, held,
+            -1 if layout.drive_lambda is None else layout.drive_lambda, float(self.hub.inertia),
             tuple(drive.compiled()), tuple(torque.compiled()),
             ints([k for k, _ in ancf]), ints([layout.beam_x(k).start for k, _ in ancf]),
             ints([layout.clamp_lambda(k).start for k, _ in ancf]), ints([b.beam.elements for _, b in ancf]),
