@@ -16,6 +16,7 @@ import numpy as np
 from numpy.linalg import LinAlgError
 
 from hubbeam.errors import ChartSingularityError, ConvergenceError
+from hubbeam.solvers.generalized_alpha import MatrixUpdate, NewtonAction, newton_decide, reuse_state
 from hubbeam.system.hub_system import HubSystem
 
 #: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
@@ -45,9 +46,13 @@ def replace_chart_if_needed(system: HubSystem, x: np.ndarray, F: np.ndarray, for
 
 
 def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
-    """Newton iterations at one load factor; returns (x, mu, iterations) or raises."""
+    """Full Newton iterations at one load factor; returns (x, mu, iterations, residual norm)
+    or raises. Converged when the shared controller (:func:`newton_decide`, matrix rebuilt
+    every iteration) accepts the increment (relative to the length scale) or the residual is
+    below ``tol_force`` (N)."""
     layout = system.layout_for(True)
     scale_x = max(system.length_scale, 1e-12)
+    reuse = reuse_state()
     norm = np.inf
     for it in range(1, max_iter + 1):
         res, matrix = system.static_equations(x, mu, F, factor, spin=spin)
@@ -62,7 +67,8 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
         x = x + dx
         mu = mu + dmu
         step = np.max(np.abs(dx[layout.beams_x])) / scale_x
-        if norm <= tol_force or step <= tol_step:
+        action = newton_decide(step, np.inf, it, False, int(MatrixUpdate.ITERATION), 1.0, max_iter, tol_step, reuse)
+        if norm <= tol_force or action == NewtonAction.CONVERGED:
             return x, mu, it, norm
     raise ConvergenceError(f"residual {norm:.3e} N after {max_iter} iterations")
 
