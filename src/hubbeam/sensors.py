@@ -61,10 +61,29 @@ def _energy(sensor, system):
     return energy
 
 
+def gauge(sensor, system: HubSystem) -> tuple[int, float, float, float]:
+    """(beam index, station (m), y, z (m)) of a surface_strain sensor."""
+    return (_beam(sensor, system), float(sensor.x)) + section_point(sensor, system)
+
+
+def record_needs(sensors, system: HubSystem) -> tuple[bool, bool, list]:
+    """What the sensors read from the records' compiled measures (:meth:`HubSystem.record_measures`):
+    (energies, tip displacements, the strain gauges (:func:`gauge`))."""
+    kinds = {s.kind for s in sensors}
+    return ("energy" in kinds, "tip_deflection" in kinds,
+            [gauge(s, system) for s in sensors if s.kind == "surface_strain"])
+
+
 def _surface_strain(sensor, system):
-    y, z = section_point(sensor, system)
-    beam = _beam(sensor, system)
-    return lambda state, work: system.surface_strain(state.x, state.chart, sensor.x, y, z, beam)
+    where = gauge(sensor, system)
+    beam, x, y, z = where
+
+    def strain(state, work):
+        given = work.get("strains")  # the gauges' strains computed for a whole chunk of records
+        if given is not None and where in given:
+            return given[where]
+        return system.surface_strain(state.x, state.chart, x, y, z, beam)
+    return strain
 
 
 def _tip_deflection(sensor, system):
@@ -100,7 +119,7 @@ def prepare(sensor, system: HubSystem):
     """The measurement function(state, work) of one sensor on ``system``: the value (float, or
     dict of parts) at an integrator state; ``work`` holds the dissipated and drive work (J) up
     to it and, optionally, what :meth:`HubSystem.record_measures` gave for the state:
-    ``energies`` = (hub, beams) and ``tips``."""
+    ``energies`` = (hub, beams), ``tips`` and ``strains`` ({gauge: strain})."""
     return MEASURES[sensor.kind](sensor, system)
 
 

@@ -9,7 +9,7 @@ from decimal import Decimal
 import numpy as np
 
 from hubbeam import interrupt
-from hubbeam.sensors import prepare
+from hubbeam.sensors import prepare, record_needs
 from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.errors import ChartSingularityError, ComputationError, ConvergenceError
@@ -109,10 +109,10 @@ class PythonSteps:
     it, each with the work done up to then."""
 
     def __init__(self, system: HubSystem, params, newton, dt, state: ga.AlphaState,
-                 measures: tuple[bool, bool] = (False, False)) -> None:
+                 measures: tuple[bool, bool, list] = (False, False, [])) -> None:
         self.system, self.params, self.newton, self.dt = system, params, newton, dt
-        # (energies, tip displacements): the compiled steps add them to the records' work
-        # (the sensors then read them there)
+        # (energies, tip displacements, strain gauges) (:func:`hubbeam.sensors.record_needs`):
+        # the compiled steps add them to the records' work, where the sensors read them
         self.measures = measures
         self.work = {"dissipated": 0.0, "drive": 0.0}
         self.kept = None  # the iteration matrix kept between steps
@@ -154,8 +154,10 @@ class CompiledSteps(PythonSteps):
     """The same steps in compiled code (:func:`hubbeam.solvers.compiled_alpha.advance`) for
     systems whose every term compiles (every beam ANCF): a chunk of steps is one call."""
 
-    def __init__(self, system, params, newton, dt, state, measures: tuple[bool, bool] = (False, False)) -> None:
+    def __init__(self, system, params, newton, dt, state, measures: tuple[bool, bool, list] = (False, False, [])
+                 ) -> None:
         super().__init__(system, params, newton, dt, state, measures)
+        self.gauges, self.gauge_list = system.gauge_table(measures[2])
         self.model = system.model()
         layout = system.layout
         storage = BorderedBandMatrix.empty(layout.nz, layout.border, system.bandwidth)
@@ -190,11 +192,12 @@ class CompiledSteps(PythonSteps):
         rt, rx, rv, rxdd, ra, rlam, rwork = records
         out = [(ga.AlphaState(rt[i], rx[i], rv[i], rxdd[i], ra[i], rlam[i], state.chart),
                 {"dissipated": rwork[i, 0], "drive": rwork[i, 1]}) for i in range(n_rec)]
-        energies, tips = self.measures
-        if (energies or tips) and n_rec:
-            measured = self.system.record_measures(rx, rv, chart, n_rec, energies)
+        energies, tips, _ = self.measures
+        if (energies or tips or self.gauge_list) and n_rec:
+            measured = self.system.record_measures(rx, rv, chart, n_rec, energies, self.gauges)
             for i, (_, work) in enumerate(out):
                 work["tips"] = measured["tips"][i]
+                work["strains"] = dict(zip(self.gauge_list, measured["strains"][i]))
                 if energies:
                     work["energies"] = (measured["hub"][i], measured["beams"][i])
         new = ga.AlphaState(t, x, v, xdd, a, lam, state.chart)
@@ -250,8 +253,7 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
 
     record(state, {"dissipated": 0.0, "drive": 0.0})
     steps_class = CompiledSteps if system.compiled else PythonSteps
-    kinds = {s.kind for s in sensors}
-    stepper = steps_class(system, params, newton, dt, state, ("energy" in kinds, "tip_deflection" in kinds))
+    stepper = steps_class(system, params, newton, dt, state, record_needs(sensors, system))
     chunk_size = max(1, -(-n_steps // PROGRESS_UPDATES))
     chunk = min(chunk_size, 8)  # the first chunks are short; later ones last about CHUNK_SECONDS
     start = time.perf_counter()

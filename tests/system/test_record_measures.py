@@ -1,4 +1,5 @@
-"""The compiled measures of recorded states (energies and tip displacements of every beam,
+"""The compiled measures of recorded states (energies and tip displacements of every beam, the
+strains of ANCF strain gauges,
 :func:`hubbeam.system.equations.record_measures`) that the sensors read during a compiled run.
 
 Checked against the Python parts' own energies and tip positions (an assembled mass matrix,
@@ -17,6 +18,7 @@ from hubbeam import api
 from hubbeam.elements.ffr.kernels import ffr_body_terms, ffr_energies, pack
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import initial_state
+from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.hub_system import energy_sums
 
 CASES = {
@@ -42,13 +44,20 @@ def test_compiled_measures_are_the_parts_energies_and_tips(case):
     name, overrides = CASES[case]
     system = api.build_system(load_example(name, overrides))
     xs, vs, chart = perturbed_states(system)
-    got = system.record_measures(xs, vs, chart, len(xs))
+    gauges = [(k, x, y, z) for k, part in enumerate(system.beams) for x in (0.0, 0.37 * part.length, part.length)
+              for y, z in ((0.0, 0.001), (0.002, -0.0005))]
+    table, kept = system.gauge_table(gauges)
+    assert kept == [g for g in gauges if not isinstance(system.beams[g[0]], FfrPart)]
+    got = system.record_measures(xs, vs, chart, len(xs), True, table)
     for r in range(len(xs)):
         for beam in [None, *range(len(system.beams))]:
             want = system.energies(xs[r], vs[r], chart, beam)
             have = energy_sums(got["hub"][r], got["beams"][r], beam)
             for key, value in want.items():
                 assert have[key] == pytest.approx(value, rel=1e-13, abs=1e-15), (beam, key)
+        for i, (k, x, y, z) in enumerate(kept):
+            assert got["strains"][r, i] == pytest.approx(system.surface_strain(xs[r], chart, x, y, z, k),
+                                                         rel=1e-12, abs=1e-15)
         for k in range(len(system.beams)):
             tip = system.tip_displacement(xs[r], k)
             assert np.allclose(got["tips"][r, k], [tip["radial"], tip["vertical"], tip["tangential"]],

@@ -288,6 +288,14 @@ class AncfBeam:
             measures = measures - self._measures_at(*self._reference_state, xs)
         return measures[:, 0] - np.asarray(y, dtype=float) * measures[:, 3] + np.asarray(z, dtype=float) * measures[:, 2]
 
+    def gauge_rows(self, x: float, y: float, z: float):
+        """What compiled code needs of a strain gauge at the section point (y, z) (m) of station x
+        (m) (:func:`hubbeam.system.equations.gauge_strains`): (element, S, dS, d2S (4 each: the
+        Hermite functions at x and their derivatives), [y, z, the stress-free strains at x])."""
+        e, xi = self.locate(x)
+        S, dS, d2S = hermite(np.array([xi]), self.element_length)
+        return e, S[0], dS[0], d2S[0], np.concatenate([[y, z], self.reference_strains(x)])
+
     def _measures_at(self, q: np.ndarray, F: np.ndarray, xs) -> np.ndarray:
         """(eps0, kappa1, kappa2, kappa3) (n x 4; 1, 1/m) at the stations xs (m)."""
         _, u, v, phi, psi = self.interpolate_at(q, xs)

@@ -24,6 +24,7 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ancf import kernels
+from hubbeam.elements.ancf.strain import strain_measures
 from hubbeam.elements.ffr.kernels import (cardan, ffr_body_terms, ffr_dissipated_power, ffr_energies,
                                           ffr_load_stiffness)
 from hubbeam.system.assembly import add_element_blocks_banded, add_entry
@@ -529,14 +530,37 @@ def _tip_from_mount(mount, theta, length, tip_at, out):
 
 
 @njit(cache=True)
-def record_measures(model, F, xs, vs, count, energies, hub, beams, tips):
+def gauge_strains(model, F, x, gauges, out):
+    """Fibre strains eps0 - y kappa3 + z kappa2 (measured from the stress-free state's) at the
+    strain gauges of ANCF beams at x, into out[i] for gauge i. ``gauges`` = (where (n, 2) int:
+    the beam's ANCF row in the model and the element; S, dS, d2S (n, 4): the Hermite functions
+    at the gauge's station and their derivatives (1/m, 1/m^2); section (n, 6): y, z (m) and the
+    stress-free strains (eps0, kappa1, kappa2, kappa3) there) (:meth:`AncfBeam.gauge_rows`)."""
+    where, S, dS, d2S, section = gauges
+    w1 = np.empty(16)
+    w2 = np.empty(16)
+    Y = np.empty(8)
+    X = np.empty(8)
+    for i in range(where.shape[0]):
+        k, el = where[i, 0], where[i, 1]
+        kernels.dof_weights(S, dS, d2S, i, w1, w2)
+        kernels.gauss_variables(x, model.beam_x0[k] + NODE_DOFS * el, F[model.beam_index[k]], w1, w2, Y, X)
+        eps0, _, kappa2, kappa3 = strain_measures(X[0:3], X[3:6], X[6], X[7])
+        sec = section[i]
+        out[i] = (eps0 - sec[2]) - sec[0] * (kappa3 - sec[5]) + sec[1] * (kappa2 - sec[4])
+
+
+@njit(cache=True)
+def record_measures(model, F, xs, vs, count, energies, gauges, hub, beams, tips, strains):
     """For the first ``count`` rows of xs, vs (one state each): when ``energies``, the hub's
     kinetic energy into hub[r] and the beams' (:func:`beam_energies`) into beams[r] (J); the
-    beams' tip displacements (:func:`tip_displacements`) into tips[r] (m)."""
+    beams' tip displacements (:func:`tip_displacements`) into tips[r] (m); the ANCF strain
+    gauges' strains (:func:`gauge_strains`) into strains[r]."""
     for r in range(count):
         if energies:
             hub[r] = beam_energies(model, F, xs[r], vs[r], beams[r])
         tip_displacements(model, xs[r], tips[r])
+        gauge_strains(model, F, xs[r], gauges, strains[r])
 
 
 @njit(cache=True)

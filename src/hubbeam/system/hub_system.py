@@ -454,17 +454,34 @@ class HubSystem:
                                     for k, part, q, chart in self.parts(x, F))])
         return energy_sums(hub, beams, beam)
 
-    def record_measures(self, xs, vs, F, count: int, energies: bool = True) -> dict[str, np.ndarray]:
+    def gauge_table(self, gauges) -> tuple[tuple, list]:
+        """The strain gauges (beam, station, y, z) (index, m, m, m) on ANCF beams packed for
+        :meth:`record_measures`, and the list of those gauges in their order there (other
+        beams' gauges are left out: their sensors measure them)."""
+        ancf = [k for k, b in enumerate(self.beams) if isinstance(b, AncfPart)]
+        kept = [g for g in gauges if g[0] in ancf]
+        rows = [(ancf.index(k), self.beams[k].beam.gauge_rows(x, y, z)) for k, x, y, z in kept]
+        n = len(rows)
+        where = np.array([[k, r[0]] for k, r in rows], dtype=np.int64).reshape(n, 2)
+        S, dS, d2S, section = (np.array([r[i] for _, r in rows], dtype=float).reshape(n, width)
+                               for i, width in ((1, 4), (2, 4), (3, 4), (4, 6)))
+        return (where, S, dS, d2S, section), kept
+
+    def record_measures(self, xs, vs, F, count: int, energies: bool = True, gauges: tuple | None = None
+                        ) -> dict[str, np.ndarray]:
         """Measures of the first ``count`` states (rows of xs, vs; charts F) in compiled code
         (:func:`~hubbeam.system.equations.record_measures`): ``tips`` (count, beams, 3) each
         beam's tip displacement (radial, vertical, tangential, m); with ``energies`` also
         ``hub`` (count,) the hub's kinetic energy and ``beams`` (count, beams, 3) each beam's
-        (kinetic, strain, gravity) energy (J), for :func:`energy_sums`."""
+        (kinetic, strain, gravity) energy (J), for :func:`energy_sums`; ``strains`` (count,
+        gauges) at the gauges of ``gauges`` (a :meth:`gauge_table`; default none)."""
         nb = len(self.beams)
+        gauges = self.gauge_table([])[0] if gauges is None else gauges
         out = {"hub": np.zeros(count if energies else 0), "beams": np.zeros((count if energies else 0, nb, 3)),
-               "tips": np.empty((count, nb, 3))}
+               "tips": np.empty((count, nb, 3)), "strains": np.empty((count, gauges[0].shape[0]))}
         record_measures(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(xs, dtype=float),
-                        np.ascontiguousarray(vs, dtype=float), count, energies, out["hub"], out["beams"], out["tips"])
+                        np.ascontiguousarray(vs, dtype=float), count, energies, gauges, out["hub"], out["beams"],
+                        out["tips"], out["strains"])
         return out
 
     def kinetic_energy_split(self, x, F, u) -> dict[str, float]:
