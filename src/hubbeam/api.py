@@ -134,10 +134,10 @@ def reduction_warnings(scenario: Scenario, system: HubSystem | None = None) -> l
     may miss in the scenario: a share of the static deflection under gravity above 1 %, or a
     drive or PD reference (spin_up, slew, exponential over T s: up to about 2 / T Hz) that
     excites frequencies near the highest kept mode."""
-    from hubbeam.elements.ffr.modal import coverage_warnings
-
     if not any(getattr(b, "modes", None) for b in scenario.resolved_beams()):
         return []
+    from hubbeam.elements.ffr.modal import coverage_warnings  # here: it imports scipy.linalg (0.3 s)
+
     system = build_system(scenario) if system is None else system
     hub = scenario.hub
     law = hub.torque_law
