@@ -42,40 +42,6 @@ _STIFFNESS = [COLUMN[c] for c in ("EA", "GJ", "EI_y", "EI_z")]
 _INERTIA = [COLUMN[c] for c in ("I_tau", "I_m", "I_n")]
 
 
-# Setup terms in numpy. Each compiled function called from Python is loaded from numba's
-# cache on its first call (a few ms of CPU each, a start-up cost of every run); these two are
-# computed once per beam, so they are numpy: the same sums as kernels.translational_mass_block
-# and kernels.distributed_load, term for term in the same order (bitwise equal; tested in
-# tests/system/test_beam.py).
-def translational_mass_blocks(length, S, w, rho_a) -> np.ndarray:
-    """Every element's translational mass int rho A S^T S dx (Eq. 35, first term): (n_el, 16,
-    16); ``rho_a`` (n_el, ng): rho A (kg/m) at the Gauss points (weights ``w``, shape functions
-    ``S`` (ng, 4))."""
-    S, w, rho_a = (np.asarray(a, dtype=float) for a in (S, w, rho_a))
-    blocks = np.zeros((rho_a.shape[0], 4, 4))
-    for g in range(w.shape[0]):
-        jw = w[g] * length * rho_a[:, g]
-        blocks += (jw[:, None] * S[g][None, :])[:, :, None] * S[g][None, None, :]
-    out = np.zeros((rho_a.shape[0], kernels.ELEMENT_DOFS, kernels.ELEMENT_DOFS))
-    for a, oa in enumerate(kernels._VEC_OFFSETS):
-        for b, ob in enumerate(kernels._VEC_OFFSETS):
-            for k in range(3):
-                out[:, oa + k, ob + k] = blocks[:, a, b]
-    return out
-
-
-def distributed_load(n_el, length, S, w, density, load) -> np.ndarray:
-    """Generalized force (n_el + 1 nodes) of the load per unit length density[el, g] * ``load``
-    (``load`` global, e.g. rho A (kg/m) times g (m/s^2): N/m): int S1^T p dx (Eq. 32)."""
-    out = np.zeros(NODE_DOFS * (n_el + 1))
-    rows = np.add.outer(np.asarray(kernels._VEC_OFFSETS), np.arange(3))  # (4, 3): r and r' of both nodes
-    for el in range(n_el):
-        rows_el = NODE_DOFS * el + rows
-        for g in range(w.shape[0]):
-            out[rows_el] += (w[g] * length * S[g])[:, None] * (density[el, g] * load)[None, :]
-    return out
-
-
 @dataclass
 class AncfBeam:
     """n equal ANCF elements over a beam of ``length`` (m) with one ``section`` (the material
@@ -104,7 +70,7 @@ class AncfBeam:
         self._inertia = np.ascontiguousarray(props[..., _INERTIA])  # (n_el, ng, 3) kg m
         self._rho_a = np.ascontiguousarray(props[..., COLUMN["rho_A"]])  # (n_el, ng) kg/m
         self._width = np.ascontiguousarray(props[..., COLUMN["width"]])  # (n_el, ng) m, the drag's frontal width
-        self._trans_mass = translational_mass_blocks(self.element_length, S, w, self._rho_a)
+        self._trans_mass = kernels.translational_mass_blocks(self.element_length, S, w, self._rho_a)
         # the stress-free state: straight along e_1, twisted by the pretwist
         self._twist = self._node_pretwist()
         self._reference = np.zeros_like(self._stiffness)
@@ -258,7 +224,8 @@ class AncfBeam:
 
     def _load(self, density, load) -> np.ndarray:
         S, _, _, w = self._tables
-        return distributed_load(self.elements, self.element_length, S, w, density, np.asarray(load, dtype=float))
+        return kernels.distributed_load(self.elements, self.element_length, S, w, density,
+                                        np.asarray(load, dtype=float))
 
     # ---------------------------------------------------------------- stations
     def locate(self, x: float) -> tuple[int, float]:

@@ -263,18 +263,21 @@ def _add_symmetric(blocks, el, Ke):
             blocks[el, j, i] += Ke[j, i]
 
 
-@njit(cache=True, error_model="numpy")
-def translational_mass_block(length, S, w, rho_a):
-    """An element's translational mass int rho A S^T S dx (Eq. 35, first term): 16 x 16,
-    independent of q; ``rho_a`` (ng,): rho A (kg/m) at the element's Gauss points."""
-    out = np.zeros((ELEMENT_DOFS, ELEMENT_DOFS))
+def translational_mass_blocks(length, S, w, rho_a) -> np.ndarray:
+    """Every element's translational mass int rho A S^T S dx (Eq. 35, first term): (n_el, 16,
+    16), independent of q; ``rho_a`` (n_el, ng): rho A (kg/m) at the Gauss points (weights
+    ``w``, shape functions ``S`` (ng, 4)). Set-up work in numpy: a compiled function called
+    from Python costs a load from numba's cache at every start."""
+    S, w, rho_a = (np.asarray(a, dtype=float) for a in (S, w, rho_a))
+    blocks = np.zeros((rho_a.shape[0], 4, 4))
     for g in range(w.shape[0]):
-        jw = w[g] * length * rho_a[g]
-        for a in range(4):
-            for b in range(4):
-                val = jw * S[g, a] * S[g, b]
-                for k in range(3):
-                    out[_VEC_OFFSETS[a] + k, _VEC_OFFSETS[b] + k] += val
+        jw = w[g] * length * rho_a[:, g]
+        blocks += (jw[:, None] * S[g][None, :])[:, :, None] * S[g][None, None, :]
+    out = np.zeros((rho_a.shape[0], ELEMENT_DOFS, ELEMENT_DOFS))
+    for a, oa in enumerate(_VEC_OFFSETS):
+        for b, ob in enumerate(_VEC_OFFSETS):
+            for k in range(3):
+                out[:, oa + k, ob + k] = blocks[:, a, b]
     return out
 
 
@@ -300,19 +303,17 @@ def translational_mass_product(mass, u, out):
             out[o + i] += acc
 
 
-@njit(cache=True, error_model="numpy")
-def distributed_load(n_el, length, S, w, density, load, out):
-    """Generalized force of the load per unit length density[el, g] * ``load`` (``load`` global,
-    e.g. rho A (kg/m) times g (m/s^2): N/m): int S1^T p dx (Eq. 32)."""
-    out[:] = 0.0
+def distributed_load(n_el, length, S, w, density, load) -> np.ndarray:
+    """Generalized force (n_el + 1 nodes) of the load per unit length density[el, g] * ``load``
+    (``load`` global, e.g. rho A (kg/m) times g (m/s^2): N/m): int S1^T p dx (Eq. 32). Set-up
+    work in numpy, as :func:`translational_mass_blocks`."""
+    out = np.zeros(NODE_DOFS * (n_el + 1))
+    rows = np.add.outer(np.asarray(_VEC_OFFSETS), np.arange(3))  # (4, 3): r and r' of both nodes
     for el in range(n_el):
+        rows_el = NODE_DOFS * el + rows
         for g in range(w.shape[0]):
-            jw = w[g] * length
-            rho = density[el, g]
-            for a in range(4):
-                o = _VEC_OFFSETS[a]
-                for i in range(3):
-                    out[NODE_DOFS * el + o + i] += jw * S[g, a] * (rho * load[i])
+            out[rows_el] += (w[g] * length * S[g])[:, None] * (density[el, g] * load)[None, :]
+    return out
 
 
 @njit(cache=True, error_model="numpy")
