@@ -116,7 +116,9 @@ class PythonSteps:
         self.measures = measures
         self.work = {"dissipated": 0.0, "drive": 0.0}
         self.kept = None  # the iteration matrix kept between steps
-        self.power = self._power(state)
+        # at rest both powers are exactly 0 (drag ~ |v| v, structural damping ~ e', hub power
+        # ~ theta'): no call then (each is a compiled function loaded from numba's cache)
+        self.power = (0.0, 0.0) if not np.any(state.v) else self._power(state)
         self.factorisations = None  # counted by the compiled steps only
 
     def _power(self, st):
