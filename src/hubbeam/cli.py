@@ -145,17 +145,23 @@ def _say(text: str) -> None:
 def _load(args):
     """The scenario of a command: the file checked (a regular text file of sane size), then
     read, overridden and validated."""
-    from hubbeam.io.scenario import load_scenario
+    from hubbeam.io.scenario import load_example, load_scenario, table_files
     from hubbeam.io.targets import check_input_file
 
-    return load_scenario(check_input_file(args.scenario, "scenario file"), args.overrides)
+    if args.scenario is None:  # applicability's default
+        scenario = load_example("exp1", args.overrides)
+    else:
+        scenario = load_scenario(check_input_file(args.scenario, "scenario file"), args.overrides)
+    args.tables = [(f"table of {key}", path) for _, key, path in table_files(scenario)]
+    return scenario
 
 
 def _check(targets, args, *inputs):
-    """Check the output targets before computing (ScenarioError naming the option)."""
+    """Check the output targets before computing (ScenarioError naming the option); the
+    scenario file and the CSV tables it reads are inputs that no target may overwrite."""
     from hubbeam.io.targets import check_outputs
 
-    files = [("scenario file", getattr(args, "scenario", None))] + list(inputs)
+    files = [("scenario file", getattr(args, "scenario", None))] + getattr(args, "tables", []) + list(inputs)
     return check_outputs(targets, files)
 
 
@@ -670,12 +676,12 @@ def _cmd_applicability(args) -> dict:
     import time
     from pathlib import Path
 
-    from hubbeam.io.scenario import ScenarioError, load_example
+    from hubbeam.io.scenario import ScenarioError
     from hubbeam.io.targets import Target
     from hubbeam.studies.applicability import applicability_map
     from hubbeam.studies.variants import parse_range
 
-    scenario = _load(args) if args.scenario else load_example("exp1", args.overrides)
+    scenario = _load(args)
     thickness, ratio = parse_range(args.thickness, "--thickness"), parse_range(args.ratio, "--ratio")
     if (thickness <= 0).any() or (ratio < 0).any() or (ratio >= 1).any():
         raise ScenarioError("--thickness must be > 0 and --ratio in [0, 1)")

@@ -138,39 +138,10 @@ def check_outputs(targets: list[Target], inputs: list[tuple[str, object]] = ()) 
             raise ScenarioError(f"{t.option}: empty file name")
         if "\0" in t.path:
             raise ScenarioError(f"{t.option}: the file name contains a NUL character")
-        p = Path(t.path)
-        if t.kind == "figure":
-            ext = p.suffix.lower().lstrip(".")
-            formats = figure_formats()
-            if not ext:
-                raise ScenarioError(f"{label}: no file extension, so no figure format (use one of {', '.join(formats)})")
-            if ext not in formats:
-                raise ScenarioError(f"{label}: matplotlib cannot write .{ext} figures (use one of {', '.join(formats)})")
-        if t.kind == "directory":
-            if p.exists():
-                if not p.is_dir():
-                    raise ScenarioError(f"{label}: exists and is not a directory")
-                _probe_directory(p, label)
-            else:
-                parent = p.absolute().parent
-                if not parent.is_dir():
-                    raise ScenarioError(f"{label}: directory {parent} does not exist")
-                _probe_directory(parent, label)
-        else:
-            if p.is_dir():
-                raise ScenarioError(f"{label}: is a directory (give a file name)")
-            if p.exists() and not p.is_file():
-                raise ScenarioError(f"{label}: exists and is not a regular file (a device or pipe is not a result file)")
-            if p.exists() and not os.access(p, os.W_OK):
-                raise ScenarioError(f"{label}: the file exists and is read-only")
-            if len(os.fsencode(Path(os.path.realpath(p)).name)) > MAX_NAME_BYTES:
-                raise ScenarioError(f"{label}: file name too long (at most {MAX_NAME_BYTES} bytes)")
-            parent = p.absolute().parent
-            if not parent.exists():
-                raise ScenarioError(f"{label}: directory {parent} does not exist")
-            if not parent.is_dir():
-                raise ScenarioError(f"{label}: {parent} is not a directory")
-            _probe_directory(parent, label)
+        try:
+            _check_target(t)
+        except OSError as exc:  # a name the file system refuses (too long, a loop of links, ...)
+            raise ScenarioError(f"{label}: not a usable path ({exc.strerror or exc.__class__.__name__})") from None
         for other in given:
             if _same(other.path, t.path):
                 raise ScenarioError(f"{t.option}: {t.path} is also the target of {other.option} (give two different files)")
@@ -179,6 +150,44 @@ def check_outputs(targets: list[Target], inputs: list[tuple[str, object]] = ()) 
                 raise ScenarioError(f"{label}: is the {what}; it would be overwritten")
         given.append(t)
     return given
+
+
+def _check_target(t: Target) -> None:
+    """The checks of one set target (:func:`check_outputs`); OSError from the file system passes."""
+    label = t.label
+    p = Path(t.path)
+    if t.kind == "figure":
+        ext = p.suffix.lower().lstrip(".")
+        formats = figure_formats()
+        if not ext:
+            raise ScenarioError(f"{label}: no file extension, so no figure format (use one of {', '.join(formats)})")
+        if ext not in formats:
+            raise ScenarioError(f"{label}: matplotlib cannot write .{ext} figures (use one of {', '.join(formats)})")
+    if t.kind == "directory":
+        if p.exists():
+            if not p.is_dir():
+                raise ScenarioError(f"{label}: exists and is not a directory")
+            _probe_directory(p, label)
+        else:
+            parent = p.absolute().parent
+            if not parent.is_dir():
+                raise ScenarioError(f"{label}: directory {parent} does not exist")
+            _probe_directory(parent, label)
+    else:
+        if p.is_dir():
+            raise ScenarioError(f"{label}: is a directory (give a file name)")
+        if p.exists() and not p.is_file():
+            raise ScenarioError(f"{label}: exists and is not a regular file (a device or pipe is not a result file)")
+        if p.exists() and not os.access(p, os.W_OK):
+            raise ScenarioError(f"{label}: the file exists and is read-only")
+        if len(os.fsencode(Path(os.path.realpath(p)).name)) > MAX_NAME_BYTES:
+            raise ScenarioError(f"{label}: file name too long (at most {MAX_NAME_BYTES} bytes)")
+        parent = p.absolute().parent
+        if not parent.exists():
+            raise ScenarioError(f"{label}: directory {parent} does not exist")
+        if not parent.is_dir():
+            raise ScenarioError(f"{label}: {parent} is not a directory")
+        _probe_directory(parent, label)
 
 
 @contextlib.contextmanager
