@@ -318,6 +318,9 @@ def _cmd_linearize(args, scenario) -> dict:
     from hubbeam.io.targets import Target
 
     targets = _check([Target("-o", args.output)], args)
+    if args.open_loop and scenario.hub.torque_law is None:
+        raise ScenarioError(f"--open-loop: hub.motion = {scenario.hub.motion!r} has no torque law to leave out (only a "
+                            "free hub has one)")
     inputs = None if args.inputs is None else [i.strip() for i in args.inputs.split(",")]
     try:
         model = api.linearize(scenario, inputs, open_loop=args.open_loop)
@@ -347,7 +350,8 @@ def _cmd_run(args, scenario) -> dict:
 
     kind = scenario.analysis.kind
     if kind != "dynamic":
-        refused = [("-o", args.output), ("--csv", args.csv), ("--state", args.state or None)] + \
+        refused = [("-o", args.output), ("--csv", args.csv), ("--state", args.state or None),
+                   ("--plot-vars", args.plot_vars)] + \
             ([("--plot", args.plot)] if kind == "modes" else [])
         for option, value in refused:
             if value is not None:
@@ -495,6 +499,9 @@ def _cmd_campbell(args, scenario) -> dict:
         option = "--fmax" if args.fmax is not None else "--frange"
         raise ScenarioError(f"{option}: expected {'a finite FMAX > 0' if args.fmax is not None else 'LO:HI with 0 <= LO < HI'}"
                             f" (Hz; got {args.fmax if args.fmax is not None else args.frange!r})")
+    if frange is not None and args.output is None:
+        raise ScenarioError(f"{'--fmax' if args.fmax is not None else '--frange'}: zooms the figure, and no figure is "
+                            "asked for (give -o FIG.png)")
     targets = _check([Target("-o", args.output, "figure"), Target("--data", args.data)], args)
     from hubbeam.studies.campbell import campbell
 
