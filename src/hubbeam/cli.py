@@ -169,13 +169,14 @@ def _written(paths) -> str:
     return ", ".join(str(p) for p in paths)
 
 
-def _write(jobs) -> list[str]:
+def _write(jobs, interruptible: bool = False) -> list[str]:
     """Write (target, writer) jobs; OutputError (exit 1) naming the ones that failed and the
-    ones written; a signal during the writes takes effect after them."""
+    ones written; a signal during the writes takes effect after them (``interruptible``: at
+    once, for writers that are the computation itself, see io.targets.write_all)."""
     from hubbeam import interrupt
     from hubbeam.io.targets import OutputError, write_all
 
-    written, errors = write_all(jobs)
+    written, errors = write_all(jobs, interruptible)
     if errors:
         also = f" (written: {_written(written)})" if written else ""
         raise OutputError("; ".join(errors) + also)
@@ -791,8 +792,8 @@ def _cmd_animate(args) -> dict:
         raise ScenarioError(f"-o {args.output}: the movie must be a .gif or an .mp4 file")
     if args.stride < 1:
         raise ScenarioError(f"--stride: must be >= 1 (got {args.stride})")
-    if not (math.isfinite(args.fps) and 0 < args.fps <= 100):
-        raise ScenarioError(f"--fps: must be in (0, 100] (got {args.fps:g})")
+    if not (math.isfinite(args.fps) and 0.01 <= args.fps <= 100):
+        raise ScenarioError(f"--fps: must be between 0.01 and 100 (got {args.fps:g})")
     from hubbeam.animate import COLORINGS, animate, find_ffmpeg
 
     if args.color not in COLORINGS:
@@ -803,8 +804,15 @@ def _cmd_animate(args) -> dict:
                             "'hubbeam[video]' (imageio-ffmpeg), or write a .gif")
     targets = _check([Target("-o", args.output)], args, ("result file", args.result))
     state = read_state(args.result, "result file")
+    if state.partial:
+        _say(f"hubbeam: note: {args.result} holds a partial run: {state.partial}")
     frames = []
-    _write([(targets[0], lambda p: frames.append(animate(state, p, args.color, args.stride, args.fps, ffmpeg)))])
+    _write([(targets[0], lambda p: frames.append(animate(state, p, args.color, args.stride, args.fps, ffmpeg)))],
+           interruptible=True)  # rendering the frames is the computation: a signal stops it, nothing is written
+    shown = 100.0 / int(int(1000 / args.fps) / 10)  # a GIF stores whole 1/100 s per frame (Pillow truncates)
+    if movie == ".gif" and abs(shown - args.fps) > 0.01 * args.fps:
+        _say(f"hubbeam: note: --fps {args.fps:g}: a GIF stores each frame's time in whole 1/100 s, so it plays at "
+             f"{shown:.4g} frames per second")
     if not args.json:
         print(f"{frames[0]} frames (t = {state.times[0]:g} to {state.times[-1]:g} s) -> {args.output}")
     return {"frames": frames[0], "output": args.output}
@@ -821,6 +829,8 @@ def _cmd_vtk(args) -> dict:
 
     _check([Target("-o", args.output, "directory")], args)
     state = read_state(args.result, "result file")
+    if state.partial:
+        _say(f"hubbeam: note: {args.result} holds a partial run: {state.partial}")
     out = Path(args.output)
     pvd, vtus = vtk.file_names(state)
     pattern = re.compile(re.escape(vtk.series_name(state)) + rf"_\d{{{vtk.INDEX_DIGITS}}}\.vtu")
@@ -833,9 +843,22 @@ def _cmd_vtk(args) -> dict:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
+    (out / pvd).unlink(missing_ok=True)  # --force: an old collection must not list the new files mixed with old ones
     jobs = [(Target("-o", str(out / name)), lambda p, i=i: vtk.write_vtu(state, i, p)) for i, name in enumerate(vtus)]
-    for start in range(0, len(jobs), 100):  # in chunks: a signal is noticed between them
-        _write(jobs[start : start + 100])
+    from hubbeam.interrupt import Interrupted
+
+    done = 0
+    try:
+        for start in range(0, len(jobs), 100):  # in chunks: a signal is noticed between them
+            chunk = jobs[start : start + 100]
+            _write(chunk)  # a signal during the chunk takes effect after it, "after the results were written"
+            done += len(chunk)
+    except Interrupted as exc:
+        n = done + (len(chunk) if "after the results were written" in exc.detail else 0)
+        exc.detail = (f" after {n} of {len(vtus)} time steps: {out} holds " +
+                      (f"{vtus[0]} to {vtus[n - 1]} but no {pvd} (run again with --force for the whole series)" if n
+                       else "none of them"))
+        raise
     # the collection last: it never lists a file that is not there
     _write([(Target("-o", str(out / pvd)), lambda p: Path(p).write_text(vtk.pvd_text(state), encoding="utf-8"))])
     for stale in old:  # --force: files of an earlier, longer series

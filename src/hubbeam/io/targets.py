@@ -239,14 +239,17 @@ def write_one(target: Target, writer) -> None:
         raise OutputError(f"{target.label}: cannot write ({_reason(exc)})") from exc
 
 
-def write_all(jobs: list[tuple[Target, object]]) -> tuple[list[str], list[str]]:
+def write_all(jobs: list[tuple[Target, object]], interruptible: bool = False) -> tuple[list[str], list[str]]:
     """Write every (target, writer) job, each atomically; a failed one does not stop the
     others. Returns (paths written, one-line error messages). Signals that arrive while
-    writing are held (see :mod:`hubbeam.interrupt`): the caller raises or drops them."""
+    writing are held (see :mod:`hubbeam.interrupt`): the caller raises or drops them.
+    ``interruptible``: the writers are themselves the long computation (a movie rendered
+    frame by frame), so a signal stops them at once; the file being written is removed and
+    :class:`~hubbeam.interrupt.Interrupted` passes to the caller."""
     from hubbeam import interrupt
 
     written, errors = [], []
-    with interrupt.deferred():
+    with (contextlib.nullcontext() if interruptible else interrupt.deferred()):
         for target, writer in jobs:
             try:
                 write_one(target, writer)
