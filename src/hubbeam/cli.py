@@ -369,7 +369,7 @@ def _cmd_run(args, scenario) -> dict:
     if args.plot is not None and not scenario.sensors:
         raise ScenarioError(f"--plot {args.plot}: the scenario has no sensors, so there is nothing to draw")
     plot_vars = _plot_vars(args.plot_vars, args.plot, scenario)
-    size = limits.check_run(scenario)
+    size = limits.check_run(scenario, state=args.state)
     if size.note:
         _say(f"hubbeam: note: {size.note}")
     for line in api.reduction_warnings(scenario):
@@ -443,8 +443,10 @@ def _finish_run(targets, scenario, traj, failure, plot_vars=None) -> None:
     def plot(path):
         from hubbeam import plots
 
-        plots.plot_timeseries(dataset(), path, title=scenario.name + (" (partial)" if status else ""),
-                              variables=plot_vars)
+        chosen, title = plot_vars, scenario.name + (" (partial)" if status else "")
+        if chosen is None and not plots.timeseries_panels(dataset(), None):  # all zero: that is the result to draw
+            chosen, title = list(dataset().data_vars), title + ": every variable is zero throughout"
+        plots.plot_timeseries(dataset(), path, title=title, variables=chosen)
 
     writers = {"-o": lambda p: results.write_trajectory_netcdf(traj, scenario, p, status),
                "--csv": lambda p: results.write_csv(dataset(), p), "--plot": plot}
@@ -954,6 +956,21 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _main(argv) -> int:
+    """The command, with the warnings of the libraries it uses (numpy, scipy, matplotlib)
+    caught: on success each distinct one is one ``hubbeam: warning:`` line; on failure the
+    failure's one line says what matters (a warning is not printed with its source line)."""
+    import warnings
+
+    with warnings.catch_warnings(record=True) as caught:
+        code = _command(argv)
+    if code == 0:
+        for text in dict.fromkeys(f"{w.category.__name__}: {w.message} ({w.filename.rsplit(os.sep, 1)[-1]}:{w.lineno})"
+                                  for w in caught):
+            _say(f"hubbeam: warning: {text}")
+    return code
+
+
+def _command(argv) -> int:
     from hubbeam.interrupt import Interrupted, raise_pending
 
     args = _parser().parse_args(argv)
