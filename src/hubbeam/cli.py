@@ -304,6 +304,9 @@ def _cmd_modes(args, scenario) -> dict:
         write_netcdf(ds, path)
 
     _write([(t, figure if t.option == "--plot" else shapes) for t in targets])
+    if len(d["frequencies_hz"]) < scenario.analysis.count:
+        _say(f"hubbeam: note: analysis.count = {scenario.analysis.count}, but the model has only "
+             f"{len(d['frequencies_hz'])} (more beam.elements give more)")
     if not args.json:
         print(f"natural frequencies (Hz) about the {d['about']}, {d['rigid_modes']} rigid mode(s) left out:")
         for i, (f, label) in enumerate(zip(d["frequencies_hz"], d["labels"]), 1):
@@ -526,6 +529,21 @@ def _cmd_campbell(args, scenario) -> dict:
         write_netcdf(ds, path)
 
     _write([(t, figure if t.option == "-o" else data) for t in targets])
+    import numpy as np
+
+    short = {f: int(np.isfinite(ds["tracked_frequency_hz"].sel(formulation=f).values).any(axis=0).sum()) for f in forms}
+    short = {f: n for f, n in short.items() if n < args.count}
+    if short:
+        _say(f"hubbeam: note: --count {args.count}, but the model has only "
+             f"{', '.join(f'{n} modes with {f}' for f, n in short.items())} (the others are null; more beam.elements "
+             "give more)")
+    if frange is not None and targets and targets[0].option == "-o":
+        f = ds["frequency_hz"].values
+        f = f[np.isfinite(f)]
+        if f.size and not ((f >= frange[0]) & (f <= frange[1])).any():
+            _say(f"hubbeam: note: {'--fmax' if args.fmax is not None else '--frange'}: no frequency lies in "
+                 f"{frange[0]:g} to {frange[1]:g} Hz (they span {f.min():.4g} to {f.max():.4g} Hz), so the figure shows "
+                 "only the speed lines")
     result = {"omega": speeds.tolist(),
               "frequencies_hz": {str(f): ds["frequency_hz"].sel(formulation=f).values.tolist() for f in forms},
               "labels": {str(f): ds["label"].sel(formulation=f).values.tolist() for f in forms},
