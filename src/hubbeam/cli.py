@@ -865,19 +865,25 @@ def _cmd_vtk(args) -> dict:
         raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
     (out / pvd).unlink(missing_ok=True)  # --force: an old collection must not list the new files mixed with old ones
     jobs = [(Target("-o", str(out / name)), lambda p, i=i: vtk.write_vtu(state, i, p)) for i, name in enumerate(vtus)]
-    from hubbeam.interrupt import Interrupted
+    from hubbeam import interrupt
+    from hubbeam.io.targets import write_all
+
+    def left(n):
+        return (f"{n} of {len(vtus)} time steps: {out} holds " +
+                (f"{vtus[0]} to {vtus[n - 1]} but no {pvd} (run again with --force for the whole series)" if n
+                 else "none of them"))
 
     done = 0
     try:
         for start in range(0, len(jobs), 100):  # in chunks: a signal is noticed between them
-            chunk = jobs[start : start + 100]
-            _write(chunk)  # a signal during the chunk takes effect after it, "after the results were written"
-            done += len(chunk)
-    except Interrupted as exc:
-        n = done + (len(chunk) if "after the results were written" in exc.detail else 0)
-        exc.detail = (f" after {n} of {len(vtus)} time steps: {out} holds " +
-                      (f"{vtus[0]} to {vtus[n - 1]} but no {pvd} (run again with --force for the whole series)" if n
-                       else "none of them"))
+            written, errors = write_all(jobs[start : start + 100])  # a signal in a chunk takes effect after it
+            done += len(written)
+            if errors:  # a full disk: the first reason, not one per file
+                more = f" (and {len(errors) - 1} more files)" if len(errors) > 1 else ""
+                raise OutputError(f"{errors[0]}{more}; after {left(done)}")
+            interrupt.raise_pending()
+    except interrupt.Interrupted as exc:
+        exc.detail = f" after {left(done)}"
         raise
     # the collection last: it never lists a file that is not there
     _write([(Target("-o", str(out / pvd)), lambda p: Path(p).write_text(vtk.pvd_text(state), encoding="utf-8"))])

@@ -250,3 +250,18 @@ def test_a_campbell_zoom_on_an_empty_range_is_said(tmp_path):
     code, out, err = cli("campbell", scenario(tmp_path), "--omega", "0:1:2", "--count", "2", "--formulations", "ancf",
                          "-o", tmp_path / "c.png", "--frange", "5000:6000")
     assert code == 0 and "hubbeam: note: --frange: no frequency lies in 5000 to 6000 Hz" in err, err
+
+
+def test_vtk_on_a_full_disk_is_one_short_line(state_file, tmp_path):
+    """Each of the 100 .vtu files of a chunk added its own "cannot write" to the line (6 kB)."""
+    import resource
+
+    def limit():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (2000, 2000))
+
+    out = hubbeam("vtk", state_file, "-o", tmp_path / "series", preexec_fn=limit)
+    assert out.returncode == 1, out.stderr
+    assert_contract(out.returncode, out.stdout, out.stderr)
+    assert "File too large" in out.stderr and "after 0 of 4 time steps" in out.stderr and len(out.stderr) < 400, out.stderr
+    assert no_temporary_files(tmp_path / "series")
