@@ -265,3 +265,19 @@ def test_vtk_on_a_full_disk_is_one_short_line(state_file, tmp_path):
     assert_contract(out.returncode, out.stdout, out.stderr)
     assert "File too large" in out.stderr and "after 0 of 4 time steps" in out.stderr and len(out.stderr) < 400, out.stderr
     assert no_temporary_files(tmp_path / "series")
+
+
+def test_a_link_to_nowhere_is_refused_before_computing(tmp_path):
+    """-o LINK where LINK points into a directory that does not exist passed the checks and
+    failed after the run (the result is written through the link)."""
+    path = scenario(tmp_path)
+    os.symlink(tmp_path / "nodir" / "r.nc", tmp_path / "link.nc")
+    os.symlink(tmp_path / "nodir", tmp_path / "linkdir")
+    code, out, err = cli("run", path, "-o", tmp_path / "link.nc")
+    assert_contract(code, out, err)
+    assert code == 2 and "does not exist" in err and "is a link to" in err, err
+    code, out, err = cli("vtk", tmp_path / "whatever.nc", "-o", tmp_path / "linkdir")
+    assert code == 2 and "is a link to" in err, err
+    os.symlink(tmp_path / "real.nc", tmp_path / "good.nc")  # a link to a new file in a directory that exists: fine
+    code, out, err = cli("run", path, "-o", tmp_path / "good.nc")
+    assert code == 0 and (tmp_path / "real.nc").is_file() and (tmp_path / "good.nc").is_symlink(), err

@@ -163,6 +163,8 @@ def _check_target(t: Target) -> None:
             raise ScenarioError(f"{label}: no file extension, so no figure format (use one of {', '.join(formats)})")
         if ext not in formats:
             raise ScenarioError(f"{label}: matplotlib cannot write .{ext} figures (use one of {', '.join(formats)})")
+    if t.kind == "directory" and p.is_symlink() and not p.exists():
+        raise ScenarioError(f"{label}: is a link to {os.readlink(p)}, which does not exist")
     if t.kind == "directory":
         if p.exists():
             if not p.is_dir():
@@ -182,9 +184,10 @@ def _check_target(t: Target) -> None:
             raise ScenarioError(f"{label}: the file exists and is read-only")
         if len(os.fsencode(Path(os.path.realpath(p)).name)) > MAX_NAME_BYTES:
             raise ScenarioError(f"{label}: file name too long (at most {MAX_NAME_BYTES} bytes)")
-        parent = p.absolute().parent
+        parent = Path(os.path.realpath(p)).parent  # a link is written through (atomic_path): where it points
         if not parent.exists():
-            raise ScenarioError(f"{label}: directory {parent} does not exist")
+            raise ScenarioError(f"{label}: directory {parent} does not exist"
+                                + (f" ({p} is a link to {os.readlink(p)})" if p.is_symlink() else ""))
         if not parent.is_dir():
             raise ScenarioError(f"{label}: {parent} is not a directory")
         _probe_directory(parent, label)
