@@ -715,6 +715,9 @@ def _cmd_applicability(args) -> dict:
         raise ScenarioError("--thickness must be > 0 and --ratio in [0, 1)")
     _limit_workers(args.workers, "--workers")
     _check([Target("-o", args.output, "directory")], args)
+    from hubbeam.io.targets import check_inside
+
+    check_inside("-o", args.output, [f"applicability.{ext}" for ext in ("png", "nc", "md")])
     total = thickness.size * (ratio.size + 1)
     progress, finish = _progress_bar(total, label="applicability", unit="tasks")
     start = time.perf_counter()
@@ -771,6 +774,9 @@ def _cmd_reproduce(args) -> int:
 
     _limit_workers(args.jobs, "--jobs")
     _check([Target("-o", args.output, "directory")], args)
+    from hubbeam.io.targets import check_inside
+
+    check_inside("-o", args.output, ["report.md", "tables.json"])
 
     def progress(done, total, outcome):
         state = "failed" if outcome.failure else "done"
@@ -783,6 +789,7 @@ def _cmd_reproduce(args) -> int:
         work = Path(tempfile.mkdtemp(prefix=".reproduce-", dir=out))
     except OSError as exc:
         raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
+    keep = False
     try:
         # the report is written into a scratch directory inside DIR and each file moved into DIR
         # when all are complete, so that a failed write leaves no half report
@@ -794,10 +801,16 @@ def _cmd_reproduce(args) -> int:
 
         with interrupt.deferred():
             for item in sorted(work.iterdir()):
-                os.replace(item, out / item.name)
+                try:
+                    os.replace(item, out / item.name)
+                except OSError as exc:  # the report is complete: keep it where it is, never delete it
+                    keep = True
+                    raise OutputError(f"-o {out}: cannot move {item.name} into place ({exc.strerror or exc}); the "
+                                      f"complete report is kept in {work}") from None
         interrupt.raise_pending()
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        if not keep:
+            shutil.rmtree(work, ignore_errors=True)
     print(f"report: {out / path.name}")
     return 0
 
@@ -859,11 +872,14 @@ def _cmd_vtk(args) -> dict:
         raise ScenarioError(f"-o {out}: holds a series named {vtk.series_name(state)!r} already ({old[0].name}"
                             f"{f' and {len(old) - 1} more' if len(old) > 1 else ''}); give another directory or "
                             "--force to replace it")
+    from hubbeam.io.targets import check_inside
+
+    check_inside("-o", out, [pvd, *vtus])
     try:
         out.mkdir(parents=True, exist_ok=True)
+        (out / pvd).unlink(missing_ok=True)  # --force: an old collection must not list the new files mixed with old ones
     except OSError as exc:
-        raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
-    (out / pvd).unlink(missing_ok=True)  # --force: an old collection must not list the new files mixed with old ones
+        raise OutputError(f"-o {out}: cannot create the directory or remove the old {pvd} ({exc.strerror})") from None
     jobs = [(Target("-o", str(out / name)), lambda p, i=i: vtk.write_vtu(state, i, p)) for i, name in enumerate(vtus)]
     from hubbeam import interrupt
     from hubbeam.io.targets import write_all

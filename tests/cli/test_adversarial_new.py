@@ -281,3 +281,38 @@ def test_a_link_to_nowhere_is_refused_before_computing(tmp_path):
     os.symlink(tmp_path / "real.nc", tmp_path / "good.nc")  # a link to a new file in a directory that exists: fine
     code, out, err = cli("run", path, "-o", tmp_path / "good.nc")
     assert code == 0 and (tmp_path / "real.nc").is_file() and (tmp_path / "good.nc").is_symlink(), err
+
+
+def test_a_file_a_directory_target_will_hold_is_checked_first(state_file, tmp_path):
+    """applicability -o DIR with DIR/applicability.png a directory failed after the whole
+    map; vtk --force with DIR/NAME.pvd a directory was an internal error."""
+    (tmp_path / "app" / "applicability.png").mkdir(parents=True)
+    start = time.perf_counter()
+    code, out, err = cli("applicability", scenario(tmp_path), "--thickness", "0.004:0.005:2", "--ratio", "0:0.2:2",
+                         "-o", tmp_path / "app", "--workers", "1")
+    assert_contract(code, out, err)
+    assert code == 2 and "applicability.png is there already and is a directory" in err, err
+    assert time.perf_counter() - start < 10 and not (tmp_path / "app" / "applicability.nc").exists()
+    (tmp_path / "series" / "tiny.pvd").mkdir(parents=True)
+    code, out, err = cli("vtk", state_file, "-o", tmp_path / "series", "--force")
+    assert_contract(code, out, err)
+    assert code == 2 and "tiny.pvd is there already and is a directory" in err, err
+
+
+def test_reproduce_keeps_a_complete_report_it_cannot_move(tmp_path, monkeypatch):
+    """A report file that could not be moved into DIR was an internal error, and the scratch
+    directory holding the whole report was deleted."""
+    import hubbeam.reproduce.pipeline as pipeline
+
+    def fake(work, **kwargs):
+        (work / "report.md").write_text("# report\n")
+        (work / "fig1.png").write_bytes(b"png")
+        return work / "report.md", None
+
+    monkeypatch.setattr(pipeline, "reproduce", fake)
+    (tmp_path / "fig1.png").mkdir()
+    code, out, err = cli("reproduce", "-o", tmp_path, "--quick")
+    assert_contract(code, out, err)
+    assert code == 1 and "cannot move fig1.png into place" in err and "kept in" in err, err
+    kept = [p for p in tmp_path.iterdir() if p.name.startswith(".reproduce-")]
+    assert len(kept) == 1 and (kept[0] / "fig1.png").read_bytes() == b"png"

@@ -193,6 +193,21 @@ def _check_target(t: Target) -> None:
         _probe_directory(parent, label)
 
 
+def check_inside(option: str, directory, names) -> None:
+    """ScenarioError naming ``option`` when one of the files a command will write into
+    ``directory`` (``names``) is there already as something a file cannot replace (a
+    directory, a device, a link to nowhere): found before the computation, not after it."""
+    d = Path(directory)
+    if not d.is_dir():
+        return
+    wanted = set(names)
+    for entry in os.scandir(d):
+        if entry.name in wanted and not (entry.is_file() and not entry.is_symlink() or
+                                         entry.is_symlink() and os.path.isfile(entry.path)):
+            what = "a directory" if entry.is_dir() else "a link to nowhere" if entry.is_symlink() else "not a regular file"
+            raise ScenarioError(f"{option} {d}: {entry.name} is there already and is {what}, so it cannot be written")
+
+
 @contextlib.contextmanager
 def atomic_path(path):
     """A temporary path next to ``path`` (with the same extension, for writers that choose
