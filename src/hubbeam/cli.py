@@ -372,7 +372,14 @@ def _cmd_run(args, scenario) -> dict:
     if args.plot is not None and not scenario.sensors:
         raise ScenarioError(f"--plot {args.plot}: the scenario has no sensors, so there is nothing to draw")
     plot_vars = _plot_vars(args.plot_vars, args.plot, scenario)
-    size = limits.check_run(scenario, state=args.state)
+    try:
+        size = limits.check_run(scenario, state=args.state)
+    except ScenarioError as exc:
+        if not args.state:
+            raise
+        limits.check_run(scenario)  # too large without the state too: that error as it is
+        raise ScenarioError(f"--state: {exc} (the recorded state adds {limits.state_values(scenario)} numbers per "
+                            "output time; fewer beam elements need fewer)") from None
     if size.note:
         _say(f"hubbeam: note: {size.note}")
     for line in api.reduction_warnings(scenario):

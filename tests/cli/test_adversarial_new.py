@@ -316,3 +316,13 @@ def test_reproduce_keeps_a_complete_report_it_cannot_move(tmp_path, monkeypatch)
     assert code == 1 and "cannot move fig1.png into place" in err and "kept in" in err, err
     kept = [p for p in tmp_path.iterdir() if p.name.startswith(".reproduce-")]
     assert len(kept) == 1 and (kept[0] / "fig1.png").read_bytes() == b"png"
+
+
+def test_a_state_too_large_for_memory_names_state(tmp_path):
+    """The refusal named only analysis.output_dt, though the run fits without --state."""
+    path = scenario(tmp_path)
+    args = ["--set", "beam.elements=100", "--set", "analysis.t_end=100.0", "--set", "analysis.output_dt=0.001",
+            "--set", "analysis.dt=0.001"]  # 10^5 records: 40 MB of sensors, 6.4 GB with the state
+    code, out, err = cli("run", path, "-o", tmp_path / "r.nc", "--state", *args)
+    assert_contract(code, out, err)
+    assert code == 2 and err.startswith("hubbeam: error: --state: analysis.output_dt:") and "recorded state" in err, err
