@@ -145,17 +145,23 @@ def _say(text: str) -> None:
 def _load(args):
     """The scenario of a command: the file checked (a regular text file of sane size), then
     read, overridden and validated."""
-    from hubbeam.io.scenario import load_scenario
+    from hubbeam.io.scenario import load_example, load_scenario, table_files
     from hubbeam.io.targets import check_input_file
 
-    return load_scenario(check_input_file(args.scenario, "scenario file"), args.overrides)
+    if args.scenario is None:  # applicability's default
+        scenario = load_example("exp1", args.overrides)
+    else:
+        scenario = load_scenario(check_input_file(args.scenario, "scenario file"), args.overrides)
+    args.tables = [(f"table of {key}", path) for _, key, path in table_files(scenario)]
+    return scenario
 
 
 def _check(targets, args, *inputs):
-    """Check the output targets before computing (ScenarioError naming the option)."""
+    """Check the output targets before computing (ScenarioError naming the option); the
+    scenario file and the CSV tables it reads are inputs that no target may overwrite."""
     from hubbeam.io.targets import check_outputs
 
-    files = [("scenario file", getattr(args, "scenario", None))] + list(inputs)
+    files = [("scenario file", getattr(args, "scenario", None))] + getattr(args, "tables", []) + list(inputs)
     return check_outputs(targets, files)
 
 
@@ -163,13 +169,14 @@ def _written(paths) -> str:
     return ", ".join(str(p) for p in paths)
 
 
-def _write(jobs) -> list[str]:
+def _write(jobs, interruptible: bool = False) -> list[str]:
     """Write (target, writer) jobs; OutputError (exit 1) naming the ones that failed and the
-    ones written; a signal during the writes takes effect after them."""
+    ones written; a signal during the writes takes effect after them (``interruptible``: at
+    once, for writers that are the computation itself, see io.targets.write_all)."""
     from hubbeam import interrupt
     from hubbeam.io.targets import OutputError, write_all
 
-    written, errors = write_all(jobs)
+    written, errors = write_all(jobs, interruptible)
     if errors:
         also = f" (written: {_written(written)})" if written else ""
         raise OutputError("; ".join(errors) + also)
@@ -297,6 +304,9 @@ def _cmd_modes(args, scenario) -> dict:
         write_netcdf(ds, path)
 
     _write([(t, figure if t.option == "--plot" else shapes) for t in targets])
+    if len(d["frequencies_hz"]) < scenario.analysis.count:
+        _say(f"hubbeam: note: analysis.count = {scenario.analysis.count}, but the model has only "
+             f"{len(d['frequencies_hz'])} (more beam.elements give more)")
     if not args.json:
         print(f"natural frequencies (Hz) about the {d['about']}, {d['rigid_modes']} rigid mode(s) left out:")
         for i, (f, label) in enumerate(zip(d["frequencies_hz"], d["labels"]), 1):
@@ -312,6 +322,9 @@ def _cmd_linearize(args, scenario) -> dict:
     from hubbeam.io.targets import Target
 
     targets = _check([Target("-o", args.output)], args)
+    if args.open_loop and scenario.hub.torque_law is None:
+        raise ScenarioError(f"--open-loop: hub.motion = {scenario.hub.motion!r} has no torque law to leave out (only a "
+                            "free hub has one)")
     inputs = None if args.inputs is None else [i.strip() for i in args.inputs.split(",")]
     try:
         model = api.linearize(scenario, inputs, open_loop=args.open_loop)
@@ -341,7 +354,8 @@ def _cmd_run(args, scenario) -> dict:
 
     kind = scenario.analysis.kind
     if kind != "dynamic":
-        refused = [("-o", args.output), ("--csv", args.csv), ("--state", args.state or None)] + \
+        refused = [("-o", args.output), ("--csv", args.csv), ("--state", args.state or None),
+                   ("--plot-vars", args.plot_vars)] + \
             ([("--plot", args.plot)] if kind == "modes" else [])
         for option, value in refused:
             if value is not None:
@@ -358,7 +372,14 @@ def _cmd_run(args, scenario) -> dict:
     if args.plot is not None and not scenario.sensors:
         raise ScenarioError(f"--plot {args.plot}: the scenario has no sensors, so there is nothing to draw")
     plot_vars = _plot_vars(args.plot_vars, args.plot, scenario)
-    size = limits.check_run(scenario)
+    try:
+        size = limits.check_run(scenario, state=args.state)
+    except ScenarioError as exc:
+        if not args.state:
+            raise
+        limits.check_run(scenario)  # too large without the state too: that error as it is
+        raise ScenarioError(f"--state: {exc} (the recorded state adds {limits.state_values(scenario)} numbers per "
+                            "output time; fewer beam elements need fewer)") from None
     if size.note:
         _say(f"hubbeam: note: {size.note}")
     for line in api.reduction_warnings(scenario):
@@ -432,8 +453,10 @@ def _finish_run(targets, scenario, traj, failure, plot_vars=None) -> None:
     def plot(path):
         from hubbeam import plots
 
-        plots.plot_timeseries(dataset(), path, title=scenario.name + (" (partial)" if status else ""),
-                              variables=plot_vars)
+        chosen, title = plot_vars, scenario.name + (" (partial)" if status else "")
+        if chosen is None and not plots.timeseries_panels(dataset(), None):  # all zero: that is the result to draw
+            chosen, title = list(dataset().data_vars), title + ": every variable is zero throughout"
+        plots.plot_timeseries(dataset(), path, title=title, variables=chosen)
 
     writers = {"-o": lambda p: results.write_trajectory_netcdf(traj, scenario, p, status),
                "--csv": lambda p: results.write_csv(dataset(), p), "--plot": plot}
@@ -489,6 +512,9 @@ def _cmd_campbell(args, scenario) -> dict:
         option = "--fmax" if args.fmax is not None else "--frange"
         raise ScenarioError(f"{option}: expected {'a finite FMAX > 0' if args.fmax is not None else 'LO:HI with 0 <= LO < HI'}"
                             f" (Hz; got {args.fmax if args.fmax is not None else args.frange!r})")
+    if frange is not None and args.output is None:
+        raise ScenarioError(f"{'--fmax' if args.fmax is not None else '--frange'}: zooms the figure, and no figure is "
+                            "asked for (give -o FIG.png)")
     targets = _check([Target("-o", args.output, "figure"), Target("--data", args.data)], args)
     from hubbeam.studies.campbell import campbell
 
@@ -510,6 +536,21 @@ def _cmd_campbell(args, scenario) -> dict:
         write_netcdf(ds, path)
 
     _write([(t, figure if t.option == "-o" else data) for t in targets])
+    import numpy as np
+
+    short = {f: int(np.isfinite(ds["tracked_frequency_hz"].sel(formulation=f).values).any(axis=0).sum()) for f in forms}
+    short = {f: n for f, n in short.items() if n < args.count}
+    if short:
+        _say(f"hubbeam: note: --count {args.count}, but the model has only "
+             f"{', '.join(f'{n} modes with {f}' for f, n in short.items())} (the others are null; more beam.elements "
+             "give more)")
+    if frange is not None and targets and targets[0].option == "-o":
+        f = ds["frequency_hz"].values
+        f = f[np.isfinite(f)]
+        if f.size and not ((f >= frange[0]) & (f <= frange[1])).any():
+            _say(f"hubbeam: note: {'--fmax' if args.fmax is not None else '--frange'}: no frequency lies in "
+                 f"{frange[0]:g} to {frange[1]:g} Hz (they span {f.min():.4g} to {f.max():.4g} Hz), so the figure shows "
+                 "only the speed lines")
     result = {"omega": speeds.tolist(),
               "frequencies_hz": {str(f): ds["frequency_hz"].sel(formulation=f).values.tolist() for f in forms},
               "labels": {str(f): ds["label"].sel(formulation=f).values.tolist() for f in forms},
@@ -670,17 +711,20 @@ def _cmd_applicability(args) -> dict:
     import time
     from pathlib import Path
 
-    from hubbeam.io.scenario import ScenarioError, load_example
+    from hubbeam.io.scenario import ScenarioError
     from hubbeam.io.targets import Target
     from hubbeam.studies.applicability import applicability_map
     from hubbeam.studies.variants import parse_range
 
-    scenario = _load(args) if args.scenario else load_example("exp1", args.overrides)
+    scenario = _load(args)
     thickness, ratio = parse_range(args.thickness, "--thickness"), parse_range(args.ratio, "--ratio")
     if (thickness <= 0).any() or (ratio < 0).any() or (ratio >= 1).any():
         raise ScenarioError("--thickness must be > 0 and --ratio in [0, 1)")
     _limit_workers(args.workers, "--workers")
     _check([Target("-o", args.output, "directory")], args)
+    from hubbeam.io.targets import check_inside
+
+    check_inside("-o", args.output, [f"applicability.{ext}" for ext in ("png", "nc", "md")])
     total = thickness.size * (ratio.size + 1)
     progress, finish = _progress_bar(total, label="applicability", unit="tasks")
     start = time.perf_counter()
@@ -737,6 +781,9 @@ def _cmd_reproduce(args) -> int:
 
     _limit_workers(args.jobs, "--jobs")
     _check([Target("-o", args.output, "directory")], args)
+    from hubbeam.io.targets import check_inside
+
+    check_inside("-o", args.output, ["report.md", "tables.json"])
 
     def progress(done, total, outcome):
         state = "failed" if outcome.failure else "done"
@@ -749,6 +796,7 @@ def _cmd_reproduce(args) -> int:
         work = Path(tempfile.mkdtemp(prefix=".reproduce-", dir=out))
     except OSError as exc:
         raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
+    keep = False
     try:
         # the report is written into a scratch directory inside DIR and each file moved into DIR
         # when all are complete, so that a failed write leaves no half report
@@ -760,10 +808,16 @@ def _cmd_reproduce(args) -> int:
 
         with interrupt.deferred():
             for item in sorted(work.iterdir()):
-                os.replace(item, out / item.name)
+                try:
+                    os.replace(item, out / item.name)
+                except OSError as exc:  # the report is complete: keep it where it is, never delete it
+                    keep = True
+                    raise OutputError(f"-o {out}: cannot move {item.name} into place ({exc.strerror or exc}); the "
+                                      f"complete report is kept in {work}") from None
         interrupt.raise_pending()
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        if not keep:
+            shutil.rmtree(work, ignore_errors=True)
     print(f"report: {out / path.name}")
     return 0
 
@@ -778,8 +832,8 @@ def _cmd_animate(args) -> dict:
         raise ScenarioError(f"-o {args.output}: the movie must be a .gif or an .mp4 file")
     if args.stride < 1:
         raise ScenarioError(f"--stride: must be >= 1 (got {args.stride})")
-    if not (math.isfinite(args.fps) and 0 < args.fps <= 100):
-        raise ScenarioError(f"--fps: must be in (0, 100] (got {args.fps:g})")
+    if not (math.isfinite(args.fps) and 0.01 <= args.fps <= 100):
+        raise ScenarioError(f"--fps: must be between 0.01 and 100 (got {args.fps:g})")
     from hubbeam.animate import COLORINGS, animate, find_ffmpeg
 
     if args.color not in COLORINGS:
@@ -790,8 +844,15 @@ def _cmd_animate(args) -> dict:
                             "'hubbeam[video]' (imageio-ffmpeg), or write a .gif")
     targets = _check([Target("-o", args.output)], args, ("result file", args.result))
     state = read_state(args.result, "result file")
+    if state.partial:
+        _say(f"hubbeam: note: {args.result} holds a partial run: {state.partial}")
     frames = []
-    _write([(targets[0], lambda p: frames.append(animate(state, p, args.color, args.stride, args.fps, ffmpeg)))])
+    _write([(targets[0], lambda p: frames.append(animate(state, p, args.color, args.stride, args.fps, ffmpeg)))],
+           interruptible=True)  # rendering the frames is the computation: a signal stops it, nothing is written
+    shown = 100.0 / int(int(1000 / args.fps) / 10)  # a GIF stores whole 1/100 s per frame (Pillow truncates)
+    if movie == ".gif" and abs(shown - args.fps) > 0.01 * args.fps:
+        _say(f"hubbeam: note: --fps {args.fps:g}: a GIF stores each frame's time in whole 1/100 s, so it plays at "
+             f"{shown:.4g} frames per second")
     if not args.json:
         print(f"{frames[0]} frames (t = {state.times[0]:g} to {state.times[-1]:g} s) -> {args.output}")
     return {"frames": frames[0], "output": args.output}
@@ -808,6 +869,8 @@ def _cmd_vtk(args) -> dict:
 
     _check([Target("-o", args.output, "directory")], args)
     state = read_state(args.result, "result file")
+    if state.partial:
+        _say(f"hubbeam: note: {args.result} holds a partial run: {state.partial}")
     out = Path(args.output)
     pvd, vtus = vtk.file_names(state)
     pattern = re.compile(re.escape(vtk.series_name(state)) + rf"_\d{{{vtk.INDEX_DIGITS}}}\.vtu")
@@ -816,13 +879,35 @@ def _cmd_vtk(args) -> dict:
         raise ScenarioError(f"-o {out}: holds a series named {vtk.series_name(state)!r} already ({old[0].name}"
                             f"{f' and {len(old) - 1} more' if len(old) > 1 else ''}); give another directory or "
                             "--force to replace it")
+    from hubbeam.io.targets import check_inside
+
+    check_inside("-o", out, [pvd, *vtus])
     try:
         out.mkdir(parents=True, exist_ok=True)
+        (out / pvd).unlink(missing_ok=True)  # --force: an old collection must not list the new files mixed with old ones
     except OSError as exc:
-        raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
+        raise OutputError(f"-o {out}: cannot create the directory or remove the old {pvd} ({exc.strerror})") from None
     jobs = [(Target("-o", str(out / name)), lambda p, i=i: vtk.write_vtu(state, i, p)) for i, name in enumerate(vtus)]
-    for start in range(0, len(jobs), 100):  # in chunks: a signal is noticed between them
-        _write(jobs[start : start + 100])
+    from hubbeam import interrupt
+    from hubbeam.io.targets import write_all
+
+    def left(n):
+        return (f"{n} of {len(vtus)} time steps: {out} holds " +
+                (f"{vtus[0]} to {vtus[n - 1]} but no {pvd} (run again with --force for the whole series)" if n
+                 else "none of them"))
+
+    done = 0
+    try:
+        for start in range(0, len(jobs), 100):  # in chunks: a signal is noticed between them
+            written, errors = write_all(jobs[start : start + 100])  # a signal in a chunk takes effect after it
+            done += len(written)
+            if errors:  # a full disk: the first reason, not one per file
+                more = f" (and {len(errors) - 1} more files)" if len(errors) > 1 else ""
+                raise OutputError(f"{errors[0]}{more}; after {left(done)}")
+            interrupt.raise_pending()
+    except interrupt.Interrupted as exc:
+        exc.detail = f" after {left(done)}"
+        raise
     # the collection last: it never lists a file that is not there
     _write([(Target("-o", str(out / pvd)), lambda p: Path(p).write_text(vtk.pvd_text(state), encoding="utf-8"))])
     for stale in old:  # --force: files of an earlier, longer series
@@ -918,6 +1003,21 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _main(argv) -> int:
+    """The command, with the warnings of the libraries it uses (numpy, scipy, matplotlib)
+    caught: on success each distinct one is one ``hubbeam: warning:`` line; on failure the
+    failure's one line says what matters (a warning is not printed with its source line)."""
+    import warnings
+
+    with warnings.catch_warnings(record=True) as caught:
+        code = _command(argv)
+    if code == 0:
+        for text in dict.fromkeys(f"{w.category.__name__}: {w.message} ({w.filename.rsplit(os.sep, 1)[-1]}:{w.lineno})"
+                                  for w in caught):
+            _say(f"hubbeam: warning: {text}")
+    return code
+
+
+def _command(argv) -> int:
     from hubbeam.interrupt import Interrupted, raise_pending
 
     args = _parser().parse_args(argv)

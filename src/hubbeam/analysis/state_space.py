@@ -179,7 +179,9 @@ def input_columns(system: HubSystem, names, x, v, acc, lam, F) -> tuple[np.ndarr
     columns, labels, units = [], [], []
     held = system.hub.held
     for spec in names:
-        kind, _, beam = str(spec).strip().partition(":")
+        kind, colon, beam = str(spec).strip().partition(":")
+        if colon and not beam.strip():
+            raise ScenarioError(f"inputs: {spec!r} names no beam (use tip_force:BEAM, or tip_force for the first beam)")
         if kind == "hub_torque" and not beam:
             if held:
                 raise ScenarioError(f"inputs: hub_torque needs a free hub (hub.motion = {system.motion!r} holds it; "

@@ -793,8 +793,9 @@ def validate(data: dict, base_dir: str | Path | None = None) -> Scenario:
     return scenario
 
 
-def _check_tables(s: Scenario) -> None:
-    """The numbers of the CSV tables a scenario names (columns, rows, times)."""
+def table_files(s: Scenario) -> list[tuple[str, str, str]]:
+    """(kind "drive" or "torque", key, absolute path) of every CSV table the scenario reads:
+    its inputs, which no output of a command may overwrite."""
     hub = s.hub
     tables = []
     if hub.drive is not None and hub.drive.profile == "table":
@@ -804,6 +805,12 @@ def _check_tables(s: Scenario) -> None:
         tables.append(("torque", "hub.torque.file", torque.file))
     if torque is not None and torque.reference is not None and torque.reference.profile == "table":
         tables.append(("drive", "hub.torque.reference.file", torque.reference.file))
+    return tables
+
+
+def _check_tables(s: Scenario) -> None:
+    """The numbers of the CSV tables a scenario names (columns, rows, times)."""
+    tables = table_files(s)
     if not tables:
         return
     from hubbeam.io.tables import read_drive_table, read_torque_table

@@ -54,6 +54,8 @@ class RunState:
     hub_angle: np.ndarray
     hub_radius: float
     beams: tuple[BeamTrack, ...]
+    #: for the state of a run that stopped early: how far it got and why (from the file's attributes)
+    partial: str | None = None
 
 
 def hub_rotation(theta) -> np.ndarray:
@@ -97,11 +99,27 @@ def read_state(path, option: str = "input") -> RunState:
                 v[f"state_{name}_thickness"][...], v[f"state_{name}_reference"][...],
                 v[f"state_{name}_centre_line"][...], v[f"state_{name}_m"][...], v[f"state_{name}_n"][...],
                 v[f"state_{name}_surface_strain"][...]) for name, form in zip(names, formulations))
+            partial = None
+            if int(f.attrs.get("partial", 0)):
+                reached, t_end = f.attrs.get("time_reached"), f.attrs.get("t_end")
+                partial = (f"the run stopped at t = {float(reached):g} s" + (f" of {float(t_end):g} s" if t_end is not None
+                                                                             else "") +
+                           f" ({_text(f.attrs.get('partial_reason', 'partial'))})")
             state = RunState(_text(f.attrs.get("name", p.stem)), v["time"][...], v["state_hub_angle"][...],
-                             float(f.attrs["state_hub_radius"]), beams)
+                             float(f.attrs["state_hub_radius"]), beams, partial)
         except (KeyError, ValueError, TypeError) as exc:
             raise ScenarioError(f"{option} {p}: the stored state is incomplete ({exc.__class__.__name__}: {exc})") \
                 from None
     if state.times.size == 0:
         raise ScenarioError(f"{option} {p}: the stored state has no output time")
+    arrays = [("time", state.times), ("state_hub_angle", state.hub_angle)] + [
+        (f"state_{b.name}_{part.rstrip('s') if part == 'stations' else part}", getattr(b, part)) for b in state.beams
+        for part in ("stations", "width", "thickness", "reference", "centre_line", "m", "n", "surface_strain")]
+    for name, values in arrays:
+        bad = ~np.isfinite(np.asarray(values, dtype=float))
+        if bad.any():
+            where = ""
+            if bad.ndim and bad.shape[0] == state.times.size and name != "time":
+                where = f" at t = {float(state.times[np.argmax(bad.reshape(bad.shape[0], -1).any(axis=1))]):g} s"
+            raise ScenarioError(f"{option} {p}: the stored state is damaged: {name} is not a finite number{where}")
     return state

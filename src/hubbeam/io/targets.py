@@ -138,39 +138,10 @@ def check_outputs(targets: list[Target], inputs: list[tuple[str, object]] = ()) 
             raise ScenarioError(f"{t.option}: empty file name")
         if "\0" in t.path:
             raise ScenarioError(f"{t.option}: the file name contains a NUL character")
-        p = Path(t.path)
-        if t.kind == "figure":
-            ext = p.suffix.lower().lstrip(".")
-            formats = figure_formats()
-            if not ext:
-                raise ScenarioError(f"{label}: no file extension, so no figure format (use one of {', '.join(formats)})")
-            if ext not in formats:
-                raise ScenarioError(f"{label}: matplotlib cannot write .{ext} figures (use one of {', '.join(formats)})")
-        if t.kind == "directory":
-            if p.exists():
-                if not p.is_dir():
-                    raise ScenarioError(f"{label}: exists and is not a directory")
-                _probe_directory(p, label)
-            else:
-                parent = p.absolute().parent
-                if not parent.is_dir():
-                    raise ScenarioError(f"{label}: directory {parent} does not exist")
-                _probe_directory(parent, label)
-        else:
-            if p.is_dir():
-                raise ScenarioError(f"{label}: is a directory (give a file name)")
-            if p.exists() and not p.is_file():
-                raise ScenarioError(f"{label}: exists and is not a regular file (a device or pipe is not a result file)")
-            if p.exists() and not os.access(p, os.W_OK):
-                raise ScenarioError(f"{label}: the file exists and is read-only")
-            if len(os.fsencode(Path(os.path.realpath(p)).name)) > MAX_NAME_BYTES:
-                raise ScenarioError(f"{label}: file name too long (at most {MAX_NAME_BYTES} bytes)")
-            parent = p.absolute().parent
-            if not parent.exists():
-                raise ScenarioError(f"{label}: directory {parent} does not exist")
-            if not parent.is_dir():
-                raise ScenarioError(f"{label}: {parent} is not a directory")
-            _probe_directory(parent, label)
+        try:
+            _check_target(t)
+        except OSError as exc:  # a name the file system refuses (too long, a loop of links, ...)
+            raise ScenarioError(f"{label}: not a usable path ({exc.strerror or exc.__class__.__name__})") from None
         for other in given:
             if _same(other.path, t.path):
                 raise ScenarioError(f"{t.option}: {t.path} is also the target of {other.option} (give two different files)")
@@ -179,6 +150,62 @@ def check_outputs(targets: list[Target], inputs: list[tuple[str, object]] = ()) 
                 raise ScenarioError(f"{label}: is the {what}; it would be overwritten")
         given.append(t)
     return given
+
+
+def _check_target(t: Target) -> None:
+    """The checks of one set target (:func:`check_outputs`); OSError from the file system passes."""
+    label = t.label
+    p = Path(t.path)
+    if t.kind == "figure":
+        ext = p.suffix.lower().lstrip(".")
+        formats = figure_formats()
+        if not ext:
+            raise ScenarioError(f"{label}: no file extension, so no figure format (use one of {', '.join(formats)})")
+        if ext not in formats:
+            raise ScenarioError(f"{label}: matplotlib cannot write .{ext} figures (use one of {', '.join(formats)})")
+    if t.kind == "directory" and p.is_symlink() and not p.exists():
+        raise ScenarioError(f"{label}: is a link to {os.readlink(p)}, which does not exist")
+    if t.kind == "directory":
+        if p.exists():
+            if not p.is_dir():
+                raise ScenarioError(f"{label}: exists and is not a directory")
+            _probe_directory(p, label)
+        else:
+            parent = p.absolute().parent
+            if not parent.is_dir():
+                raise ScenarioError(f"{label}: directory {parent} does not exist")
+            _probe_directory(parent, label)
+    else:
+        if p.is_dir():
+            raise ScenarioError(f"{label}: is a directory (give a file name)")
+        if p.exists() and not p.is_file():
+            raise ScenarioError(f"{label}: exists and is not a regular file (a device or pipe is not a result file)")
+        if p.exists() and not os.access(p, os.W_OK):
+            raise ScenarioError(f"{label}: the file exists and is read-only")
+        if len(os.fsencode(Path(os.path.realpath(p)).name)) > MAX_NAME_BYTES:
+            raise ScenarioError(f"{label}: file name too long (at most {MAX_NAME_BYTES} bytes)")
+        parent = Path(os.path.realpath(p)).parent  # a link is written through (atomic_path): where it points
+        if not parent.exists():
+            raise ScenarioError(f"{label}: directory {parent} does not exist"
+                                + (f" ({p} is a link to {os.readlink(p)})" if p.is_symlink() else ""))
+        if not parent.is_dir():
+            raise ScenarioError(f"{label}: {parent} is not a directory")
+        _probe_directory(parent, label)
+
+
+def check_inside(option: str, directory, names) -> None:
+    """ScenarioError naming ``option`` when one of the files a command will write into
+    ``directory`` (``names``) is there already as something a file cannot replace (a
+    directory, a device, a link to nowhere): found before the computation, not after it."""
+    d = Path(directory)
+    if not d.is_dir():
+        return
+    wanted = set(names)
+    for entry in os.scandir(d):
+        if entry.name in wanted and not (entry.is_file() and not entry.is_symlink() or
+                                         entry.is_symlink() and os.path.isfile(entry.path)):
+            what = "a directory" if entry.is_dir() else "a link to nowhere" if entry.is_symlink() else "not a regular file"
+            raise ScenarioError(f"{option} {d}: {entry.name} is there already and is {what}, so it cannot be written")
 
 
 @contextlib.contextmanager
@@ -230,14 +257,17 @@ def write_one(target: Target, writer) -> None:
         raise OutputError(f"{target.label}: cannot write ({_reason(exc)})") from exc
 
 
-def write_all(jobs: list[tuple[Target, object]]) -> tuple[list[str], list[str]]:
+def write_all(jobs: list[tuple[Target, object]], interruptible: bool = False) -> tuple[list[str], list[str]]:
     """Write every (target, writer) job, each atomically; a failed one does not stop the
     others. Returns (paths written, one-line error messages). Signals that arrive while
-    writing are held (see :mod:`hubbeam.interrupt`): the caller raises or drops them."""
+    writing are held (see :mod:`hubbeam.interrupt`): the caller raises or drops them.
+    ``interruptible``: the writers are themselves the long computation (a movie rendered
+    frame by frame), so a signal stops them at once; the file being written is removed and
+    :class:`~hubbeam.interrupt.Interrupted` passes to the caller."""
     from hubbeam import interrupt
 
     written, errors = [], []
-    with interrupt.deferred():
+    with (contextlib.nullcontext() if interruptible else interrupt.deferred()):
         for target, writer in jobs:
             try:
                 write_one(target, writer)
