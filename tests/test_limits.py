@@ -33,3 +33,14 @@ def test_a_recorded_state_is_counted_in_the_run_size():
     assert state_values(scenario) == 1 + 3 * 10 * (4 * 4 + 1)  # hub angle; 3 blades x 17 stations x 10 numbers
     plain, state = check_run(scenario), check_run(scenario, state=True)
     assert state.records == plain.records and state.record_bytes > plain.record_bytes
+
+
+@pytest.mark.parametrize("override", ["beams[0].tip_body.mass=1e300", "hub.torque.kp=1e300",
+                                      "hub.torque.reference.angle=-1e300", "beams[1].tip_body.offset=[1e300,0,0]"])
+def test_any_number_beyond_the_range_is_refused_naming_its_key(override):
+    """A tip body of 1e300 kg gave a wrong answer with exit 0, a gain or an angle of 1e300 a
+    'non-finite Newton increment' after the start (found by the adversarial pass)."""
+    key = override.split("=")[0]
+    with pytest.raises(ScenarioError, match="^" + key.replace("[", r"\[").replace("]", r"\]").replace(".", r"\.")
+                       + ": .* outside the range"):
+        check_magnitudes(load_example("spacecraft", [override]))

@@ -16,8 +16,10 @@ Above :data:`WARN_RECORD_BYTES` :func:`check_run` returns a one-line note to pri
 
 :func:`check_magnitudes` does the same for the model: each valid input alone may still make a
 derived quantity (a second moment of area, a stiffness, a mass) overflow or vanish in double
-precision (``beam.width = 1e102`` gives h b^3 / 12 = inf); such a scenario is refused naming
-its keys rather than failing somewhere inside the model.
+precision (``beam.width = 1e102`` gives h b^3 / 12 = inf), and any number given beyond
+1e150 in magnitude (a tip body's mass, a drive's speed, a gain) makes the model's products
+overflow; such a scenario is refused naming its keys rather than failing somewhere inside the
+model (or, worse, giving a wrong answer).
 """
 
 from __future__ import annotations
@@ -158,6 +160,28 @@ def check_magnitudes(scenario) -> None:
             given = ", ".join(f"{key} = {values[key]:g}" for key in keys if _number(values.get(key)))
             raise ScenarioError(f"{keys[0]}: with {given}, {what} is {float(value):.3g} {unit}, outside the range "
                                 f"hubbeam computes with ({low:g} to {high:g}); check the values and their units (SI)")
+    # then every number as given (a tip body's mass, a drive's speed, a gain, a damping constant ...):
+    # beyond the range, the products the model forms with it overflow somewhere inside
+    for key, value in _numbers(scenario.model_dump(exclude_none=True, by_alias=True)):
+        if not abs(value) < high:
+            raise ScenarioError(f"{key}: {value:g} is outside the range hubbeam computes with (magnitudes up to "
+                                f"{high:g}); check the value and its unit (SI)")
+
+
+def _numbers(tree, key: str = ""):
+    """(key as written in a scenario file, number) for every number in a scenario's dump."""
+    if isinstance(tree, dict):
+        for name, sub in tree.items():
+            yield from _numbers(sub, f"{key}.{name}" if key else name)
+    elif isinstance(tree, (list, tuple)):
+        if tree and all(_number(v) for v in tree):  # a vector: one key
+            for v in tree:
+                yield key, float(v)
+        else:
+            for i, sub in enumerate(tree):
+                yield from _numbers(sub, f"{key}[{i}]")
+    elif _number(tree):
+        yield key, float(tree)
 
 
 def _number(value) -> bool:

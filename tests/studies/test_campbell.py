@@ -64,3 +64,13 @@ def test_tracked_branches_follow_southwell(crossing):
     assert np.allclose(f[:, 0], flap, rtol=1e-2)
     assert np.allclose(f[:, 1], lag, rtol=1e-2)
     assert f[0, 1] / f[0, 0] == pytest.approx(1.1, rel=2e-3)  # EI ratio (w/t)^2, frequency ratio w/t
+
+
+def test_a_free_hub_with_a_torque_law_and_its_sensors_gets_a_diagram():
+    """The bundled spacecraft (free hub, PD law, an applied-torque sensor) was refused: each
+    speed's driven variant kept the free hub's sensors."""
+    from hubbeam.io.scenario import load_example
+
+    result = campbell(load_example("spacecraft"), np.array([0.0, 1.0]), count=2, formulations=("ancf",))
+    first = result["frequency_hz"].values[0, :, 0]
+    assert np.all(np.isfinite(first)) and first[1] > first[0]  # the spin stiffens the panels
