@@ -55,3 +55,17 @@ def test_frames_limits_and_colours():
     plt.close(fig)
     with pytest.raises(KeyError):
         animate.build(state, "rainbow")
+
+
+def test_an_interruption_before_the_first_frame_passes_through(tmp_path, monkeypatch):
+    """A signal raised while the first frame is drawn must reach the caller as itself: the
+    writer's saving() context wrote the frames so far on the way out, and Pillow, with none,
+    raised an IndexError that hid the interruption (seen as 'cannot write' under Ctrl-C)."""
+    fig, update, frames = animate.build(_state())
+
+    def interrupted(i):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(animate, "build", lambda *args: (fig, interrupted, frames))
+    with pytest.raises(KeyboardInterrupt):
+        animate.animate(_state(), tmp_path / "m.gif")

@@ -146,10 +146,20 @@ def animate(state: RunState, path, color: str = "strain", stride: int = 1, fps: 
         with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg} if ffmpeg is not None else {}):
             writer = (animation.PillowWriter(fps=fps) if ffmpeg is None else
                       animation.FFMpegWriter(fps=fps, codec="libx264", extra_args=["-pix_fmt", "yuv420p"]))
-            with writer.saving(fig, str(path), fig.dpi):
+            # not writer.saving(): on an interruption its finish() would write the frames so far
+            # (Pillow fails on none with an IndexError that hides the interruption)
+            writer.setup(fig, str(path), fig.dpi)
+            try:
                 for i in frames:
                     update(i)
                     writer.grab_frame()
+            except BaseException:
+                process = getattr(writer, "_proc", None)  # ffmpeg, when it runs
+                if process is not None:
+                    process.kill()
+                    process.wait()
+                raise
+            writer.finish()
     finally:
         plt.close(fig)
     return int(frames.size)

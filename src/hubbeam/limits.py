@@ -160,9 +160,10 @@ def check_magnitudes(scenario) -> None:
             given = ", ".join(f"{key} = {values[key]:g}" for key in keys if _number(values.get(key)))
             raise ScenarioError(f"{keys[0]}: with {given}, {what} is {float(value):.3g} {unit}, outside the range "
                                 f"hubbeam computes with ({low:g} to {high:g}); check the values and their units (SI)")
-    # then every number as given (a tip body's mass, a drive's speed, a gain, a damping constant ...):
-    # beyond the range, the products the model forms with it overflow somewhere inside
-    for key, value in _numbers(scenario.model_dump(exclude_none=True, by_alias=True)):
+    # then every number of the model as given (a tip body's mass, a drive's speed, a gain, a damping
+    # constant ...): beyond the range, the products the model forms with it overflow somewhere
+    # inside (the analysis' times have their own limits: :func:`run_size`)
+    for key, value in _numbers(scenario.model_dump(exclude_none=True, by_alias=True, exclude={"analysis"})):
         if not abs(value) < high:
             raise ScenarioError(f"{key}: {value:g} is outside the range hubbeam computes with (magnitudes up to "
                                 f"{high:g}); check the value and its unit (SI)")
