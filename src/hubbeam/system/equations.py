@@ -456,9 +456,10 @@ def beam_energies(model, F, x, v, out):
         for j in range(nq):
             kinetic += 0.5 * qd[j] * term[j]
             potential -= model.gravity_load[x0 + j] * q[j]
-        strain, rotation = kernels.energies_kernel(q, qd, Fk, le, S, dS, d2S, w, model.stiffness[k], model.reference[k],
-                                                   model.inertia[k])
-        kinetic += rotation
+        kinetic += kernels.rotary_inertia_kernel(q, qd, np.zeros(nq), Fk, le, S, dS, w, model.inertia[k], 0.0, term,
+                                                 np.empty((0, 16, 16)))
+        strain = kernels.elastic_kernel(q, qd, Fk, le, S, dS, d2S, w, model.stiffness[k], model.reference[k], 0.0, 0.0,
+                                        0.0, term, np.empty((0, 16, 16)))[0]
         tb = model.tip_body[k]
         if tb[0] > 0.0 or tb[1] > 0.0 or tb[2] > 0.0 or tb[3] > 0.0:
             tip = nq - NODE_DOFS

@@ -236,49 +236,6 @@ def gauss_strains(q, F, length, S, dS, d2S, w, out):
 
 
 @njit(cache=True, error_model="numpy")
-def energies_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, inertia):
-    """(strain energy, rotational kinetic energy of the sections) (J) of a beam at (q, q'):
-    the energies :func:`elastic_kernel` (Eq. 19) and :func:`rotary_inertia_kernel` also return,
-    without their forces and matrices (a small function to compile, for measuring recorded
-    states). Arguments as theirs."""
-    n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
-    X = np.empty(8)
-    Y = np.empty(8)
-    Xv = np.empty(8)
-    Z = np.empty(8)
-    e = np.empty(4)
-    G = np.empty((4, 8))
-    H = np.empty((0, 0, 0))
-    w1 = np.empty(ELEMENT_DOFS)
-    w2 = np.empty(ELEMENT_DOFS)
-    strain = 0.0
-    kinetic = 0.0
-    for el in range(n_el):
-        o = NODE_DOFS * el
-        for g in range(w.shape[0]):
-            jw = w[g] * length
-            dof_weights(S, dS, d2S, g, w1, w2)
-            gauss_variables(q, o, F, w1, w2, Y, X)
-            strain_jet(X, e, G, H, False)
-            D = stiffness[el, g]
-            for k in range(4):
-                d = e[k] - reference[el, g, k]
-                strain += 0.5 * jw * D[k] * d * d
-            # omega = the curvature function at (r0', r0'' -> d r0'/dt, theta_1' -> d theta_1/dt)
-            dof_weights(S, dS, dS, g, w1, w2)
-            gauss_variables(qdot, o, F, w1, w1, Y, Xv)
-            for i in range(3):
-                Z[i] = X[i]
-                Z[3 + i] = Xv[i]
-            Z[6] = X[6]
-            Z[7] = Xv[6]
-            strain_jet(Z, e, G, H, False)
-            J = inertia[el, g]
-            kinetic += 0.5 * jw * (J[0] * e[1] * e[1] + J[1] * e[2] * e[2] + J[2] * e[3] * e[3])
-    return strain, kinetic
-
-
-@njit(cache=True, error_model="numpy")
 def _add_sandwich(Ke, HY, w1, w2, factor, R, lower):
     """Ke[j, i] += factor (B^T HY B)[i, j] for the two-entry columns of B (:func:`dof_weights`):
     for a symmetric HY only the lower triangle (i <= j) when ``lower``; else every entry, which
