@@ -33,7 +33,7 @@ from hubbeam.system.laws import drive_values, torque_values
 from hubbeam.system.layout import Layout
 from hubbeam.system.loads import tip_moment_terms
 from hubbeam.system.mount import axis_frame, beam_hub_frame
-from hubbeam.system.tip_body import ancf_tip_body_terms
+from hubbeam.system.tip_body import ancf_tip_body_terms, has_tip_body
 
 NODE_DOFS = kernels.NODE_DOFS
 #: the hub angle's place in x (the layout's)
@@ -146,6 +146,15 @@ def applied_torque(model, t, theta, omega):
 
 
 @njit(cache=True)
+def ancf_beam(model, k, F, x, v):
+    """ANCF beam k's place and state: (x0 (where its coordinates start in x), nq (their
+    number), its chart, q, q') (the layout's offsets, read from the model)."""
+    nq = NODE_DOFS * (model.beam_elements[k] + 1)
+    x0 = model.beam_x0[k]
+    return x0, nq, F[model.beam_index[k]], x[x0 : x0 + nq], v[x0 : x0 + nq]
+
+
+@njit(cache=True)
 def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
                      want_matrix, res, ab, brow, bcol, bb):
     """Scaled residual and (when ``want_matrix``) Newton matrix of the hub and its ANCF beams.
@@ -204,12 +213,8 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     tip_jacobian = np.empty((4, 3))
     for k in range(model.beam_index.shape[0]):
         n_el = model.beam_elements[k]
-        nq = NODE_DOFS * (n_el + 1)
-        x0 = model.beam_x0[k]
+        x0, nq, Fk, q, qd = ancf_beam(model, k, F, x, v)
         l0 = model.beam_lambda0[k]
-        Fk = F[model.beam_index[k]]
-        q = x[x0 : x0 + nq]
-        qd = v[x0 : x0 + nq]
         qa = acc[x0 : x0 + nq]
         S, dS, d2S, w, le = model.S[k], model.dS[k], model.d2S[k], model.w[k], model.element_length[k]
         blocks = np.zeros((n_el if want_matrix else 0, 16, 16))
@@ -233,8 +238,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         for j in range(nq):
             fq[j] -= term[j]
         tip = nq - NODE_DOFS
-        if model.tip_body[k, 0] > 0.0 or model.tip_body[k, 1] > 0.0 or model.tip_body[k, 2] > 0.0 \
-                or model.tip_body[k, 3] > 0.0:
+        if has_tip_body(model.tip_body[k]):
             g_tip = np.empty(3)
             for i in range(3):
                 g_tip[i] = load_factor * model.gravity[i]
@@ -419,14 +423,12 @@ def dissipated_power(model, F, x, v):
         inv, _, drag = ffr_arguments(model, k)
         power += ffr_dissipated_power(x[x0 : x0 + n], v[x0 : x0 + n], inv, drag)
     for k in range(model.beam_index.shape[0]):
-        nq = NODE_DOFS * (model.beam_elements[k] + 1)
-        x0 = model.beam_x0[k]
-        qd = v[x0 : x0 + nq]
+        _, nq, Fk, q, qd = ancf_beam(model, k, F, x, v)
         force = np.empty(nq)
         power += kernels.drag_kernel(qd, model.element_length[k], model.S[k], model.w[k], model.width[k],
                                      model.drag[0], model.drag[1], 0.0, force, np.empty((0, 16, 16)))
         if model.structural_damping[k] > 0.0:
-            power += kernels.elastic_kernel(x[x0 : x0 + nq], qd, F[model.beam_index[k]], model.element_length[k],
+            power += kernels.elastic_kernel(q, qd, Fk, model.element_length[k],
                                             model.S[k], model.dS[k], model.d2S[k], model.w[k], model.stiffness[k],
                                             model.reference[k], model.structural_damping[k], 0.0, 0.0, force,
                                             np.empty((0, 16, 16)))[2]
@@ -442,12 +444,7 @@ def beam_energies(model, F, x, v, out):
     force8 = np.empty(8)
     no_block = np.empty((0, 0))
     for k in range(model.beam_index.shape[0]):
-        n_el = model.beam_elements[k]
-        nq = NODE_DOFS * (n_el + 1)
-        x0 = model.beam_x0[k]
-        Fk = F[model.beam_index[k]]
-        q = x[x0 : x0 + nq]
-        qd = v[x0 : x0 + nq]
+        x0, nq, Fk, q, qd = ancf_beam(model, k, F, x, v)
         S, dS, d2S, w, le = model.S[k], model.dS[k], model.d2S[k], model.w[k], model.element_length[k]
         term = np.zeros(nq)
         kernels.translational_mass_product(model.trans_mass[k], qd, term)
@@ -461,7 +458,7 @@ def beam_energies(model, F, x, v, out):
         strain = kernels.elastic_kernel(q, qd, Fk, le, S, dS, d2S, w, model.stiffness[k], model.reference[k], 0.0, 0.0,
                                         0.0, term, np.empty((0, 16, 16)))[0]
         tb = model.tip_body[k]
-        if tb[0] > 0.0 or tb[1] > 0.0 or tb[2] > 0.0 or tb[3] > 0.0:
+        if has_tip_body(tb):
             tip = nq - NODE_DOFS
             t_tb, v_tb = ancf_tip_body_terms(tb, Fk, q[tip : tip + 8], qd[tip : tip + 8], z8, model.gravity, 0.0, 0.0,
                                              force8, no_block)

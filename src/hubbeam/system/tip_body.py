@@ -199,6 +199,13 @@ def tip_kinematics(F, q8, v8, Z, e, G, H, hessian, Rg):
 
 
 @njit(cache=True, error_model="numpy")
+def has_tip_body(params):
+    """Whether :meth:`TipBody.params` ``params`` describe a body (a mass or an inertia); the
+    parameters of no body are zeros."""
+    return params[0] > 0.0 or params[1] > 0.0 or params[2] > 0.0 or params[3] > 0.0
+
+
+@njit(cache=True, error_model="numpy")
 def ancf_tip_body_terms(params, F, q8, v8, a8, gravity, coef_m, coef_k, force8, block):
     """Add the tip body's generalized force and iteration matrix to a tip node's rows.
 
