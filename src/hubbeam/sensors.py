@@ -93,8 +93,7 @@ def _tip_deflection(sensor, system):
         given = work.get("tips")  # computed for a whole chunk of records
         if given is None:
             return system.tip_displacement(state.x, beam)
-        return {"radial": float(given[beam, 0]), "vertical": float(given[beam, 1]),
-                "tangential": float(given[beam, 2])}
+        return {part: float(value) for part, value in zip(PARTS["tip_deflection"], given[beam])}
     return tip
 
 

@@ -449,9 +449,11 @@ class HubSystem:
         """Kinetic (hub and beams, rotary inertia and tip bodies included), strain and gravity
         energy (J); of one beam when ``beam`` is its index."""
         hub = 0.5 * self.hub.inertia * v[0] ** 2
-        beams = np.array([[e["kinetic"], e["strain"], e["gravity"]]
-                          for e in (part.energies(q, v[self.layout.beam_x(k)], chart, self.gravity)
-                                    for k, part, q, chart in self.parts(x, F))])
+        beams = np.zeros((len(self.beams), 3))
+        for k, part, q, chart in self.parts(x, F):
+            if beam is None or k == beam:  # one beam's energy needs only its own
+                e = part.energies(q, v[self.layout.beam_x(k)], chart, self.gravity)
+                beams[k] = e["kinetic"], e["strain"], e["gravity"]
         return energy_sums(hub, beams, beam)
 
     def gauge_table(self, gauges) -> tuple[tuple, list]:
