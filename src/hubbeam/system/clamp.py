@@ -31,6 +31,7 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ancf.frame import section_frame
+from hubbeam.system.assembly import add_entry
 from hubbeam.system.mount import axis_frame, beam_hub_frame, mount_frame
 
 
@@ -121,3 +122,33 @@ def clamp_constraints(c: np.ndarray, mount: np.ndarray, F: np.ndarray):
         return Hc
 
     return phi_val, jac, hessian
+
+
+@njit(cache=True)
+def clamp_residual(lam_k, phi, jac, n_root, scale, zl, l0, force, res):
+    """A clamp's part of the residual: Phi_q^T lambda added to the first ``n_root`` entries of
+    the beam's ``force``, scale Phi into its multiplier rows of ``res``; returns Phi_theta . lambda
+    (its part of the hub row). ``jac`` (6 x (1 + n_root)) is on [theta, q_root]."""
+    for j in range(n_root):
+        acc_j = 0.0
+        for i in range(6):
+            acc_j += jac[i, 1 + j] * lam_k[i]
+        force[j] += acc_j
+    hub = 0.0
+    for i in range(6):
+        hub += jac[i, 0] * lam_k[i]
+        res[zl[l0 + i]] = scale * phi[i]
+    return hub
+
+
+@njit(cache=True)
+def add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, n_root, scale, zl, l0, q_start, z_theta):
+    """scale times a clamp's Jacobian (6 x (1 + n_root), on [theta, q_root]; theta at z_theta,
+    q_root from q_start) in its multiplier rows and, transposed, in their columns."""
+    for i in range(6):
+        ri = zl[l0 + i]
+        add_entry(ab, brow, bcol, bb, ku, ri, z_theta, scale * jac[i, 0])
+        add_entry(ab, brow, bcol, bb, ku, z_theta, ri, scale * jac[i, 0])
+        for j in range(n_root):
+            add_entry(ab, brow, bcol, bb, ku, ri, q_start + j, scale * jac[i, 1 + j])
+            add_entry(ab, brow, bcol, bb, ku, q_start + j, ri, scale * jac[i, 1 + j])

@@ -23,8 +23,10 @@ only slow Newton); statics and modes add the exact load stiffness. A tip body is
 body's inertia invariants (:class:`hubbeam.elements.ffr.body.FfrBeam`), modal reduction a
 basis of its elastic coordinates.
 
-The equations are evaluated in compiled code (:mod:`hubbeam.elements.ffr.kernels`, summed
-by :func:`hubbeam.system.equations.system_equations`). :meth:`FfrPart.forces` and
+The equations are evaluated in compiled code: the kind "FFR beams" (:data:`KIND`,
+:mod:`hubbeam.system.terms`) packs every FFR beam of a system (:class:`FfrBeams`) and gives
+the compiled equations the body terms of :mod:`hubbeam.elements.ffr.kernels` (a dense block
+inside the band) and the linear clamp above (:func:`ffr_clamp`). :meth:`FfrPart.forces` and
 :meth:`FfrPart.stiffness` below are their Python reference: the same formulas written with
 numpy, and the stiffness by central differences, which the tests hold the kernels against.
 """
@@ -32,13 +34,21 @@ numpy, and the stiffness by central differences, which the tests hold the kernel
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import NamedTuple
 
 import numpy as np
+from numba import njit
 
 from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.elements.ffr.cardan import angular_velocity_matrix, angular_velocity_matrix_rate, rotation_matrix
+from hubbeam.elements.ffr.kernels import (cardan, ffr_body_terms, ffr_dissipated_power, ffr_energies,
+                                          ffr_load_stiffness)
+from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.numerics import central_difference_jacobian, relative_steps
-from hubbeam.system.mount import Mount
+from hubbeam.system import terms
+from hubbeam.system.assembly import add_entry
+from hubbeam.system.clamp import add_clamp_jacobian, clamp_residual
+from hubbeam.system.mount import Mount, tip_from_mount
 from hubbeam.system.parts import BeamPart
 
 R_C, ANGLES, BODY = slice(0, 3), slice(3, 6), 6
@@ -333,3 +343,210 @@ def rotations_about(phi: np.ndarray) -> np.ndarray:
     K -= K.transpose(0, 2, 1)
     s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
     return np.eye(3) + s * K + (1.0 - c) * K @ K
+
+
+# ================================================================ compiled terms: the kind "FFR beams"
+#: dimensions of the per-beam arrays of :class:`hubbeam.elements.ffr.kernels.FfrArrays`
+FFR_FIELD_NDIM = {"m": 0, "c0": 1, "Sbar": 2, "I0": 2, "J": 3, "II": 4, "Mff": 2, "K": 2, "EAl": 1,
+                  "mean_stretch": 2, "mean_slope2": 3, "stiffening": 0, "C_struct": 2, "damped": 0,
+                  "tip_force": 1, "tip_moment": 1, "tip_rows": 2, "tip_rotation_rows": 2, "length": 0, "N_pts": 3,
+                  "x_pts": 1, "w_pts": 1, "width": 1}
+
+
+class FfrBeams(NamedTuple):
+    """The FFR beams' constants (:func:`hubbeam.elements.ffr.kernels.pack`), one row per FFR
+    beam, zero-padded to the largest beam (the kernels read the leading nf entries)."""
+
+    index: np.ndarray  # int64 (nb,): the beam's place among all beams
+    x0: np.ndarray  # int64 (nb,): where q_k starts in x
+    lambda0: np.ndarray  # int64 (nb,): where its clamp multipliers start in lambda
+    nf: np.ndarray  # int64 (nb,): elastic coordinates
+    mount: np.ndarray  # (nb, 4) radius, twist, azimuth, precone
+    m: np.ndarray
+    c0: np.ndarray
+    Sbar: np.ndarray
+    I0: np.ndarray
+    J: np.ndarray
+    II: np.ndarray
+    Mff: np.ndarray
+    K: np.ndarray
+    EAl: np.ndarray
+    mean_stretch: np.ndarray
+    mean_slope2: np.ndarray
+    stiffening: np.ndarray
+    C_struct: np.ndarray  # (nb, nf, nf) structural damping c K (N s)
+    damped: np.ndarray
+    tip_force: np.ndarray
+    tip_moment: np.ndarray
+    tip_rows: np.ndarray
+    tip_rotation_rows: np.ndarray
+    length: np.ndarray
+    N_pts: np.ndarray
+    x_pts: np.ndarray
+    w_pts: np.ndarray
+    width: np.ndarray
+
+
+def pack_ffr_beams(system, layout) -> FfrBeams | None:
+    """The :class:`FfrBeams` of ``system`` placed by ``layout``, stacked and zero-padded (None
+    without FFR beams)."""
+    ffr = [(k, b) for k, b in enumerate(system.beams) if isinstance(b, FfrPart)]
+    if not ffr:
+        return None
+    packs = [ffr_constants(b) for _, b in ffr]
+    fields = {}
+    for name, ndim in FFR_FIELD_NDIM.items():
+        values = [np.asarray(getattr(p, name), dtype=float) for p in packs]
+        shape = tuple(np.max([v.shape for v in values], axis=0)) if ndim else ()
+        stacked = np.zeros((len(values),) + shape)
+        for i, v in enumerate(values):
+            stacked[(i,) + tuple(slice(0, n) for n in v.shape)] = v
+        fields[name] = stacked
+    ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
+    return FfrBeams(ints([k for k, _ in ffr]), ints([layout.beam_x(k).start for k, _ in ffr]),
+                    ints([layout.clamp_lambda(k).start for k, _ in ffr]), ints([b.beam.ndof for _, b in ffr]),
+                    np.array([b.mount.params() for _, b in ffr], dtype=float).reshape(len(ffr), 4), **fields)
+
+
+def ffr_bandwidth(system) -> int:
+    """Half-bandwidth an FFR beam's whole block needs (its six clamp rows and 6 + nf
+    coordinates); 1 without FFR beams."""
+    return max([11 + b.beam.ndof for b in system.beams if isinstance(b, FfrPart)], default=1)
+
+
+@njit(cache=True)
+def ffr_arguments(pack, k, drag_c):
+    """(inv, tip, drag) of FFR beam k for :mod:`hubbeam.elements.ffr.kernels` (``drag_c``: c1, c2 of Eq. 37)."""
+    inv = (pack.m[k], pack.c0[k], pack.Sbar[k], pack.I0[k], pack.J[k], pack.II[k], pack.Mff[k], pack.K[k], pack.EAl[k],
+           pack.mean_stretch[k], pack.mean_slope2[k], pack.stiffening[k], pack.C_struct[k], pack.damped[k])
+    tip = (pack.tip_force[k], pack.tip_moment[k], pack.tip_rows[k], pack.tip_rotation_rows[k], pack.length[k])
+    drag = (pack.N_pts[k], pack.x_pts[k], pack.w_pts[k], pack.width[k], drag_c[0], drag_c[1])
+    return inv, tip, drag
+
+
+@njit(cache=True)
+def ffr_clamp(mount, theta, q, lam, phi, jac, hess):
+    """The six clamp equations of an FFR body frame (see :mod:`hubbeam.system.ffr_part`):
+    r_C - R i_k(theta) = 0, Theta1 + theta + psi = 0, Theta2 - p = 0, Theta3 + beta = 0, with
+    their Jacobian on [theta, r_C, Theta] (6 x 7, written into the leading columns of ``jac``)
+    and the multiplier-weighted Hessian (only d2/dtheta2 of the position rows; hess[0, 0])."""
+    radius, twist, azimuth, precone = mount[0], mount[1], mount[2], mount[3]
+    a = theta + azimuth
+    c, s = np.cos(a), np.sin(a)
+    jac[:, :] = 0.0
+    hess[:, :] = 0.0
+    phi[0] = q[0] - radius * c
+    phi[1] = q[1]
+    phi[2] = q[2] - radius * s
+    phi[3] = q[3] + a
+    phi[4] = q[4] - precone
+    phi[5] = q[5] + twist
+    for i in range(3):
+        jac[i, 1 + i] = 1.0
+    jac[0, 0] = radius * s
+    jac[2, 0] = -radius * c
+    jac[3, 0] = 1.0
+    jac[3, 4] = 1.0
+    jac[4, 5] = 1.0
+    jac[5, 6] = 1.0
+    hess[0, 0] = radius * (lam[0] * c + lam[2] * s)
+
+
+def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
+                  want_matrix, res, ab, brow, bcol, bb):
+    """Every FFR beam's rows (:mod:`hubbeam.system.terms`): the body terms of
+    :func:`~hubbeam.elements.ffr.kernels.ffr_body_terms` and the clamp :func:`ffr_clamp`;
+    ``exact_stiffness`` adds the load stiffness (statics and modes)."""
+    zx, zl, ku = ctx.z_of_x, ctx.z_of_lambda, ctx.ku
+    z_theta = zx[ctx.theta]
+    theta = x[ctx.theta]
+    power = 0.0
+    hub_force = 0.0
+    phi = np.empty(6)
+    jac = np.empty((6, 8))
+    hess = np.empty((8, 8))
+    lam_k = np.empty(6)
+    for k in range(pack.nf.shape[0]):
+        n = 6 + pack.nf[k]
+        x0 = pack.x0[k]
+        l0 = pack.lambda0[k]
+        q = x[x0 : x0 + n]
+        force = np.empty(n)
+        nbk = n if want_matrix else 0
+        block = np.zeros((nbk, nbk))
+        inv, tip, drag = ffr_arguments(pack, k, ctx.drag)
+        power += ffr_body_terms(inv, q, v[x0 : x0 + n], acc[x0 : x0 + n], ctx.gravity, tip, drag, coef_m, coef_c,
+                                coef_k, load_factor, want_matrix, force, block)
+        for i in range(6):
+            lam_k[i] = lam[l0 + i]
+        ffr_clamp(pack.mount[k], theta, q, lam_k, phi, jac, hess)
+        hub_force += clamp_residual(lam_k, phi, jac, 6, scale, zl, l0, force, res)
+        for j in range(n):
+            res[zx[x0 + j]] += coef_k * force[j]
+        if not want_matrix:
+            continue
+        if exact_stiffness:
+            load = np.empty((n, n))
+            ffr_load_stiffness(inv, q, ctx.gravity, tip, load_factor, load)
+            for i in range(n):
+                for j in range(n):
+                    block[i, j] += coef_k * load[i, j]
+        q_start = zx[x0]
+        for i in range(n):
+            for j in range(n):
+                add_entry(ab, brow, bcol, bb, ku, q_start + i, q_start + j, block[i, j])
+        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 6, scale, zl, l0, q_start, z_theta)
+        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta, coef_k * hess[0, 0])
+    return hub_force, 2.0, power
+
+
+def ffr_beam_energies(pack, ctx, F, x, v, beams):
+    """Kinetic, strain and gravity energy of every FFR beam, tip body included (J)."""
+    for k in range(pack.nf.shape[0]):
+        n = 6 + pack.nf[k]
+        x0 = pack.x0[k]
+        inv, _, _ = ffr_arguments(pack, k, ctx.drag)
+        kinetic, strain, potential = ffr_energies(inv, x[x0 : x0 + n], v[x0 : x0 + n], ctx.gravity)
+        i = pack.index[k]
+        beams[i, 0] += kinetic
+        beams[i, 1] += strain
+        beams[i, 2] += potential
+    return 0.0, 0.0, 0.0
+
+
+def ffr_power(pack, ctx, F, x, v):
+    """Power of the drag of Eq. 37 and of the structural damping on every FFR beam (W)."""
+    power = 0.0
+    for k in range(pack.nf.shape[0]):
+        n = 6 + pack.nf[k]
+        x0 = pack.x0[k]
+        inv, _, drag = ffr_arguments(pack, k, ctx.drag)
+        power += ffr_dissipated_power(x[x0 : x0 + n], v[x0 : x0 + n], inv, drag)
+    return power
+
+
+def ffr_tips(pack, ctx, x, out):
+    """Each FFR beam's tip centroid displacement in its hub frame (m)."""
+    theta = x[ctx.theta]
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    tip_at = np.empty(3)
+    local = np.empty(3)
+    for k in range(pack.nf.shape[0]):
+        x0 = pack.x0[k]
+        nf = pack.nf[k]
+        cardan(x[x0 + 3], x[x0 + 4], x[x0 + 5], A, D)
+        rows = pack.tip_rows[k]
+        for i in range(3):
+            s = 0.0
+            for f in range(nf):
+                s += rows[i, f] * x[x0 + 6 + f]
+            local[i] = s
+        local[0] += pack.length[k]
+        for i in range(3):
+            tip_at[i] = x[x0 + i] + A[i, 0] * local[0] + A[i, 1] * local[1] + A[i, 2] * local[2]
+        tip_from_mount(pack.mount[k], theta, pack.length[k], tip_at, out[pack.index[k]])
+
+
+KIND = terms.register(FfrBeams, pack_ffr_beams, ffr_equations, ffr_beam_energies, ffr_power, ffr_tips,
+                      bandwidth=ffr_bandwidth)

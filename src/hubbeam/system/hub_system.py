@@ -4,9 +4,10 @@ A :class:`HubSystem` is a :class:`Hub` (its angle theta, inertia, drive or torqu
 any number of beam parts (:mod:`hubbeam.system.parts`: ANCF and FFR, mixed), each clamped
 to the hub by six equations, plus the environment (gravity, the air drag of Eq. 37). The
 :class:`~hubbeam.system.layout.Layout` places coordinates x, multipliers lambda and Newton
-unknowns z. The equations of the hub and every ANCF beam (with tip bodies and loads) are
-one compiled call (:func:`hubbeam.system.equations.system_equations`) into a bordered band
-matrix; FFR beams add their dense terms in Python on top (a dense matrix then).
+unknowns z. The equations of the hub and every part are one compiled call
+(:func:`hubbeam.system.equations.system_equations`) into a bordered band matrix; each
+kind of part present (:mod:`hubbeam.system.terms`: ANCF beams, FFR beams, tip bodies)
+gives its pack of constants to the compiled model (:meth:`HubSystem.model`).
 """
 
 from __future__ import annotations
@@ -16,12 +17,13 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from hubbeam.errors import ChartSingularityError
-from hubbeam.system.ancf_part import AncfPart
-from hubbeam.system.assembly import BorderedBandMatrix, add_element_blocks_banded
 from hubbeam.elements.ffr.kernels import ffr_spin_stiffness, pack
-from hubbeam.system.equations import (CHART_SINGULAR, FFR_FIELD_NDIM, FfrStack, SystemModel, bandwidth_for, dissipated_power,
-                                      hub_power, record_measures, system_equations)
-from hubbeam.system.ffr_part import FfrPart
+from hubbeam.system import ffr_part, terms, tip_body  # noqa: F401  (importing a kind's module registers it)
+from hubbeam.system.ancf_part import AncfPart
+from hubbeam.system.assembly import BorderedBandMatrix
+from hubbeam.system.beam import NODE_DOFS
+from hubbeam.system.equations import (CHART_SINGULAR, SystemModel, beam_energies, dissipated_power, hub_power,
+                                      record_measures, system_equations)
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.layout import CLAMP_EQUATIONS, Layout
 from hubbeam.system.parts import BEAM_MOTIONS, BeamPart, ChartedBeamPart
@@ -52,12 +54,13 @@ class Hub:
         return self.motion != "free"
 
 
-def energy_sums(hub: float, beams: np.ndarray, beam: int | None = None) -> dict[str, float]:
-    """{kinetic, strain, gravity} (J) from the hub's kinetic energy and the beams' rows
-    (kinetic, strain, gravity): of the whole system, or of beam number ``beam`` alone."""
+def energy_sums(hub: np.ndarray, beams: np.ndarray, beam: int | None = None) -> dict[str, float]:
+    """{kinetic, strain, gravity} (J) from the hub's row (its kinetic energy and the
+    energies of parts that belong to no beam) and the beams' rows (kinetic, strain,
+    gravity): of the whole system, or of beam number ``beam`` alone."""
     if beam is not None:
         return dict(zip(("kinetic", "strain", "gravity"), (float(e) for e in beams[beam])))
-    kinetic, strain, gravity = float(hub), 0.0, 0.0
+    kinetic, strain, gravity = (float(e) for e in hub)
     for row in beams:  # in the beams' order, as a sum over the parts
         kinetic, strain, gravity = kinetic + float(row[0]), strain + float(row[1]), gravity + float(row[2])
     return {"kinetic": kinetic, "strain": strain, "gravity": gravity}
@@ -198,8 +201,9 @@ class HubSystem:
     # ------------------------------------------------------------ compiled model
     @property
     def bandwidth(self) -> int:
-        """Half-bandwidth of the beams' blocks of the Newton matrix."""
-        return bandwidth_for([b.beam.ndof for b in self.beams if isinstance(b, FfrPart)])
+        """Half-bandwidth of the beams' blocks of the Newton matrix: the widest any kind of
+        part present needs."""
+        return max(kind.bandwidth(self) for kind in terms.KINDS)
 
     @property
     def compiled(self) -> bool:
@@ -217,70 +221,15 @@ class HubSystem:
 
     def _build_model(self, held: bool) -> SystemModel:
         layout = self.layout_for(held)
-        ancf = [(k, b) for k, b in enumerate(self.beams) if isinstance(b, AncfPart)]
-        nb = len(ancf)
-        ng = max((b.beam.gauss_points for _, b in ancf), default=1)
-        ne = max((b.beam.elements for _, b in ancf), default=1)
-        S, dS, d2S = np.zeros((nb, ng, 4)), np.zeros((nb, ng, 4)), np.zeros((nb, ng, 4))
-        w = np.zeros((nb, ng))
-        # per element and Gauss point (zero on padding elements and points, whose weight is 0)
-        stiffness, reference = np.zeros((nb, ne, ng, 4)), np.zeros((nb, ne, ng, 4))
-        inertia, width = np.zeros((nb, ne, ng, 3)), np.zeros((nb, ne, ng))
-        trans_mass = np.zeros((nb, ne, 16, 16))
-        gravity_load = np.zeros(self.nx)
-        for i, (k, b) in enumerate(ancf):
-            beam = b.beam
-            tS, tdS, td2S, tw = beam._tables
-            n, m = tw.shape[0], beam.elements
-            for arr, table in ((S, tS), (dS, tdS), (d2S, td2S)):
-                arr[i, :n] = table
-                arr[i, n:] = table[0]  # padding points repeat a real one, with weight 0
-            w[i, :n] = tw
-            stiffness[i, :m, :n] = beam._stiffness
-            reference[i, :m, :n] = beam._reference
-            inertia[i, :m, :n] = beam._inertia
-            width[i, :m, :n] = beam._width
-            trans_mass[i, :m] = beam._trans_mass
-            gravity_load[layout.beam_x(k)] = beam.gravity_load(self.gravity)
         # a fixed hub is held at theta = 0: the profile 'rest'
         drive = self.hub.drive if self.motion == "prescribed" else DriveProfile("rest")
         torque = self.hub.torque if (not held and self.hub.torque.compilable) else TorqueLaw()
-        ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
         return SystemModel(
             layout.border, layout.z_of_x, layout.z_of_lambda, held,
             -1 if layout.drive_lambda is None else layout.drive_lambda, float(self.hub.inertia),
-            tuple(drive.compiled()), tuple(torque.compiled()),
-            ints([k for k, _ in ancf]), ints([layout.beam_x(k).start for k, _ in ancf]),
-            ints([layout.clamp_lambda(k).start for k, _ in ancf]), ints([b.beam.elements for _, b in ancf]),
-            S, dS, d2S, w,
-            np.array([b.beam.element_length for _, b in ancf], dtype=float).reshape(nb),
-            stiffness, reference, np.array([b.beam.structural_damping for _, b in ancf], dtype=float).reshape(nb),
-            trans_mass, inertia, width,
-            np.array([b.mount.params() for _, b in ancf], dtype=float).reshape(nb, 4),
-            np.array([b.tip_force for _, b in ancf], dtype=float).reshape(nb, 3),
-            np.array([b.tip_moment for _, b in ancf], dtype=float).reshape(nb, 3),
-            np.array([(b.tip_body or TipBody()).params() for _, b in ancf], dtype=float).reshape(nb, 7),
-            np.array(self.gravity, dtype=float), gravity_load, np.array(self.damping, dtype=float),
-            self._ffr_stack(layout), self.bandwidth,
+            tuple(drive.compiled()), tuple(torque.compiled()), np.array(self.gravity, dtype=float),
+            np.array(self.damping, dtype=float), terms.packs(self, layout), self.bandwidth,
         )
-
-    def _ffr_stack(self, layout: Layout) -> FfrStack:
-        """The FFR beams' constants, stacked and zero-padded (:class:`~hubbeam.system.equations.FfrStack`)."""
-        ffr = [(k, b) for k, b in enumerate(self.beams) if isinstance(b, FfrPart)]
-        packs = [pack(b) for _, b in ffr]
-        fields = {}
-        for name, ndim in FFR_FIELD_NDIM.items():
-            values = [np.asarray(getattr(p, name), dtype=float) for p in packs]
-            shape = tuple(np.max([v.shape for v in values], axis=0)) if values else (1,) * ndim
-            stacked = np.zeros((len(values),) + shape)
-            for i, v in enumerate(values):
-                stacked[(i,) + tuple(slice(0, n) for n in v.shape)] = v
-            fields[name] = stacked
-        ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
-        return FfrStack(ints([k for k, _ in ffr]), ints([layout.beam_x(k).start for k, _ in ffr]),
-                        ints([layout.clamp_lambda(k).start for k, _ in ffr]), ints([b.beam.ndof for _, b in ffr]),
-                        np.array([b.mount.params() for _, b in ffr], dtype=float).reshape(len(ffr), 4),
-                        **fields)
 
     # ------------------------------------------------------------ equations
     def equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale, load_factor=1.0,
@@ -343,17 +292,19 @@ class HubSystem:
             return res, matrix
         W = spin**2 * (np.outer(AXIS, AXIS) - np.eye(3))  # (w x)^2
         zx = layout.z_of_x
+        M = None
         for k, part, q, chart in self.parts(x, F):
             sx = layout.beam_x(k)
-            if isinstance(part, AncfPart):
-                D = np.zeros((16, 16))
-                for off in (0, 3, 8, 11):
-                    D[off : off + 3, off : off + 3] = W
-                blocks = factor * part.beam.mass_blocks(q, chart) @ D
-                if part.tip_body is not None:
-                    blocks[-1, 8:16, 8:16] += factor * part._tip_body_terms(q, np.zeros_like(q), chart, np.zeros(3))[1] \
-                        @ D[8:16, 8:16]
-                add_element_blocks_banded(matrix.ab, blocks, zx[sx][0] - layout.border, 2 * matrix.bandwidth, 1.0)
+            if isinstance(part, AncfPart):  # -factor M D: D = d(acc)/dq of the rigid rotation, on r and r'
+                M = self.mass_matrix(x, F, held=True) if M is None else M
+                D = np.zeros((part.ndof, part.ndof))
+                for node in range(part.beam.nodes):
+                    for off in (0, 3):
+                        s0 = NODE_DOFS * node + off
+                        D[s0 : s0 + 3, s0 : s0 + 3] = W
+                K = factor * M[sx, sx] @ D
+                for i, j in zip(*np.nonzero(K)):
+                    matrix.add(zx[sx.start + i], zx[sx.start + j], K[i, j])
             else:  # the exact stiffness of the steady-rotation inertia rows (drag's left out)
                 spin_stiffness = np.empty((part.ndof, part.ndof))
                 ffr_spin_stiffness(pack(part).inv, np.ascontiguousarray(q), -np.sqrt(factor) * spin * AXIS,
@@ -362,6 +313,16 @@ class HubSystem:
                     for j, zj in enumerate(zx[sx]):
                         matrix.add(zi, zj, spin_stiffness[i, j])
         return res, matrix
+
+    def mass_matrix(self, x, F, held: bool | None = None) -> np.ndarray:
+        """The dense mass matrix M(x) on x (kg, kg m, kg m^2; every part's, tip bodies'
+        included): the compiled Newton matrix with coef_m = 1 and nothing else."""
+        held = self.hub.held if held is None else held
+        layout = self.layout_for(held)
+        zero = np.zeros(self.nx)
+        _, matrix = self.equations(x, zero, zero, np.zeros(layout.n_lambda), F, 0.0, 1.0, 0.0, 0.0, 0.0, held=held)
+        zx = layout.z_of_x
+        return matrix.to_dense()[np.ix_(zx, zx)]
 
     def linearised(self, x, lam, F, factor=1.0, held=False):
         """Dense stiffness and mass of x about an equilibrium, and the constraint Jacobian.
@@ -447,24 +408,22 @@ class HubSystem:
 
     def energies(self, x, v, F, beam: int | None = None) -> dict[str, float]:
         """Kinetic (hub and beams, rotary inertia and tip bodies included), strain and gravity
-        energy (J); of one beam when ``beam`` is its index."""
-        hub = 0.5 * self.hub.inertia * v[0] ** 2
-        beams = np.zeros((len(self.beams), 3))
-        for k, part, q, chart in self.parts(x, F):
-            if beam is None or k == beam:  # one beam's energy needs only its own
-                e = part.energies(q, v[self.layout.beam_x(k)], chart, self.gravity)
-                beams[k] = e["kinetic"], e["strain"], e["gravity"]
+        energy (J); of one beam when ``beam`` is its index (compiled:
+        :func:`~hubbeam.system.equations.beam_energies`)."""
+        hub, beams = np.zeros(3), np.zeros((len(self.beams), 3))
+        beam_energies(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(x, dtype=float),
+                      np.ascontiguousarray(v, dtype=float), beams, hub)
         return energy_sums(hub, beams, beam)
 
     def gauge_table(self, gauges) -> tuple[tuple, list]:
         """The strain gauges (beam, station, y, z) (index, m, m, m) on ANCF beams packed for
         :meth:`record_measures`, and the list of those gauges in their order there (other
         beams' gauges are left out: their sensors measure them)."""
-        ancf = [k for k, b in enumerate(self.beams) if isinstance(b, AncfPart)]
-        kept = [g for g in gauges if g[0] in ancf]
-        rows = [(ancf.index(k), self.beams[k].beam.gauge_rows(x, y, z)) for k, x, y, z in kept]
+        kept = [g for g in gauges if isinstance(self.beams[g[0]], AncfPart)]
+        rows = [(k, self.beams[k].beam.gauge_rows(x, y, z)) for k, x, y, z in kept]
         n = len(rows)
-        where = np.array([[k, r[0]] for k, r in rows], dtype=np.int64).reshape(n, 2)
+        where = np.array([[k, self.layout.beam_x(k).start + self.beams[k].beam.node_slice(r[0]).start]
+                          for k, r in rows], dtype=np.int64).reshape(n, 2)
         S, dS, d2S, section = (np.array([r[i] for _, r in rows], dtype=float).reshape(n, width)
                                for i, width in ((1, 4), (2, 4), (3, 4), (4, 6)))
         return (where, S, dS, d2S, section), kept
@@ -474,12 +433,13 @@ class HubSystem:
         """Measures of the first ``count`` states (rows of xs, vs; charts F) in compiled code
         (:func:`~hubbeam.system.equations.record_measures`): ``tips`` (count, beams, 3) each
         beam's tip displacement (radial, vertical, tangential, m); with ``energies`` also
-        ``hub`` (count,) the hub's kinetic energy and ``beams`` (count, beams, 3) each beam's
+        ``hub`` (count, 3) the hub's kinetic energy with the (kinetic, strain, gravity)
+        energy of parts that belong to no beam and ``beams`` (count, beams, 3) each beam's
         (kinetic, strain, gravity) energy (J), for :func:`energy_sums`; ``strains`` (count,
         gauges) at the gauges of ``gauges`` (a :meth:`gauge_table`; default none)."""
         nb = len(self.beams)
         gauges = self.gauge_table([])[0] if gauges is None else gauges
-        out = {"hub": np.zeros(count if energies else 0), "beams": np.zeros((count if energies else 0, nb, 3)),
+        out = {"hub": np.zeros((count if energies else 0, 3)), "beams": np.zeros((count if energies else 0, nb, 3)),
                "tips": np.empty((count, nb, 3)), "strains": np.empty((count, gauges[0].shape[0]))}
         record_measures(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(xs, dtype=float),
                         np.ascontiguousarray(vs, dtype=float), count, energies, gauges, out["hub"], out["beams"],
@@ -503,9 +463,9 @@ class HubSystem:
     def angular_momentum(self, x, v, F) -> float:
         """Angular momentum about the hub axis (N m s), positive in the sense of theta' (about -j0).
 
-        By Noether's theorem it is the generalized momentum M(q) v projected on the rigid
-        rotation of the whole system about the axis (xi = the rates of theta' = 1): J theta' +
-        sum_k v_k^T M_k(q_k) xi_k. In the axis charts xi is exact; otherwise the state is first
+        By Noether's theorem it is the generalized momentum M(x) v projected on the rigid
+        rotation of the whole system about the axis (xi = the rates of theta' = 1): v^T M xi
+        (:meth:`mass_matrix`: J theta' + sum_k v_k^T M_k(q_k) xi_k, tip bodies included). In the axis charts xi is exact; otherwise the state is first
         moved to them (velocities by the remap's Jacobian, a central difference)."""
         x_axis, F_axis = self.axis_chart(x, F)
         if not np.array_equal(F_axis, F):
@@ -513,11 +473,7 @@ class HubSystem:
             v = (self.remap(x + eps * v, F, F_axis) - self.remap(x - eps * v, F, F_axis)) / (2 * eps)
             x, F = x_axis, F_axis
         xi, _ = self.steady_rotation_rates(x, F, 1.0)
-        h = self.hub.inertia * v[0]
-        for k, part, q, chart in self.parts(x, F):
-            s = self.layout.beam_x(k)
-            h += v[s] @ part.apply_mass(q, chart, xi[s])
-        return float(h)
+        return float(v @ self.mass_matrix(x, F) @ xi)
 
     def dissipated_power(self, x, v, F) -> float:
         """Power of the drag of Eq. 37 and of the beams' structural damping (W, >= 0)."""

@@ -81,3 +81,15 @@ def mount_frame(mount, theta):
     """Clamped root section frame [tau m n] (columns, global) at hub angle theta: the axis
     frame turned by -beta about the axis."""
     return _turned(axis_frame(mount, theta), 1, 2, -mount[1])
+
+
+@njit(cache=True)
+def tip_from_mount(mount, theta, length, tip_at, out):
+    """out = A_k^T (tip_at - R i_k - L a_1): the tip's displacement on the beam's hub frame."""
+    A = beam_hub_frame(mount, theta)
+    a = axis_frame(mount, theta)
+    d = np.empty(3)
+    for i in range(3):
+        d[i] = tip_at[i] - mount[0] * A[i, 0] - length * a[i, 0]
+    for j in range(3):
+        out[j] = A[0, j] * d[0] + A[1, j] * d[1] + A[2, j] * d[2]

@@ -75,16 +75,14 @@ class BeamPart(ABC):
         """(q', q'') when the beam turns rigidly with the hub at theta' = omega (rad/s)."""
 
     @abstractmethod
-    def mass_matrix(self, q: np.ndarray, chart: np.ndarray) -> np.ndarray:
-        """Dense mass matrix on q (tip body included)."""
-
-    @abstractmethod
-    def energies(self, q: np.ndarray, v: np.ndarray, chart: np.ndarray, gravity: np.ndarray) -> dict[str, float]:
-        """Kinetic, strain and gravity energy (J) of the beam and its tip body."""
-
-    @abstractmethod
     def tip_position(self, q: np.ndarray) -> np.ndarray:
         """Global position of the tip centroid (m)."""
+
+    def tip_node(self) -> slice | None:
+        """The coordinates of the tip's ANCF node [r0, r0', theta_1, theta_1'] in q, to which a
+        tip body attaches as a part of its own (:mod:`hubbeam.system.tip_body`); None when the
+        formulation carries its tip body itself (FFR: in its inertia invariants)."""
+        return None
 
     @abstractmethod
     def surface_strain(self, q: np.ndarray, chart: np.ndarray, station: float, y: float, z: float) -> float:

@@ -43,12 +43,18 @@ With c = 0 and J = 0 everything reduces exactly to a point mass m on r0(L).
 
 **FFR**: :class:`~hubbeam.elements.ffr.body.FfrBeam` takes ``tip_body=`` and adds the body
 to its inertia invariants as seven point masses (see :meth:`TipBody.point_masses`).
+
+**The kind "tip bodies"** (:data:`KIND`, :mod:`hubbeam.system.terms`): every tip body on a
+beam whose tip is an ANCF node (:meth:`~hubbeam.system.parts.BeamPart.tip_node`) is packed
+into :class:`TipBodies`, and its terms, energies (in its beam's row) and nothing else reach
+the compiled equations through the registry.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -56,6 +62,8 @@ from numba import njit
 from hubbeam.elements.ancf.frame import section_frame
 from hubbeam.elements.ancf.kernels import _mass_to_global
 from hubbeam.elements.ancf.strain import PHI, PSI, strain_jet, strain_measures
+from hubbeam.system import terms
+from hubbeam.system.assembly import add_entry
 
 #: Positions of X = (U, theta_1) and of Xdot inside Z = (U, Udot, theta_1, theta_1dot).
 _XI = (0, 1, 2, PHI)
@@ -351,3 +359,67 @@ def _add_x_block(F, Mx, coef, Mg, block):
     for r in range(4):
         for s in range(4):
             block[_QX[r], _QX[s]] += coef * Mg[r, s]
+
+
+# ================================================================ compiled terms: the kind "tip bodies"
+class TipBodies(NamedTuple):
+    """The tip bodies on ANCF tip nodes of a system, one row each."""
+
+    index: np.ndarray  # int64 (n,): the beam's place among all beams (its chart, its energy row)
+    x0: np.ndarray  # int64 (n,): where the tip node's 8 coordinates start in x
+    params: np.ndarray  # (n, 7) TipBody.params()
+
+
+def pack_tip_bodies(system, layout) -> TipBodies | None:
+    """The :class:`TipBodies` of ``system`` placed by ``layout`` (None without any)."""
+    rows = [(k, layout.beam_x(k).start + part.tip_node().start, part.tip_body.params())
+            for k, part in enumerate(system.beams) if part.tip_body is not None and part.tip_node() is not None]
+    if not rows:
+        return None
+    return TipBodies(np.array([r[0] for r in rows], dtype=np.int64), np.array([r[1] for r in rows], dtype=np.int64),
+                     np.array([r[2] for r in rows], dtype=float).reshape(len(rows), 7))
+
+
+def tip_body_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
+                       want_matrix, res, ab, brow, bcol, bb):
+    """Every tip body's rows (:func:`ancf_tip_body_terms`) on its tip node's coordinates
+    (:mod:`hubbeam.system.terms`); gravity scaled by ``load_factor``."""
+    zx = ctx.z_of_x
+    g = np.empty(3)
+    for i in range(3):
+        g[i] = load_factor * ctx.gravity[i]
+    force8 = np.empty(8)
+    nb8 = 8 if want_matrix else 0
+    block8 = np.empty((nb8, nb8))
+    for k in range(pack.index.shape[0]):
+        x0 = pack.x0[k]
+        force8[:] = 0.0
+        block8[:, :] = 0.0
+        ancf_tip_body_terms(pack.params[k], F[pack.index[k]], x[x0 : x0 + 8], v[x0 : x0 + 8], acc[x0 : x0 + 8], g,
+                            coef_m, coef_k, force8, block8)
+        for i in range(8):
+            res[zx[x0 + i]] += coef_k * force8[i]
+        if want_matrix:
+            for i in range(8):
+                for j in range(8):
+                    add_entry(ab, brow, bcol, bb, ctx.ku, zx[x0 + i], zx[x0 + j], block8[i, j])
+    return 0.0, 2.0, 0.0
+
+
+def tip_body_energies(pack, ctx, F, x, v, beams):
+    """Each tip body's kinetic and gravity energy, into its beam's row (J)."""
+    zero8 = np.zeros(8)
+    force8 = np.empty(8)
+    no_block = np.empty((0, 0))
+    for k in range(pack.index.shape[0]):
+        x0 = pack.x0[k]
+        i = pack.index[k]
+        kinetic, potential = ancf_tip_body_terms(pack.params[k], F[i], x[x0 : x0 + 8], v[x0 : x0 + 8], zero8,
+                                                 ctx.gravity, 0.0, 0.0, force8, no_block)
+        beams[i, 0] += kinetic
+        beams[i, 2] += potential
+    return 0.0, 0.0, 0.0
+
+
+KIND = terms.register(TipBodies, pack_tip_bodies, tip_body_equations, tip_body_energies,
+                      bandwidth=lambda system: 7)  # the tip node's 8 x 8 block
