@@ -172,6 +172,7 @@ class CompiledSteps(PythonSteps):
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
         tol = newton.tolerance * max(system.length_scale, 1.0)
         self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations)
+        self.loop = compiled_alpha.loop_for(system)
         self.advance(state, 0, 0, 1, 1)  # compile or load the loop now, not inside the timed run
 
     def advance(self, state, n_steps, step0, every, total):
@@ -183,7 +184,7 @@ class CompiledSteps(PythonSteps):
         counters = np.zeros(4, dtype=np.int64)
         chart = np.ascontiguousarray(state.chart)
         with interrupt.deferred():  # a signal handler must not raise inside compiled code; see simulate
-            status, size, t = compiled_alpha.advance(
+            status, size, t = self.loop(
                 self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
                 self.system.mass_scale, CHART_LIMIT, self.matrix, self.reuse, self.work_done, power,
                 counters, (step0, every, total), records)

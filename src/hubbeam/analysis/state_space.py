@@ -201,7 +201,7 @@ def input_columns(system: HubSystem, names, x, v, acc, lam, F) -> tuple[np.ndarr
                 part = system.beams[k]
                 pushed = replace(part, tip_force=np.asarray(part.tip_force, dtype=float) + np.eye(3)[i])
                 variant = HubSystem([pushed if j == k else b for j, b in enumerate(system.beams)], system.hub,
-                                    system.gravity, system.damping)
+                                    system.gravity, system.damping, system.attachments)
                 columns.append(base - _forces(variant, x, v, acc, lam, F))  # residual is affine in a dead load
                 labels.append(f"tip_force_{axis}_{system.beams[k].name}")
                 units.append("N")

@@ -168,3 +168,24 @@ def _record(records, row, t, x, v, xdd, a, lam, work):
         rlam[row, i] = lam[i]
     rwork[row, 0] = work[0]
     rwork[row, 1] = work[1]
+
+
+def loop_for(system):
+    """The compiled loop for ``system``: :func:`advance`, or for a system with a kind of part
+    defined outside hubbeam an uncached copy of it that calls the uncached equations
+    (:func:`hubbeam.system.equations.uncached_twins`)."""
+    functions = system.functions
+    if functions.system_equations is system_equations:
+        return advance
+    return _uncached_loop(functions)
+
+
+_LOOPS: dict = {}
+
+
+def _uncached_loop(functions):
+    if functions not in _LOOPS:
+        from hubbeam.system.equations import uncached_twins
+
+        _LOOPS[functions] = uncached_twins({"advance": advance}, functions._asdict())["advance"]
+    return _LOOPS[functions]

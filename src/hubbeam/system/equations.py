@@ -17,6 +17,8 @@ absent from a system is not compiled for it.
 
 from __future__ import annotations
 
+import types
+from functools import cache
 from typing import NamedTuple
 
 import numpy as np
@@ -46,30 +48,27 @@ class SystemModel(NamedTuple):
     hub_inertia: float  # kg m^2
     drive: tuple  # CompiledDrive of hubbeam.system.laws
     torque: tuple  # CompiledTorque of hubbeam.system.laws
-    gravity: np.ndarray  # (3,) m/s^2
-    drag: np.ndarray  # (2,) c1, c2 of Eq. 37
     parts: tuple  # the packs of the kinds of part present
+    context: Context  # what the parts' terms see (:func:`context`)
     bandwidth: int
 
 
-@njit(cache=True)
-def context(model):
-    """The :class:`~hubbeam.system.terms.Context` the parts' terms see."""
-    return Context(model.border, model.z_of_x, model.z_of_lambda, 2 * model.bandwidth, THETA, model.gravity,
-                   model.drag)
+def context(layout, bandwidth: int, gravity, drag) -> Context:
+    """The :class:`~hubbeam.system.terms.Context` of a system placed by ``layout``."""
+    return Context(layout.border, layout.z_of_x, layout.z_of_lambda, 2 * bandwidth, THETA,
+                   np.array(gravity, dtype=float), np.array(drag, dtype=float))
 
 
 @njit(cache=True)
-def drive_angle(model, t):
+def drive_angle(drive, t):
     """theta_p(t) of the driving constraint (a fixed hub has the profile 'rest')."""
-    d = model.drive
-    return drive_values(d[0], d[1], d[2], d[3], t)[0]
+    return drive_values(drive[0], drive[1], drive[2], drive[3], t)[0]
 
 
 @njit(cache=True)
-def applied_torque(model, t, theta, omega):
+def applied_torque(torque, t, theta, omega):
     """(T, dT/dtheta, dT/domega) of the hub's torque law (N m)."""
-    tq = model.torque
+    tq = torque
     return torque_values(tq[0], tq[1], tq[2], tq[3], tq[4], tq[5], tq[6], tq[7], t, theta, omega)
 
 
@@ -91,7 +90,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     Returns (chart margin min(1 + d.tau) over all Gauss points, dissipated power W). A margin
     at or below :data:`CHART_SINGULAR` means the residual is not valid.
     """
-    ctx = context(model)
+    ctx = model.context
     zx = model.z_of_x
     zl = model.z_of_lambda
     ku = ctx.ku
@@ -105,12 +104,12 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     # ---------------------------------------------------------------- hub
     z_theta = zx[THETA]
     theta, omega = x[THETA], v[THETA]
-    torque, d_theta, d_omega = applied_torque(model, t, theta, omega)
+    torque, d_theta, d_omega = applied_torque(model.torque, t, theta, omega)
     hub_row = model.hub_inertia * acc[THETA] - load_factor * torque
     if model.held:
         z_drive = zl[model.drive_lambda]
         hub_row += lam[model.drive_lambda]
-        res[z_drive] = scale * (theta - drive_angle(model, t))
+        res[z_drive] = scale * (theta - drive_angle(model.drive, t))
     if want_matrix:
         add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta,
                   coef_m * model.hub_inertia - load_factor * (coef_k * d_theta + coef_c * d_omega))
@@ -137,7 +136,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
 def dissipated_power(model, F, x, v):
     """Power of the drag of Eq. 37 and of the structural damping of every part at the state
     (x, v) in the charts F (W, >= 0)."""
-    ctx = context(model)
+    ctx = model.context
     power = 0.0
     for pack in literal_unroll(model.parts):
         power += part_power(pack, ctx, F, x, v)
@@ -149,7 +148,7 @@ def beam_energies(model, F, x, v, beams, hub):
     """Kinetic, strain and gravity energy (J) at (x, v) in the charts F: beams[k] = (T, U, V)
     of beam k (its place among all beams; tip bodies in their beam's row), hub = (T, U, V)
     of the hub (J theta'^2 / 2) and of every part's energy that belongs to no beam."""
-    ctx = context(model)
+    ctx = model.context
     beams[:, :] = 0.0
     hub[0] = 0.5 * model.hub_inertia * v[THETA] * v[THETA]
     hub[1] = 0.0
@@ -166,7 +165,7 @@ def tip_displacements(model, x, out):
     """Each beam's tip centroid displacement from its undeformed place along its own hub
     frame i_k (radial), j0 (vertical), k_k (tangential) at x (m): out[k] for beam k (its place
     among all beams)."""
-    ctx = context(model)
+    ctx = model.context
     for pack in literal_unroll(model.parts):
         part_tips(pack, ctx, x, out)
 
@@ -208,7 +207,56 @@ def record_measures(model, F, xs, vs, count, energies, gauges, hub, beams, tips,
 @njit(cache=True)
 def hub_power(model, t, x, v, lam):
     """Power of the drive and the applied torque on the hub (W): (T_applied - lambda_drive) theta'."""
-    torque = applied_torque(model, t, x[THETA], v[THETA])[0]
+    torque = applied_torque(model.torque, t, x[THETA], v[THETA])[0]
     if model.held:
         torque -= lam[model.drive_lambda]
     return torque * v[THETA]
+
+
+#: the functions here that take the model, which holds the parts' packs
+MODEL_FUNCTIONS = ("system_equations", "dissipated_power", "beam_energies", "tip_displacements", "record_measures",
+                   "hub_power")
+
+
+class Compiled(NamedTuple):
+    """The compiled functions of this module that take the model."""
+
+    system_equations: object
+    dissipated_power: object
+    beam_energies: object
+    tip_displacements: object
+    record_measures: object
+    hub_power: object
+
+
+def uncached_twins(functions: dict, others: dict | None = None) -> dict:
+    """Copies of the ``cache=True`` numba functions ``functions`` (name: dispatcher) compiled
+    without numba's on-disk cache, calling each other (and ``others``, name: dispatcher) instead
+    of the originals.
+
+    For kinds of part defined outside hubbeam: numba's cache index of a function records
+    every signature it was compiled for, and unpickling a signature imports the classes in
+    it; a pack class of a script or a test module would make the index unreadable in every
+    other process (a later ``hubbeam run`` would fail). Systems with such kinds compile these
+    copies in memory instead."""
+    twins: dict = {}
+    for name, function in functions.items():
+        py = function.py_func
+        namespace = dict(py.__globals__)
+        twin = types.FunctionType(py.__code__, namespace, py.__name__, py.__defaults__, py.__closure__)
+        twin.__qualname__, twin.__doc__ = py.__qualname__, py.__doc__
+        twins[name] = (njit(cache=False)(twin), namespace)
+    replacements = {name: twin for name, (twin, _) in twins.items()}
+    replacements.update(others or {})
+    for _, namespace in twins.values():
+        namespace.update({name: f for name, f in replacements.items() if name in namespace})
+    return {name: twin for name, (twin, _) in twins.items()}
+
+
+@cache
+def compiled(native: bool = True) -> Compiled:
+    """This module's functions that take the model: cached in numba's on-disk cache when every
+    kind of part of the system is hubbeam's own (``native``), else uncached copies
+    (:func:`uncached_twins`)."""
+    originals = {name: globals()[name] for name in MODEL_FUNCTIONS}
+    return Compiled(**(originals if native else uncached_twins(originals)))

@@ -22,8 +22,7 @@ from hubbeam.system import ffr_part, terms, tip_body  # noqa: F401  (importing a
 from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.assembly import BorderedBandMatrix
 from hubbeam.system.beam import NODE_DOFS
-from hubbeam.system.equations import (CHART_SINGULAR, SystemModel, beam_energies, dissipated_power, hub_power,
-                                      record_measures, system_equations)
+from hubbeam.system.equations import CHART_SINGULAR, Compiled, SystemModel, compiled, context
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.layout import CLAMP_EQUATIONS, Layout
 from hubbeam.system.parts import BEAM_MOTIONS, BeamPart, ChartedBeamPart
@@ -67,13 +66,17 @@ def energy_sums(hub: np.ndarray, beams: np.ndarray, beam: int | None = None) -> 
 
 
 class HubSystem:
-    """A hub carrying beams. ``gravity`` (m/s^2, global), ``damping`` = (c1, c2) of Eq. 37."""
+    """A hub carrying beams. ``gravity`` (m/s^2, global), ``damping`` = (c1, c2) of Eq. 37;
+    ``attachments``: parts of other registered kinds (:mod:`hubbeam.system.terms`) that have
+    no coordinates of their own and act on the hub's and the beams' (each kind's packer picks
+    its own from this list)."""
 
     def __init__(self, beams: list[BeamPart], hub: Hub = Hub(), gravity=(0.0, 0.0, 0.0),
-                 damping: tuple[float, float] = (0.0, 0.0)) -> None:
+                 damping: tuple[float, float] = (0.0, 0.0), attachments=()) -> None:
         if not beams:
             raise ValueError("a hub system needs at least one beam")
         self.beams = list(beams)
+        self.attachments = tuple(attachments)
         self.hub = hub
         self.gravity = np.asarray(gravity, dtype=float)
         self.damping = (float(damping[0]), float(damping[1]))
@@ -132,11 +135,12 @@ class HubSystem:
 
     def without_damping(self) -> "HubSystem":
         """The same system without air drag and without the beams' structural damping."""
-        return HubSystem([b.without_structural_damping() for b in self.beams], self.hub, self.gravity, (0.0, 0.0))
+        return HubSystem([b.without_structural_damping() for b in self.beams], self.hub, self.gravity, (0.0, 0.0),
+                         self.attachments)
 
     def with_hub(self, **changes) -> "HubSystem":
         """The same beams on a hub with some fields changed (motion, drive, torque, inertia)."""
-        return HubSystem(self.beams, replace(self.hub, **changes), self.gravity, self.damping)
+        return HubSystem(self.beams, replace(self.hub, **changes), self.gravity, self.damping, self.attachments)
 
     # ------------------------------------------------------------ states
     def initial_state(self, theta: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
@@ -227,9 +231,15 @@ class HubSystem:
         return SystemModel(
             layout.border, layout.z_of_x, layout.z_of_lambda, held,
             -1 if layout.drive_lambda is None else layout.drive_lambda, float(self.hub.inertia),
-            tuple(drive.compiled()), tuple(torque.compiled()), np.array(self.gravity, dtype=float),
-            np.array(self.damping, dtype=float), terms.packs(self, layout), self.bandwidth,
+            tuple(drive.compiled()), tuple(torque.compiled()), terms.packs(self, layout),
+            context(layout, self.bandwidth, self.gravity, self.damping), self.bandwidth,
         )
+
+    @property
+    def functions(self) -> Compiled:
+        """The compiled functions of the model (:func:`hubbeam.system.equations.compiled`):
+        numba-cached unless a kind of part of this system is defined outside hubbeam."""
+        return compiled(terms.native(self.model().parts))
 
     # ------------------------------------------------------------ equations
     def equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale, load_factor=1.0,
@@ -247,7 +257,7 @@ class HubSystem:
         matrix = BorderedBandMatrix.empty(layout.nz, layout.border, model.bandwidth)
         F = np.ascontiguousarray(F, dtype=float)
         x, v, acc, lam = (np.ascontiguousarray(a, dtype=float) for a in (x, v, acc, lam))
-        margin, _ = system_equations(model, F, x, v, acc, lam, float(t), float(coef_m), float(coef_c),
+        margin, _ = self.functions.system_equations(model, F, x, v, acc, lam, float(t), float(coef_m), float(coef_c),
                                      float(coef_k), float(scale), float(load_factor), stiffness == "exact",
                                      bool(want_matrix), res, matrix.ab, matrix.brow, matrix.bcol, matrix.bb)
         if not margin > CHART_SINGULAR:
@@ -411,7 +421,7 @@ class HubSystem:
         energy (J); of one beam when ``beam`` is its index (compiled:
         :func:`~hubbeam.system.equations.beam_energies`)."""
         hub, beams = np.zeros(3), np.zeros((len(self.beams), 3))
-        beam_energies(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(x, dtype=float),
+        self.functions.beam_energies(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(x, dtype=float),
                       np.ascontiguousarray(v, dtype=float), beams, hub)
         return energy_sums(hub, beams, beam)
 
@@ -441,7 +451,7 @@ class HubSystem:
         gauges = self.gauge_table([])[0] if gauges is None else gauges
         out = {"hub": np.zeros((count if energies else 0, 3)), "beams": np.zeros((count if energies else 0, nb, 3)),
                "tips": np.empty((count, nb, 3)), "strains": np.empty((count, gauges[0].shape[0]))}
-        record_measures(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(xs, dtype=float),
+        self.functions.record_measures(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(xs, dtype=float),
                         np.ascontiguousarray(vs, dtype=float), count, energies, gauges, out["hub"], out["beams"],
                         out["tips"], out["strains"])
         return out
@@ -477,13 +487,13 @@ class HubSystem:
 
     def dissipated_power(self, x, v, F) -> float:
         """Power of the drag of Eq. 37 and of the beams' structural damping (W, >= 0)."""
-        return float(dissipated_power(self.model(), np.ascontiguousarray(F, dtype=float),
+        return float(self.functions.dissipated_power(self.model(), np.ascontiguousarray(F, dtype=float),
                                       np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float)))
 
     def hub_power(self, t, x, v, lam) -> float:
         """Power of the drive reaction and the applied torque on the hub (W)."""
         if self.hub.torque.compilable:
-            return float(hub_power(self.model(), float(t), x, v, lam))
+            return float(self.functions.hub_power(self.model(), float(t), x, v, lam))
         return (self.applied_torque(t, x, v) + self.drive_torque(lam)) * float(v[0])
 
     def tip_position(self, x, beam: int = 0) -> np.ndarray:

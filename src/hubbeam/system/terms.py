@@ -141,6 +141,13 @@ def register(pack: type, packer: Callable, equations, energies=None, power=None,
     return kind
 
 
+def native(packs: tuple) -> bool:
+    """Whether every pack's kind is defined inside hubbeam (numba may then keep the system's
+    compiled functions in its on-disk cache; see
+    :func:`hubbeam.system.equations.uncached_twins`)."""
+    return all(type(p).__module__.split(".")[0] == "hubbeam" for p in packs)
+
+
 def packs(system, layout) -> tuple:
     """The packs of the kinds present in ``system`` (placed by ``layout``), in registration order."""
     found = (kind.packer(system, layout) for kind in KINDS)
