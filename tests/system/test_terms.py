@@ -79,8 +79,7 @@ def point_mass_energies(pack, ctx, F, x, v, beams):
         m = pack.mass[k]
         for i in range(3):
             r = pack.x0[k] + i
-            beams[pack.index[k], 0] += 0.5 * m * v[r] * v[r]
-            beams[pack.index[k], 2] -= m * ctx.gravity[i] * x[r]
+            terms.add_beam_energy(beams, pack.index[k], 0.5 * m * v[r] * v[r], 0.0, -m * ctx.gravity[i] * x[r])
     return 0.0, 0.0, 0.0
 
 

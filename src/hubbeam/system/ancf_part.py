@@ -26,7 +26,7 @@ from hubbeam.elements.ancf.strain import strain_measures
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_element_blocks_banded, add_entry
 from hubbeam.system.beam import NODE_DOFS, AncfBeam
-from hubbeam.system.clamp import add_clamp_jacobian, clamp_constraints, clamp_equations, clamp_residual
+from hubbeam.system.clamp import add_clamp_jacobian, clamp_constraints, clamp_equations, clamp_residual, clamp_work
 from hubbeam.system.loads import tip_moment_terms
 from hubbeam.system.mount import Mount, tip_from_mount
 from hubbeam.system.parts import ChartedBeamPart
@@ -264,10 +264,7 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
     margin = 2.0
     power = 0.0
     hub_force = 0.0
-    phi = np.empty(6)
-    jac = np.empty((6, 8))
-    hess = np.empty((8, 8))
-    lam_k = np.empty(6)
+    phi, jac, hess, lam_k = clamp_work()
     c = np.empty(8)
     tip_jacobian = np.empty((4, 3))
     for k in range(pack.index.shape[0]):
@@ -342,10 +339,7 @@ def ancf_energies(pack, ctx, F, x, v, beams):
                                                  np.empty((0, 16, 16)))
         strain = kernels.elastic_kernel(q, qd, Fk, le, S, dS, d2S, w, pack.stiffness[k], pack.reference[k], 0.0, 0.0,
                                         0.0, term, np.empty((0, 16, 16)))[0]
-        i = pack.index[k]
-        beams[i, 0] += kinetic
-        beams[i, 1] += strain
-        beams[i, 2] += potential
+        terms.add_beam_energy(beams, pack.index[k], kinetic, strain, potential)
     return 0.0, 0.0, 0.0
 
 

@@ -152,3 +152,9 @@ def add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, n_root, scale, zl, l0, q_sta
         for j in range(n_root):
             add_entry(ab, brow, bcol, bb, ku, ri, q_start + j, scale * jac[i, 1 + j])
             add_entry(ab, brow, bcol, bb, ku, q_start + j, ri, scale * jac[i, 1 + j])
+
+
+@njit(cache=True)
+def clamp_work():
+    """Work arrays of one clamp: (Phi (6), Jacobian (6 x 8), Hessian (8 x 8), multipliers (6))."""
+    return np.empty(6), np.empty((6, 8)), np.empty((8, 8)), np.empty(6)

@@ -47,7 +47,7 @@ from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.clamp import add_clamp_jacobian, clamp_residual
+from hubbeam.system.clamp import add_clamp_jacobian, clamp_residual, clamp_work
 from hubbeam.system.mount import Mount, tip_from_mount
 from hubbeam.system.parts import BeamPart
 
@@ -462,10 +462,7 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
     theta = x[ctx.theta]
     power = 0.0
     hub_force = 0.0
-    phi = np.empty(6)
-    jac = np.empty((6, 8))
-    hess = np.empty((8, 8))
-    lam_k = np.empty(6)
+    phi, jac, hess, lam_k = clamp_work()
     for k in range(pack.nf.shape[0]):
         n = 6 + pack.nf[k]
         x0 = pack.x0[k]
@@ -507,10 +504,7 @@ def ffr_beam_energies(pack, ctx, F, x, v, beams):
         x0 = pack.x0[k]
         inv, _, _ = ffr_arguments(pack, k, ctx.drag)
         kinetic, strain, potential = ffr_energies(inv, x[x0 : x0 + n], v[x0 : x0 + n], ctx.gravity)
-        i = pack.index[k]
-        beams[i, 0] += kinetic
-        beams[i, 1] += strain
-        beams[i, 2] += potential
+        terms.add_beam_energy(beams, pack.index[k], kinetic, strain, potential)
     return 0.0, 0.0, 0.0
 
 

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 from typing import Callable, NamedTuple
 
 import numpy as np
+from numba import njit
 from numba.extending import overload
 
 
@@ -96,6 +97,14 @@ def part_power(pack, ctx, F, x, v):
 def part_tips(pack, ctx, x, out):
     """A part kind's tip displacements (compiled; see the module)."""
     raise TypeError(f"no compiled terms are registered for {type(pack).__name__}")
+
+
+@njit(cache=True)
+def add_beam_energy(beams, k, kinetic, strain, gravity):
+    """Add (kinetic, strain, gravity) (J) to the energy row of beam k (its place among all beams)."""
+    beams[k, 0] += kinetic
+    beams[k, 1] += strain
+    beams[k, 2] += gravity
 
 
 def _no_energies(pack, ctx, F, x, v, beams):

@@ -416,8 +416,7 @@ def tip_body_energies(pack, ctx, F, x, v, beams):
         i = pack.index[k]
         kinetic, potential = ancf_tip_body_terms(pack.params[k], F[i], x[x0 : x0 + 8], v[x0 : x0 + 8], zero8,
                                                  ctx.gravity, 0.0, 0.0, force8, no_block)
-        beams[i, 0] += kinetic
-        beams[i, 2] += potential
+        terms.add_beam_energy(beams, i, kinetic, 0.0, potential)
     return 0.0, 0.0, 0.0
 
 
