@@ -22,7 +22,7 @@ import sys
 MAX_MEASURED_BYTES = 256 * 2**20
 
 #: names this module used to import at its top, still importable from it (loaded on first use)
-_LAZY = {"EXAMPLES": "hubbeam.io.scenario", "example_text": "hubbeam.io.scenario",
+_LAZY = {"EXAMPLES": "hubbeam.io.examples", "example_text": "hubbeam.io.examples",
          "load_scenario": "hubbeam.io.scenario", "ScenarioError": "hubbeam.errors",
          "ComputationError": "hubbeam.errors"}
 
@@ -42,9 +42,9 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _parser() -> argparse.ArgumentParser:
-    from hubbeam.io.scenario import EXAMPLES
-
     from importlib.metadata import PackageNotFoundError, version
+
+    from hubbeam.io.examples import EXAMPLES
 
     try:
         installed = version("hubbeam")
@@ -1021,9 +1021,9 @@ def _command(argv) -> int:
     from hubbeam.interrupt import Interrupted, raise_pending
 
     args = _parser().parse_args(argv)
-    from hubbeam.io.scenario import ScenarioError, example_text
+    from hubbeam.errors import ComputationError, ScenarioError
+    from hubbeam.io.examples import example_text
     from hubbeam.io.targets import OutputError
-    from hubbeam.errors import ComputationError
 
     try:
         if args.command == "example":
