@@ -994,15 +994,20 @@ def main(argv: list[str] | None = None) -> int:
     (see :mod:`hubbeam.interrupt`) from here on; the previous handlers come back after it.
 
     ``argv`` None: the command line of this process (the ``hubbeam`` script, ``python -m
-    hubbeam.cli``), which ends after the command. Then the objects alive once the command's
-    modules are loaded, and again at the end, are frozen out of the cyclic garbage collector
-    (:func:`gc.freeze`; they live until the process ends anyway): the collections during the
-    computation no longer walk numba's and pydantic's objects, and Python's last collection
-    at exit has almost nothing to walk (it took about 0.3 s of ``hubbeam run`` after numba
-    had loaded its compiled code). Called with a list (tests, scripts), nothing is frozen."""
+    hubbeam.cli``), which ends after the command. The modules it loads make objects that live
+    until the process ends, not garbage: the cyclic garbage collector is off while they load
+    and they are then frozen out of it (:func:`gc.freeze`, in :func:`_settled`), and so is
+    everything at the end. Otherwise its collections walked numba's and pydantic's objects
+    again and again (about 0.2 s of ``hubbeam run benchmarks/case_a.toml`` during the
+    command), and Python's last one at exit walked all of them (about 0.3 s after numba had
+    loaded its compiled code). Called with a list (tests, scripts), the collector is left alone."""
+    import gc
+
     from hubbeam import interrupt
 
     program = argv is None
+    if program:
+        gc.disable()  # until _settled
     try:
         with interrupt.handling():
             return _main(argv, program)
@@ -1011,15 +1016,18 @@ def main(argv: list[str] | None = None) -> int:
         return exc.exit_code
     finally:
         if program:
-            _freeze()
+            gc.freeze()  # the collection at exit then has nothing to walk
 
 
-def _freeze() -> None:
-    """Move every object alive now into the garbage collector's permanent generation (only
-    for a process that ends after its command: see :func:`main`)."""
-    import gc
+def _settled(program: bool) -> None:
+    """The command's modules are loaded: in a process that ends after its command (see
+    :func:`main`), the objects alive now move into the garbage collector's permanent
+    generation and the collector is on again for what the computation makes."""
+    if program:
+        import gc
 
-    gc.freeze()
+        gc.freeze()
+        gc.enable()
 
 
 def _main(argv, program: bool = False) -> int:
@@ -1041,6 +1049,8 @@ def _command(argv, program: bool = False) -> int:
     from hubbeam.interrupt import Interrupted, raise_pending
 
     args = _parser().parse_args(argv)
+    if args.command in ("example", "animate", "vtk"):
+        _settled(program)  # these load their modules as they go (matplotlib, h5py)
     from hubbeam.errors import ComputationError, ScenarioError
     from hubbeam.io.examples import example_text
     from hubbeam.io.targets import OutputError
@@ -1051,17 +1061,18 @@ def _command(argv, program: bool = False) -> int:
             return 0
         if args.command == "reproduce":
             _compile_note()
+            _settled(program)
             return _cmd_reproduce(args)
         if args.command == "applicability":
             _compile_note()
+            _settled(program)
             result = _cmd_applicability(args)
         elif args.command in ("animate", "vtk"):
             result = {"animate": _cmd_animate, "vtk": _cmd_vtk}[args.command](args)
         else:
             scenario = _load(args)
             _compile_note()  # imports the solver: numba, scipy.linalg and the model's modules
-            if program:
-                _freeze()
+            _settled(program)
             handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
                        "linearize": _cmd_linearize,
                        "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]
