@@ -22,7 +22,7 @@ import sys
 MAX_MEASURED_BYTES = 256 * 2**20
 
 #: names this module used to import at its top, still importable from it (loaded on first use)
-_LAZY = {"EXAMPLES": "hubbeam.io.scenario", "example_text": "hubbeam.io.scenario",
+_LAZY = {"EXAMPLES": "hubbeam.io.examples", "example_text": "hubbeam.io.examples",
          "load_scenario": "hubbeam.io.scenario", "ScenarioError": "hubbeam.errors",
          "ComputationError": "hubbeam.errors"}
 
@@ -42,9 +42,9 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _parser() -> argparse.ArgumentParser:
-    from hubbeam.io.scenario import EXAMPLES
-
     from importlib.metadata import PackageNotFoundError, version
+
+    from hubbeam.io.examples import EXAMPLES
 
     try:
         installed = version("hubbeam")
@@ -991,25 +991,53 @@ def _where(exc: BaseException) -> str:
 # ------------------------------------------------------------------------------ main
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status. SIGINT, SIGTERM and SIGHUP are handled
-    (see :mod:`hubbeam.interrupt`) from here on; the previous handlers come back after it."""
+    (see :mod:`hubbeam.interrupt`) from here on; the previous handlers come back after it.
+
+    ``argv`` None: the command line of this process (the ``hubbeam`` script, ``python -m
+    hubbeam.cli``), which ends after the command. The modules it loads make objects that live
+    until the process ends, not garbage: the cyclic garbage collector is off while they load
+    and they are then frozen out of it (:func:`gc.freeze`, in :func:`_settled`), and so is
+    everything at the end. Otherwise its collections walked numba's and pydantic's objects
+    again and again (about 0.2 s of ``hubbeam run benchmarks/case_a.toml`` during the
+    command), and Python's last one at exit walked all of them (about 0.3 s after numba had
+    loaded its compiled code). Called with a list (tests, scripts), the collector is left alone."""
+    import gc
+
     from hubbeam import interrupt
 
+    program = argv is None
+    if program:
+        gc.disable()  # until _settled
     try:
         with interrupt.handling():
-            return _main(argv)
+            return _main(argv, program)
     except interrupt.Interrupted as exc:  # during start-up (imports), before _main could catch it
         _say(f"hubbeam: interrupted by {exc.name}{exc.detail or '; nothing written'}")
         return exc.exit_code
+    finally:
+        if program:
+            gc.freeze()  # the collection at exit then has nothing to walk
 
 
-def _main(argv) -> int:
+def _settled(program: bool) -> None:
+    """The command's modules are loaded: in a process that ends after its command (see
+    :func:`main`), the objects alive now move into the garbage collector's permanent
+    generation and the collector is on again for what the computation makes."""
+    if program:
+        import gc
+
+        gc.freeze()
+        gc.enable()
+
+
+def _main(argv, program: bool = False) -> int:
     """The command, with the warnings of the libraries it uses (numpy, scipy, matplotlib)
     caught: on success each distinct one is one ``hubbeam: warning:`` line; on failure the
     failure's one line says what matters (a warning is not printed with its source line)."""
     import warnings
 
     with warnings.catch_warnings(record=True) as caught:
-        code = _command(argv)
+        code = _command(argv, program)
     if code == 0:
         for text in dict.fromkeys(f"{w.category.__name__}: {w.message} ({w.filename.rsplit(os.sep, 1)[-1]}:{w.lineno})"
                                   for w in caught):
@@ -1017,13 +1045,15 @@ def _main(argv) -> int:
     return code
 
 
-def _command(argv) -> int:
+def _command(argv, program: bool = False) -> int:
     from hubbeam.interrupt import Interrupted, raise_pending
 
     args = _parser().parse_args(argv)
-    from hubbeam.io.scenario import ScenarioError, example_text
+    if args.command in ("example", "animate", "vtk"):
+        _settled(program)  # these load their modules as they go (matplotlib, h5py)
+    from hubbeam.errors import ComputationError, ScenarioError
+    from hubbeam.io.examples import example_text
     from hubbeam.io.targets import OutputError
-    from hubbeam.errors import ComputationError
 
     try:
         if args.command == "example":
@@ -1031,15 +1061,18 @@ def _command(argv) -> int:
             return 0
         if args.command == "reproduce":
             _compile_note()
+            _settled(program)
             return _cmd_reproduce(args)
         if args.command == "applicability":
             _compile_note()
+            _settled(program)
             result = _cmd_applicability(args)
         elif args.command in ("animate", "vtk"):
             result = {"animate": _cmd_animate, "vtk": _cmd_vtk}[args.command](args)
         else:
             scenario = _load(args)
-            _compile_note()
+            _compile_note()  # imports the solver: numba, scipy.linalg and the model's modules
+            _settled(program)
             handler = {"static": _cmd_static, "modes": _cmd_modes, "run": _cmd_run, "campbell": _cmd_campbell,
                        "linearize": _cmd_linearize,
                        "sweep": _cmd_sweep, "identify": _cmd_identify}[args.command]

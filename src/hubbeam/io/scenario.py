@@ -22,7 +22,6 @@ import re
 import tomllib
 import unicodedata
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, Literal, Union
 
@@ -40,6 +39,7 @@ from pydantic import (
 )
 
 from hubbeam.errors import ScenarioError  # noqa: F401  (part of this module's interface)
+from hubbeam.io.examples import EXAMPLES, example_text  # noqa: F401  (part of this module's interface)
 
 
 class _Strict(BaseModel):
@@ -1033,17 +1033,6 @@ def value_at(data: dict, key: str):
     if len(addresses) != 1:
         raise ScenarioError(f"{key}: addresses {len(addresses)} values; name one")
     return _get(data, addresses[0])
-
-
-#: the bundled scenarios (package data in hubbeam/examples)
-EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2", "rotor3", "spacecraft", "arm", "blade")
-
-
-def example_text(name: str) -> str:
-    """The TOML text of a bundled scenario."""
-    if name not in EXAMPLES:
-        raise ScenarioError(f"example: unknown example {name!r} (available: {', '.join(EXAMPLES)})")
-    return resources.files("hubbeam").joinpath("examples", f"{name}.toml").read_text(encoding="utf-8")
 
 
 def load_example(name: str, overrides: list[str] | None = None) -> Scenario:

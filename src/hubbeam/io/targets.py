@@ -26,7 +26,7 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from hubbeam.io.scenario import ScenarioError
+from hubbeam.errors import ScenarioError
 
 #: a scenario or measured file larger than this is not read (a scenario is a few kB)
 MAX_INPUT_BYTES = 4 * 2**20
