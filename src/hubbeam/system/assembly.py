@@ -60,7 +60,8 @@ def band_solve(lu, kl, ku, ipiv, b):
         if b[j] != 0.0:
             bj = b[j] / lu[kv, j]
             b[j] = bj
-            for i in range(j - 1, max(0, j - kv) - 1, -1):
+            i0 = max(0, j - kv)
+            for i in range(i0, j):  # independent updates: any order gives the same numbers
                 b[i] -= bj * lu[kv + i - j, j]
     return 0
 
