@@ -130,23 +130,23 @@ def _moments(inv, p, pd, with_rate, nf, St, Q2, Q2d, R2):
         for f in range(nf):
             acc += Sbar[k, f] * p[f]
         St[k] = c0[k] + acc
-    # sums in scalars (an array accumulator is reloaded after every store: numba cannot tell
-    # that Q2 does not alias II), over f in ascending order
     for k in range(3):
         for l in range(3):
             for g in range(nf):
-                acc = 0.0
-                acc_d = 0.0
+                Q2[k, l, g] = 0.0
+            if with_rate:
+                for g in range(nf):
+                    Q2d[k, l, g] = 0.0
+            for f in range(nf):
+                pf = p[f]
+                if pf != 0.0:
+                    for g in range(nf):
+                        Q2[k, l, g] += pf * II[k, l, f, g]
                 if with_rate:
-                    for f in range(nf):
-                        c = II[k, l, f, g]
-                        acc += p[f] * c
-                        acc_d += pd[f] * c
-                    Q2d[k, l, g] = acc_d
-                else:
-                    for f in range(nf):
-                        acc += p[f] * II[k, l, f, g]
-                Q2[k, l, g] = acc
+                    pdf = pd[f]
+                    if pdf != 0.0:
+                        for g in range(nf):
+                            Q2d[k, l, g] += pdf * II[k, l, f, g]
     Jp = np.empty((3, 3))
     for k in range(3):
         for l in range(3):
