@@ -101,7 +101,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 res[i] = -res[i]
             bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, res)
             counters[1] += 1
-            if not np.all(np.isfinite(res)):
+            if not _all_finite(res):
                 reuse[REUSE_VALID] = 0
                 return Outcome.NOT_FINITE, size, t
             size = apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, x1, v1, xdd1, lam1)
@@ -146,6 +146,15 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         if margin < chart_limit:
             return Outcome.CHART_LIMIT_REACHED, size, t
     return Outcome.DONE, size, t
+
+
+@njit(cache=True)
+def _all_finite(a):
+    """np.all(np.isfinite(a)) without the temporary boolean array."""
+    for i in range(a.shape[0]):
+        if not np.isfinite(a[i]):
+            return False
+    return True
 
 
 @njit(cache=True)

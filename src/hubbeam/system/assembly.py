@@ -2,12 +2,12 @@
 
 Band storage (as scipy.linalg.solve_banded takes it): ab[ku + i - j, j] = A[i, j].
 Element e of a beam couples the 16 coordinates starting at offset + 8 e.
-The band LU (:func:`band_factor`, :func:`band_solve`) is LAPACK's dgbtrf/dgbtrs from scipy's
-bundled LAPACK, callable from compiled code and used by :class:`BorderedBandMatrix` too. Its
-storage is gbtrf's: a Fortran-ordered array of shape (2 kl + ku + 1, n) with A[i, j] at
-ab[kl + ku + i - j, j] and kl spare rows on top for the fill-in of pivoting. Measured on
-this machine for n = 80, kl = ku = 15: factorisation about 21 us, solve about 3.5 us (a
-numba port of dgbtf2 took as long).
+The band LU (:func:`band_factor`, :func:`band_solve`) is LAPACK's dgbtrf from scipy's
+bundled LAPACK, callable from compiled code, and the loops of its dgbtrs compiled here; both
+are used by :class:`BorderedBandMatrix` too. Its storage is gbtrf's: a Fortran-ordered array
+of shape (2 kl + ku + 1, n) with A[i, j] at ab[kl + ku + i - j, j] and kl spare rows on top
+for the fill-in of pivoting. Measured on this machine for n = 80, kl = ku = 15:
+factorisation about 21 us (a numba port of dgbtf2 took as long).
 """
 
 from __future__ import annotations
@@ -17,14 +17,12 @@ import numpy as np
 from numba import njit, types
 from numba.extending import get_cython_function_address
 
-# The LAPACK routines are registered under names of their own and called as external
-# functions, so compiled callers refer to them by name and stay cacheable (a ctypes
+# The LAPACK routine is registered under a name of its own and called as an external
+# function, so compiled callers refer to it by name and stay cacheable (a ctypes
 # function pointer would bake this process's address into the cached code).
 llvm.add_symbol("hubbeam_dgbtrf", get_cython_function_address("scipy.linalg.cython_lapack", "dgbtrf"))
-llvm.add_symbol("hubbeam_dgbtrs", get_cython_function_address("scipy.linalg.cython_lapack", "dgbtrs"))
 _p = types.intp  # every argument is a pointer (Fortran calling convention)
 _dgbtrf = types.ExternalFunction("hubbeam_dgbtrf", types.void(_p, _p, _p, _p, _p, _p, _p, _p))
-_dgbtrs = types.ExternalFunction("hubbeam_dgbtrs", types.void(_p, _p, _p, _p, _p, _p, _p, _p, _p, _p, _p))
 
 
 @njit(cache=True)
@@ -40,13 +38,32 @@ def band_factor(ab, kl, ku, ipiv):
 
 @njit(cache=True)
 def band_solve(lu, kl, ku, ipiv, b):
-    """Solve A x = b in place (b overwritten with x) with the factors of :func:`band_factor`."""
+    """Solve A x = b in place (b overwritten with x) with the factors of :func:`band_factor`:
+    LAPACK's dgbtrs (no transpose, one right-hand side) in compiled loops, the same operations
+    in the same order (row interchanges and L's columns, then U from the last row up). Calling
+    dgbtrs itself cost more than its arithmetic on these sizes (about 0.7 us of call overhead
+    at n = 17, measured). Returns 0 (dgbtrs's info)."""
     n = lu.shape[1]
-    # the last entry holds the character 'N' (no transpose) in its first byte (little-endian)
-    a = np.array([n, kl, ku, 1, lu.shape[0], n, 0, ord("N")], dtype=np.int32)
-    p = a.ctypes.data
-    _dgbtrs(p + 28, p, p + 4, p + 8, p + 12, lu.ctypes.data, p + 16, ipiv.ctypes.data, b.ctypes.data, p + 20, p + 24)
-    return a[6]
+    kv = kl + ku  # the diagonal's row
+    if kl > 0:
+        for j in range(n - 1):
+            lm = min(kl, n - 1 - j)
+            jp = ipiv[j] - 1
+            bj = b[jp]
+            if jp != j:
+                b[jp] = b[j]
+                b[j] = bj
+            if bj != 0.0:
+                for i in range(lm):
+                    b[j + 1 + i] -= lu[kv + 1 + i, j] * bj
+    for j in range(n - 1, -1, -1):
+        if b[j] != 0.0:
+            bj = b[j] / lu[kv, j]
+            b[j] = bj
+            i0 = max(0, j - kv)
+            for i in range(i0, j):  # independent updates: any order gives the same numbers
+                b[i] -= bj * lu[kv + i - j, j]
+    return 0
 
 
 @njit(cache=True)

@@ -422,8 +422,11 @@ class FfrBeam:
         """Fibre strain eps = eps0 - y_b v0'' - z_b w0'' at the section point (y, z) (m, on the local
         section axes m', n' of station x; (y_b, z_b) its body coordinates) (eps0 as in :meth:`axial_strain`):
         the curvatures resolved on the local principal axes."""
-        _, _, bending = self._station_rows(x, y, z)
-        return self.axial_strain(p, x) + float(bending @ p)
+        # one look-up of the station's rows: the axial row does not depend on (y, z), so this is
+        # axial_strain(p, x) + bending @ p (sensors call this at every output time)
+        e, axial, bending = self._station_rows(x, y, z)
+        eps0 = float(self._mean_axial_strain(p)[0][e]) if self.geometric_stiffening else float(axial @ p)
+        return eps0 + float(bending @ p)
 
     def strain_row(self, x: float, y: float, z: float) -> np.ndarray:
         """The row of eps = u0' - y_b v0'' - z_b w0'' (the linear FFR fibre strain) over p, (y, z) on the
