@@ -28,7 +28,7 @@ def cache_is_cold(function=None) -> bool:
     usable compiled code in numba's on-disk cache: its index file (``*.nbi`` in the module's
     ``__pycache__`` or numba's cache directory) is missing or was made for other sources or
     another numba, so that its first call compiles it -- for :func:`advance`, the time loop and
-    the equations: about 2 minutes. False if that cannot be told."""
+    the equations: about a minute. False if that cannot be told."""
     try:
         return not (advance if function is None else function)._cache._cache_file._load_index()
     except (AttributeError, OSError, EOFError, ValueError):  # numba's internals changed: say nothing
