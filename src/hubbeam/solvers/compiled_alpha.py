@@ -14,6 +14,8 @@ that takes another compiled function as an argument, and a cold compile costs se
 
 from __future__ import annotations
 
+from functools import cache
+
 import numpy as np
 from numba import njit
 
@@ -63,7 +65,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     tol, max_iterations, update, refresh_rate, refresh_iterations = newton
     ab, ipiv, brow, bcol, bb, Y, schur = matrix
     step0, every, total = schedule
-    zx, zl = model.z_of_x, model.z_of_lambda
+    zx, zl = model.context.z_of_x, model.context.z_of_lambda
     n = zx.shape[0] + zl.shape[0]
     ck = beta * h * h
     bprime = (1.0 - am) / (ck * (1.0 - af))
@@ -189,12 +191,9 @@ def loop_for(system):
     return _uncached_loop(functions)
 
 
-_LOOPS: dict = {}
-
-
+@cache
 def _uncached_loop(functions):
-    if functions not in _LOOPS:
-        from hubbeam.system.equations import uncached_twins
+    """An uncached copy of :func:`advance` calling ``functions`` (uncached equations)."""
+    from hubbeam.system.equations import uncached_twins
 
-        _LOOPS[functions] = uncached_twins({"advance": advance}, functions._asdict())["advance"]
-    return _LOOPS[functions]
+    return uncached_twins({"advance": advance}, functions._asdict())["advance"]

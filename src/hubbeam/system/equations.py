@@ -36,13 +36,10 @@ THETA = Layout.theta
 
 
 class SystemModel(NamedTuple):
-    """Everything constant that the compiled equations need (SI units): the layout's places
-    of theta and the multipliers, the hub, the environment and ``parts``, the packs of the
-    kinds of part present (:func:`hubbeam.system.terms.packs`)."""
+    """Everything constant that the compiled equations need (SI units): the hub, ``parts``,
+    the packs of the kinds of part present (:func:`hubbeam.system.terms.packs`), and the
+    ``context`` they all see (the layout's places of the unknowns, the environment)."""
 
-    border: int
-    z_of_x: np.ndarray  # int64 (nx,)
-    z_of_lambda: np.ndarray  # int64 (n_lambda,)
     held: bool
     drive_lambda: int  # the drive multiplier's place in lambda (the layout's; -1 for a free hub)
     hub_inertia: float  # kg m^2
@@ -91,8 +88,8 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     at or below :data:`CHART_SINGULAR` means the residual is not valid.
     """
     ctx = model.context
-    zx = model.z_of_x
-    zl = model.z_of_lambda
+    zx = ctx.z_of_x
+    zl = ctx.z_of_lambda
     ku = ctx.ku
     for i in range(res.shape[0]):
         res[i] = 0.0

@@ -229,7 +229,7 @@ class HubSystem:
         drive = self.hub.drive if self.motion == "prescribed" else DriveProfile("rest")
         torque = self.hub.torque if (not held and self.hub.torque.compilable) else TorqueLaw()
         return SystemModel(
-            layout.border, layout.z_of_x, layout.z_of_lambda, held,
+            held,
             -1 if layout.drive_lambda is None else layout.drive_lambda, float(self.hub.inertia),
             tuple(drive.compiled()), tuple(torque.compiled()), terms.packs(self, layout),
             context(layout, self.bandwidth, self.gravity, self.damping), self.bandwidth,
