@@ -319,15 +319,19 @@ def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
 
 
 @njit(cache=True, error_model="numpy")
-def _frame_and_rates(q, v, A, D, vb):
-    """The body frame A0 and the Cardan rate matrix D at q (into A, D), and the v-space rates
-    vb = H q' = [r_C', omega^b = D Theta', p'] (the first vb.shape[0] of them: 6 for the frame's)."""
+def _frame_and_rates(q, v, n):
+    """(A, D, vb): the body frame A0 and the Cardan rate matrix D at q, and the first n of the
+    v-space rates vb = H q' = [r_C', omega^b = D Theta', p'] (n = 6: the frame's only)."""
+    A = np.empty((3, 3))
+    D = np.empty((3, 3))
+    vb = np.empty(n)
     cardan(q[3], q[4], q[5], A, D)
     for i in range(3):
         vb[i] = v[i]
         vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
     for f in range(6, vb.shape[0]):
         vb[f] = v[f]
+    return A, D, vb
 
 
 @njit(cache=True, error_model="numpy")
@@ -428,10 +432,7 @@ def ffr_dissipated_power(q, v, inv, drag):
     Npts, xpts, wpts, width, dc1, dc2 = drag
     if dc1 == 0.0 and dc2 == 0.0:
         return power
-    A = np.empty((3, 3))
-    D = np.empty((3, 3))
-    vb = np.empty(6)
-    _frame_and_rates(q, v, A, D, vb)
+    A, _, vb = _frame_and_rates(q, v, 6)
     return power + _drag_loop(Npts, xpts, wpts, width, dc1, dc2, q[6:], v[6:], A, vb, np.empty(0), False)
 
 
@@ -494,6 +495,18 @@ def _drag_matrix(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, coef_c, block)
 
 
 @njit(cache=True, error_model="numpy")
+def _half_square(M, u, n):
+    """u^T M u / 2 over the leading n entries."""
+    total = 0.0
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s += M[i, j] * u[j]
+        total += 0.5 * u[i] * s
+    return total
+
+
+@njit(cache=True, error_model="numpy")
 def ffr_energies(inv, q, v, gravity):
     """(kinetic, strain, gravity) energy of the FFR body (J) at the coordinates q and rates v
     (6 + nf; a tip body is in the invariants): v^T H^T M_v H v / 2 (Eq. 66), the strain energy
@@ -501,10 +514,7 @@ def ffr_energies(inv, q, v, gravity):
     (int_e EA dx) eps_e^2 / 2 per element with geometric stiffening) and -g . (m r_C + A0 S_t)."""
     n = q.shape[0]
     nf = n - 6
-    A = np.empty((3, 3))
-    D = np.empty((3, 3))
-    vb = np.empty(n)
-    _frame_and_rates(q, v, A, D, vb)
+    A, D, vb = _frame_and_rates(q, v, n)
     p = q[6:]
     St = np.empty(3)
     Q2 = np.empty((3, 3, nf))
@@ -512,19 +522,9 @@ def ffr_energies(inv, q, v, gravity):
     _moments(inv, p, p, False, nf, St, Q2, Q2, R2)
     Mv = np.empty((n, n))
     _mass_matrix(inv, nf, A, St, Q2, R2, Mv)
-    kinetic = 0.0
-    for i in range(n):
-        s = 0.0
-        for j in range(n):
-            s += Mv[i, j] * vb[j]
-        kinetic += 0.5 * vb[i] * s
+    kinetic = _half_square(Mv, vb, n)
     K, EAl, a, G, stiff = inv[7], inv[8], inv[9], inv[10], inv[11]
-    strain = 0.0
-    for i in range(nf):
-        s = 0.0
-        for j in range(nf):
-            s += K[i, j] * p[j]
-        strain += 0.5 * p[i] * s
+    strain = _half_square(K, p, nf)
     if stiff != 0.0:
         for e in range(a.shape[0]):
             eps = 0.0
@@ -558,12 +558,8 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     Cs, damped = inv[12], inv[13]
     n = q.shape[0]
     nf = n - 6
-    A = np.empty((3, 3))
-    D = np.empty((3, 3))
-
     # v-space rates and accelerations
-    vb = np.empty(n)
-    _frame_and_rates(q, v, A, D, vb)
+    A, D, vb = _frame_and_rates(q, v, n)
     vdot = np.empty(n)
     h = np.empty(3)
     cardan_rate(q[4], q[5], v[3], v[4], v[5], h)
