@@ -228,3 +228,29 @@ def test_rotating_flap_frequency_of_a_tapered_stiffened_blade(modes):
     # like h^2 (measured, nodal: 7.8e-3, 2.4e-3, 6.3e-4 with 4, 8, 16 elements; prismatic 1.1e-3 with 8);
     # 4 kept modes add 5e-4 (1.2e-3 in all)
     assert f[0] == pytest.approx(reference, rel=1e-3 if modes is None else 2e-3)
+
+
+# ----------------------------------------------------------------------------- tip loads
+@pytest.mark.parametrize("modes", [None, 3])
+def test_tip_force_does_the_virtual_work_of_a_force_at_the_deformed_tip(modes):
+    """A constant tip force F is conservative: its generalized force on q is the gradient of
+    F . r_P(q), r_P the tip point's position (point_position: r_C + A0 ((L, 0, 0) + u(L))),
+    taken here by central differences at a deformed, turned state. The lever arm of the moment
+    on the body rotation is the deformed one: with the undeformed (L, 0, 0) the Theta rows miss
+    (T p) x F. The compiled residual and its load stiffness are held to the Python rows by
+    tests/elements/test_ffr_kernels.py."""
+    force = np.array([3.0, -20.0, 12.0])
+    beam = FfrBeam(L, 4, plate(), modes=modes)
+    loaded, free = (FfrPart(beam, Mount(0.2, 0.1, 0.3, -0.2), tip_force=f) for f in (force, np.zeros(3)))
+    rng = np.random.default_rng(7)
+    q, _ = loaded.initial_state(0.4)
+    q[:3] += rng.normal(scale=0.1, size=3)
+    q[3:6] += rng.normal(scale=0.3, size=3)
+    q[6:] = rng.normal(scale=1e-2, size=q.size - 6)
+    zero = np.zeros_like(q)
+    generalized = free.forces(q, zero, zero, np.zeros(3), (0.0, 0.0), tangent=False)[0] - \
+        loaded.forces(q, zero, zero, np.zeros(3), (0.0, 0.0), tangent=False)[0]
+    eps = 1e-6
+    gradient = np.array([(force @ loaded.tip_position(q + eps * e) - force @ loaded.tip_position(q - eps * e)) / (2 * eps)
+                         for e in np.eye(q.size)])
+    assert np.allclose(generalized, gradient, rtol=0, atol=1e-7 * np.abs(gradient).max())

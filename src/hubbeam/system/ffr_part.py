@@ -158,7 +158,7 @@ class FfrPart(BeamPart):
         h[3:6] = angular_velocity_matrix_rate(q[ANGLES], v[ANGLES])
         Mv = beam.mass_matrix(p, A0)
         _, f_el, K_el = beam.elastic(p)
-        Q = beam.quadratic_velocity(p, pd, omega, A0) + factor * (beam.gravity(p, A0, gravity) + self._tip_load(A0))
+        Q = beam.quadratic_velocity(p, pd, omega, A0) + factor * (beam.gravity(p, A0, gravity) + self._tip_load(A0, p))
         Q[6:] -= f_el + beam.damping_matrix @ pd
         Qd, Cv = self._drag(q, vb, A0, damping, tangent)
         Q += Qd
@@ -187,14 +187,15 @@ class FfrPart(BeamPart):
 
         return central_difference_jacobian(forces, q, relative_steps(q))
 
-    def _tip_load(self, A0):
+    def _tip_load(self, A0, p):
         """Virtual work of the tip force and moment (global, constant) on v: the force acts at
-        the tip point, the moment on the body rotation plus the small section rotations."""
+        the deformed tip point (body frame (L, 0, 0) + T p, so its moment on the body rotation
+        has that lever arm), the moment on the body rotation plus the small section rotations."""
         Q = np.zeros(6 + self.beam.ndof)
         if np.any(self.tip_force):
             fb = A0.T @ self.tip_force
             Q[0:3] += self.tip_force
-            r_tip = np.array([self.beam.length, 0.0, 0.0])  # small-deformation lever arm
+            r_tip = np.array([self.beam.length, 0.0, 0.0]) + self._tip_rows @ p
             Q[3:6] += np.cross(r_tip, fb)
             Q[6:] += self._tip_rows.T @ fb
         if np.any(self.tip_moment):

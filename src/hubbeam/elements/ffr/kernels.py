@@ -211,10 +211,23 @@ def _elastic(inv, p, nf, want_tangent, f_el, K_el):
 
 
 @njit(cache=True, error_model="numpy")
-def _applied_loads(inv, tip, nf, A, St, gravity, Qa):
-    """Q_g + Q_tip (6 + nf) on v (Eq. 67 and FfrPart._tip_load)."""
+def _tip_lever(tip, p):
+    """The tip point in the body frame, (L, 0, 0) + T p (m): the lever arm of the tip force."""
+    T, length = tip[2], tip[4]
+    r = np.zeros(3)
+    r[0] = length
+    for i in range(3):
+        for f in range(p.shape[0]):
+            r[i] += T[i, f] * p[f]
+    return r
+
+
+@njit(cache=True, error_model="numpy")
+def _applied_loads(inv, tip, nf, A, St, p, gravity, Qa):
+    """Q_g + Q_tip (6 + nf) on v (Eq. 67 and FfrPart._tip_load): the tip force acts at the
+    deformed tip point (:func:`_tip_lever`)."""
     m, Sbar = inv[0], inv[2]
-    F, Mo, T, R, length = tip
+    F, Mo, T, R, _ = tip
     gb = np.empty(3)
     fb = np.empty(3)
     mb = np.empty(3)
@@ -224,10 +237,11 @@ def _applied_loads(inv, tip, nf, A, St, gravity, Qa):
         mb[i] = A[0, i] * Mo[0] + A[1, i] * Mo[1] + A[2, i] * Mo[2]
     for i in range(3):
         Qa[i] = m * gravity[i] + F[i]
-    # St x gb + (L, 0, 0) x fb + mb
-    Qa[3] = St[1] * gb[2] - St[2] * gb[1] + mb[0]
-    Qa[4] = St[2] * gb[0] - St[0] * gb[2] - length * fb[2] + mb[1]
-    Qa[5] = St[0] * gb[1] - St[1] * gb[0] + length * fb[1] + mb[2]
+    r = _tip_lever(tip, p)
+    # St x gb + r x fb + mb
+    Qa[3] = St[1] * gb[2] - St[2] * gb[1] + r[1] * fb[2] - r[2] * fb[1] + mb[0]
+    Qa[4] = St[2] * gb[0] - St[0] * gb[2] + r[2] * fb[0] - r[0] * fb[2] + mb[1]
+    Qa[5] = St[0] * gb[1] - St[1] * gb[0] + r[0] * fb[1] - r[1] * fb[0] + mb[2]
     for f in range(nf):
         Qa[6 + f] = (Sbar[0, f] * gb[0] + Sbar[1, f] * gb[1] + Sbar[2, f] * gb[2]
                      + T[0, f] * fb[0] + T[1, f] * fb[1] + T[2, f] * fb[2]
@@ -646,7 +660,7 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
 
     # applied loads, elastic force
     Qa = np.empty(n)
-    _applied_loads(inv, tip, nf, A, St, gravity, Qa)
+    _applied_loads(inv, tip, nf, A, St, p, gravity, Qa)
     for i in range(n):
         Q[i] += load_factor * Qa[i]
     f_el = np.empty(nf)
@@ -722,7 +736,7 @@ def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
     Q_g on p through St; H^T on Theta through D). K_el + this is the exact static stiffness
     (FfrPart.stiffness at rest without drag)."""
     Sbar = inv[2]
-    F, Mo, T, R, length = tip
+    F, Mo, T, R, _ = tip
     n = q.shape[0]
     nf = n - 6
     p = q[6:]
@@ -734,10 +748,13 @@ def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
             s += Sbar[k, f] * p[f]
         St[k] = inv[1][k] + s
     Qa = np.empty(n)
-    _applied_loads(inv, tip, nf, A, St, gravity, Qa)
+    _applied_loads(inv, tip, nf, A, St, p, gravity, Qa)
     gb = np.empty(3)
+    fb = np.empty(3)
     for i in range(3):
         gb[i] = A[0, i] * gravity[0] + A[1, i] * gravity[1] + A[2, i] * gravity[2]
+        fb[i] = A[0, i] * F[0] + A[1, i] * F[1] + A[2, i] * F[2]
+    r = _tip_lever(tip, p)
     for i in range(n):
         for j in range(n):
             out[i, j] = 0.0
@@ -751,9 +768,9 @@ def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
             dg[i] = dA[c, 0, i] * gravity[0] + dA[c, 1, i] * gravity[1] + dA[c, 2, i] * gravity[2]
             dfb[i] = dA[c, 0, i] * F[0] + dA[c, 1, i] * F[1] + dA[c, 2, i] * F[2]
             dmb[i] = dA[c, 0, i] * Mo[0] + dA[c, 1, i] * Mo[1] + dA[c, 2, i] * Mo[2]
-        d3[0] = St[1] * dg[2] - St[2] * dg[1] + dmb[0]
-        d3[1] = St[2] * dg[0] - St[0] * dg[2] - length * dfb[2] + dmb[1]
-        d3[2] = St[0] * dg[1] - St[1] * dg[0] + length * dfb[1] + dmb[2]
+        d3[0] = St[1] * dg[2] - St[2] * dg[1] + r[1] * dfb[2] - r[2] * dfb[1] + dmb[0]
+        d3[1] = St[2] * dg[0] - St[0] * dg[2] + r[2] * dfb[0] - r[0] * dfb[2] + dmb[1]
+        d3[2] = St[0] * dg[1] - St[1] * dg[0] + r[0] * dfb[1] - r[1] * dfb[0] + dmb[2]
         for i in range(3):
             out[3 + i, 3 + c] = s * (dD[c, 0, i] * Qa[3] + dD[c, 1, i] * Qa[4] + dD[c, 2, i] * Qa[5]
                                      + D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2])
@@ -761,10 +778,10 @@ def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
             out[6 + f, 3 + c] = s * (Sbar[0, f] * dg[0] + Sbar[1, f] * dg[1] + Sbar[2, f] * dg[2]
                                      + T[0, f] * dfb[0] + T[1, f] * dfb[1] + T[2, f] * dfb[2]
                                      + R[0, f] * dmb[0] + R[1, f] * dmb[1] + R[2, f] * dmb[2])
-    for g in range(nf):  # d/dp_g: (Sbar_g x gb) in the moment rows
-        d3[0] = Sbar[1, g] * gb[2] - Sbar[2, g] * gb[1]
-        d3[1] = Sbar[2, g] * gb[0] - Sbar[0, g] * gb[2]
-        d3[2] = Sbar[0, g] * gb[1] - Sbar[1, g] * gb[0]
+    for g in range(nf):  # d/dp_g: Sbar_g x gb + T_g x fb in the moment rows
+        d3[0] = Sbar[1, g] * gb[2] - Sbar[2, g] * gb[1] + T[1, g] * fb[2] - T[2, g] * fb[1]
+        d3[1] = Sbar[2, g] * gb[0] - Sbar[0, g] * gb[2] + T[2, g] * fb[0] - T[0, g] * fb[2]
+        d3[2] = Sbar[0, g] * gb[1] - Sbar[1, g] * gb[0] + T[0, g] * fb[1] - T[1, g] * fb[0]
         for i in range(3):
             out[3 + i, 6 + g] = s * (D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2])
 
