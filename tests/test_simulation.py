@@ -149,3 +149,34 @@ def test_an_equilibrium_start_on_a_turning_hub_is_at_rest_in_the_runs_chart():
     state = initial_state(system, start="equilibrium")
     assert np.allclose(state.chart[0][:, 0], [0.0, -1.0, 0.0])  # the axis chart
     assert np.max(np.abs(state.xdd)) < 1e-3
+
+
+def test_strain_gauges_read_over_a_chunk_are_the_gauges_read_state_by_state():
+    """Compiled steps read every gauge of a chunk's records at once: ANCF gauges in the compiled
+    measures, FFR gauges (nodal with geometric stiffening, and modal) in one product over the
+    records. Each record's strains equal the parts' own surface_strain at that record's state,
+    gauge by gauge (the wiring: keys, beams, charts, record order); surface_strain itself is
+    held to closed forms in tests/elements and tests/system."""
+    from hubbeam.elements.ffr.body import FfrBeam
+    from hubbeam.simulation import CompiledSteps
+    from hubbeam.system.ancf_part import AncfPart
+    from hubbeam.system.ffr_part import FfrPart
+    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.mount import Mount
+
+    parts = [AncfPart(AncfBeam(L, 3, plate()), Mount(0.3, 0.2, 0.0, 0.0), name="a"),
+             FfrPart(FfrBeam(L, 3, plate(), geometric_stiffening=True), Mount(0.3, 0.4, 2.0, 0.0), name="b"),
+             FfrPart(FfrBeam(L, 4, plate(), modes=3), Mount(0.3, -0.3, 4.0, 0.1), name="c")]
+    system = HubSystem(parts, Hub("prescribed", 1.0, drive=DriveProfile("spin_up", 3.0, 0.2)),
+                       gravity=(0.0, -9.81, 0.0))
+    gauges = [(0, 0.2, 0.01, 0.00125), (1, 0.3, -0.02, 0.00125), (1, 1.0, 0.0, -0.00125), (2, 0.5, 0.01, 0.00125)]
+    state = initial_state(system)
+    params = ga.AlphaParameters.from_spectral_radius(0.8)
+    steps = CompiledSteps(system, params, ga.NewtonOptions(), 2e-3, state, (False, False, gauges))
+    *_, error, records = steps.advance(state, 60, 0, 20, 60)
+    assert error is None and len(records) == 3
+    for st, work in records:
+        for beam, x, y, z in gauges:
+            expected = system.surface_strain(st.x, st.chart, x, y, z, beam)
+            assert abs(expected) > 1e-7
+            assert work["strains"][(beam, x, y, z)] == pytest.approx(expected, rel=1e-9)  # ANCF: compiled and Python strain measures

@@ -160,6 +160,8 @@ class CompiledSteps(PythonSteps):
                  ) -> None:
         super().__init__(system, params, newton, dt, state, measures)
         self.gauges, self.gauge_list = system.gauge_table(measures[2])
+        # the gauges the compiled measures leave out (FFR beams'): read over a chunk's records at once
+        self.other_gauges = [g for g in dict.fromkeys(measures[2]) if g not in self.gauge_list]
         self.model = system.model()
         layout = system.layout
         storage = BorderedBandMatrix.empty(layout.nz, layout.border, system.bandwidth)
@@ -203,6 +205,11 @@ class CompiledSteps(PythonSteps):
                 work["strains"] = dict(zip(self.gauge_list, measured["strains"][i]))
                 if energies:
                     work["energies"] = (measured["hub"][i], measured["beams"][i])
+        if self.other_gauges and n_rec:
+            strains = {g: self.system.surface_strains_of_states(rx[:n_rec], chart, g[1], g[2], g[3], g[0])
+                       for g in self.other_gauges}
+            for i, (_, work) in enumerate(out):
+                work.setdefault("strains", {}).update((g, float(values[i])) for g, values in strains.items())
         new = ga.AlphaState(t, x, v, xdd, a, lam, state.chart)
         message = ga.OUTCOME_MESSAGES.get(ga.Outcome(status))
         error = None

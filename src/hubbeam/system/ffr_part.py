@@ -282,6 +282,10 @@ class FfrPart(BeamPart):
         (:meth:`FfrBeam.surface_strain`)."""
         return self.beam.surface_strain(q[BODY:], station, y, z)
 
+    def surface_strains_of_states(self, Q, chart, station, y, z) -> np.ndarray:
+        """:meth:`surface_strain` for each row of Q in one product (:meth:`FfrBeam.surface_strains_of_states`)."""
+        return self.beam.surface_strains_of_states(Q[:, BODY:], station, y, z)
+
     def section_motion(self, q, chart, u, stations):
         """FFR's kinematics (Eq. 42) at the station's centre point, r = r_C + A0 (rho0 + N p):
         velocity r_C' + A0 (omega^b x (rho0 + N p) + N p'), omega^b = D Theta'; the section turns

@@ -506,6 +506,10 @@ class HubSystem:
     def surface_strain(self, x, F, station: float, y: float, z: float, beam: int = 0) -> float:
         return self.beams[beam].surface_strain(x[self.layout.beam_x(beam)], F[beam], station, y, z)
 
+    def surface_strains_of_states(self, xs, F, station: float, y: float, z: float, beam: int = 0) -> np.ndarray:
+        """:meth:`surface_strain` for each row of xs (states in the charts F)."""
+        return self.beams[beam].surface_strains_of_states(xs[:, self.layout.beam_x(beam)], F[beam], station, y, z)
+
     def centre_line(self, x, F, beam: int = 0, points_per_element: int = 8) -> np.ndarray:
         return self.beams[beam].centre_line(x[self.layout.beam_x(beam)], F[beam], points_per_element)
 

@@ -107,6 +107,12 @@ class BeamPart(ABC):
         """Fibre axial strains (1) at the section points (y_i, z_i) (m) of the stations (m)."""
         return np.array([self.surface_strain(q, chart, s, yi, zi) for s, yi, zi in zip(stations, y, z)])
 
+    def surface_strains_of_states(self, Q: np.ndarray, chart: np.ndarray, station: float, y: float, z: float
+                                  ) -> np.ndarray:
+        """:meth:`surface_strain` at one section point for each row of Q (states x the part's
+        coordinates, one chart): a strain gauge over a run's records."""
+        return np.array([self.surface_strain(q, chart, station, y, z) for q in Q])
+
     def stations(self, points_per_element: int) -> np.ndarray:
         """Span stations (m from the root): the nodes and points_per_element - 1 points evenly
         inside each element."""

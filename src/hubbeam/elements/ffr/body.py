@@ -422,11 +422,20 @@ class FfrBeam:
         """Fibre strain eps = eps0 - y_b v0'' - z_b w0'' at the section point (y, z) (m, on the local
         section axes m', n' of station x; (y_b, z_b) its body coordinates) (eps0 as in :meth:`axial_strain`):
         the curvatures resolved on the local principal axes."""
+        return float(self.surface_strains_of_states(p[None, :], x, y, z)[0])
+
+    def surface_strains_of_states(self, P: np.ndarray, x: float, y: float, z: float) -> np.ndarray:
+        """:meth:`surface_strain` at one section point for each row of P (states x ndof): the
+        strain gauge's reading over a run's records in one product."""
         # one look-up of the station's rows: the axial row does not depend on (y, z), so this is
-        # axial_strain(p, x) + bending @ p (sensors call this at every output time)
+        # axial_strain(p, x) + bending @ p, with the element-mean eps0 of element e alone
         e, axial, bending = self._station_rows(x, y, z)
-        eps0 = float(self._mean_axial_strain(p)[0][e]) if self.geometric_stiffening else float(axial @ p)
-        return eps0 + float(bending @ p)
+        if self.geometric_stiffening:
+            t = self.centre_line_table
+            eps0 = P @ t["mean_stretch"][e] + 0.5 * np.einsum("ki,ij,kj->k", P, t["mean_slope2"][e], P)
+        else:
+            eps0 = P @ axial
+        return eps0 + P @ bending
 
     def strain_row(self, x: float, y: float, z: float) -> np.ndarray:
         """The row of eps = u0' - y_b v0'' - z_b w0'' (the linear FFR fibre strain) over p, (y, z) on the
