@@ -42,7 +42,7 @@ from numba import njit
 from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.elements.ffr.cardan import angular_velocity_matrix, angular_velocity_matrix_rate, rotation_matrix
 from hubbeam.elements.ffr.kernels import (cardan, ffr_body_terms, ffr_dissipated_power, ffr_energies,
-                                          ffr_load_stiffness)
+                                          ffr_load_stiffness, tip_lever)
 from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.system import terms
@@ -530,18 +530,10 @@ def ffr_tips(pack, ctx, x, out):
     A = np.empty((3, 3))
     D = np.empty((3, 3))
     tip_at = np.empty(3)
-    local = np.empty(3)
     for k in range(pack.nf.shape[0]):
         x0 = pack.x0[k]
-        nf = pack.nf[k]
         cardan(x[x0 + 3], x[x0 + 4], x[x0 + 5], A, D)
-        rows = pack.tip_rows[k]
-        for i in range(3):
-            s = 0.0
-            for f in range(nf):
-                s += rows[i, f] * x[x0 + 6 + f]
-            local[i] = s
-        local[0] += pack.length[k]
+        local = tip_lever(pack.tip_rows[k], pack.length[k], x[x0 + 6 : x0 + 6 + pack.nf[k]])
         for i in range(3):
             tip_at[i] = x[x0 + i] + A[i, 0] * local[0] + A[i, 1] * local[1] + A[i, 2] * local[2]
         tip_from_mount(pack.mount[k], theta, pack.length[k], tip_at, out[pack.index[k]])

@@ -211,9 +211,9 @@ def _elastic(inv, p, nf, want_tangent, f_el, K_el):
 
 
 @njit(cache=True, error_model="numpy")
-def _tip_lever(tip, p):
-    """The tip point in the body frame, (L, 0, 0) + T p (m): the lever arm of the tip force."""
-    T, length = tip[2], tip[4]
+def tip_lever(T, length, p):
+    """The tip point in the body frame, (L, 0, 0) + T p (m; T the tip's displacement rows over
+    p, 3 x nf): the lever arm of the tip force, and the tip centroid's place on the body."""
     r = np.zeros(3)
     r[0] = length
     for i in range(3):
@@ -225,9 +225,9 @@ def _tip_lever(tip, p):
 @njit(cache=True, error_model="numpy")
 def _applied_loads(inv, tip, nf, A, St, p, gravity, Qa):
     """Q_g + Q_tip (6 + nf) on v (Eq. 67 and FfrPart._tip_load): the tip force acts at the
-    deformed tip point (:func:`_tip_lever`)."""
+    deformed tip point (:func:`tip_lever`)."""
     m, Sbar = inv[0], inv[2]
-    F, Mo, T, R, _ = tip
+    F, Mo, T, R, length = tip
     gb = np.empty(3)
     fb = np.empty(3)
     mb = np.empty(3)
@@ -237,7 +237,7 @@ def _applied_loads(inv, tip, nf, A, St, p, gravity, Qa):
         mb[i] = A[0, i] * Mo[0] + A[1, i] * Mo[1] + A[2, i] * Mo[2]
     for i in range(3):
         Qa[i] = m * gravity[i] + F[i]
-    r = _tip_lever(tip, p)
+    r = tip_lever(T, length, p)
     # St x gb + r x fb + mb
     Qa[3] = St[1] * gb[2] - St[2] * gb[1] + r[1] * fb[2] - r[2] * fb[1] + mb[0]
     Qa[4] = St[2] * gb[0] - St[0] * gb[2] + r[2] * fb[0] - r[0] * fb[2] + mb[1]
@@ -736,7 +736,7 @@ def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
     Q_g on p through St; H^T on Theta through D). K_el + this is the exact static stiffness
     (FfrPart.stiffness at rest without drag)."""
     Sbar = inv[2]
-    F, Mo, T, R, _ = tip
+    F, Mo, T, R, length = tip
     n = q.shape[0]
     nf = n - 6
     p = q[6:]
@@ -754,7 +754,7 @@ def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
     for i in range(3):
         gb[i] = A[0, i] * gravity[0] + A[1, i] * gravity[1] + A[2, i] * gravity[2]
         fb[i] = A[0, i] * F[0] + A[1, i] * F[1] + A[2, i] * F[2]
-    r = _tip_lever(tip, p)
+    r = tip_lever(T, length, p)
     for i in range(n):
         for j in range(n):
             out[i, j] = 0.0
