@@ -122,8 +122,7 @@ class PythonSteps:
         self.factorisations = None  # counted by the compiled steps only
 
     def _power(self, st):
-        system = self.system
-        return system.dissipated_power(st.x, st.v, st.chart), system.hub_power(st.t, st.x, st.v, st.lam)
+        return self.system.step_powers(st.t, st.x, st.v, st.lam, st.chart)
 
     def advance(self, state, n_steps, step0, every, total):
         """Up to n_steps steps after step0 of total; states after steps that are multiples of

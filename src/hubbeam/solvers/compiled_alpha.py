@@ -22,7 +22,7 @@ from numba import njit
 from hubbeam.solvers.generalized_alpha import (REUSE_VALID, NewtonAction, Outcome, algorithmic_acceleration,
                                                apply_increment, newton_decide, newton_start, predict)
 from hubbeam.system.assembly import bordered_factor, bordered_solve
-from hubbeam.system.equations import CHART_SINGULAR, dissipated_power, hub_power, system_equations
+from hubbeam.system.equations import CHART_SINGULAR, step_powers, system_equations
 
 
 def cache_is_cold(function=None) -> bool:
@@ -134,8 +134,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         _copy(xdd, xdd1)
         _copy(lam, lam1)
         t = t1
-        p_d = dissipated_power(model, F, x, v)
-        p_h = hub_power(model, t, x, v, lam)
+        p_d, p_h = step_powers(model, F, t, x, v, lam)
         work[0] += 0.5 * h * (power[0] + p_d)
         work[1] += 0.5 * h * (power[1] + p_h)
         power[0] = p_d

@@ -485,16 +485,16 @@ class HubSystem:
         xi, _ = self.steady_rotation_rates(x, F, 1.0)
         return float(v @ self.mass_matrix(x, F) @ xi)
 
-    def dissipated_power(self, x, v, F) -> float:
-        """Power of the drag of Eq. 37 and of the beams' structural damping (W, >= 0)."""
-        return float(self.functions.dissipated_power(self.model(), np.ascontiguousarray(F, dtype=float),
-                                      np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float)))
-
-    def hub_power(self, t, x, v, lam) -> float:
-        """Power of the drive reaction and the applied torque on the hub (W)."""
-        if self.hub.torque.compilable:
-            return float(self.functions.hub_power(self.model(), float(t), x, v, lam))
-        return (self.applied_torque(t, x, v) + self.drive_torque(lam)) * float(v[0])
+    def step_powers(self, t, x, v, lam, F) -> tuple[float, float]:
+        """(dissipated, drive) power at a state (W): the drag of Eq. 37 and the beams'
+        structural damping (>= 0), and the drive reaction and the applied torque on the hub
+        (:func:`hubbeam.system.equations.step_powers`; a Python torque law is evaluated here)."""
+        x, v, lam = (np.ascontiguousarray(u, dtype=float) for u in (x, v, lam))
+        dissipated, drive = self.functions.step_powers(self.model(), np.ascontiguousarray(F, dtype=float), float(t),
+                                                       x, v, lam)
+        if not self.hub.torque.compilable:
+            drive = (self.applied_torque(t, x, v) + self.drive_torque(lam)) * float(v[0])
+        return float(dissipated), float(drive)
 
     def tip_position(self, x, beam: int = 0) -> np.ndarray:
         return self.beams[beam].tip_position(x[self.layout.beam_x(beam)])
