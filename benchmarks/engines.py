@@ -7,7 +7,10 @@ axis, released from straight, generalized-alpha rho_inf = 0.8, no damping. Engin
 hubbeam (benchmarks/case_a.toml: ANCF with torsion, the product), exudyn-ge (Exudyn's
 ObjectBeamGeometricallyExact, 3D with torsion) and exudyn-cable (ObjectANCFCable, 3D ANCF
 without torsion). Case B: Kane's spin-up: hubbeam-kane (benchmarks/case_b.toml) and
-exudyn-cable-kane. Output: integration wall time (s), steps, Newton iterations and LU
+exudyn-cable-kane. Case R: case A with modal reduction: hubbeam-ffr-modal (the FFR beam, its 4
+lowest clamped modes) and exudyn-ffrf (Exudyn's ObjectFFRFreducedOrder on a Hex20 solid mesh
+of the plate, benchmarks/solid_plate.py, its 4 lowest clamped modes; ELEMENTS counts the
+hexahedra along the length). Output: integration wall time (s), steps, Newton iterations and LU
 factorisations per step (when the engine reports them) and the tip deflection (case A:
 vertical, case B: tangential, m) at the end and its minimum over the run, so that equal
 accuracy can be checked. Exudyn's Newton tolerances are set as issue 6 prescribes.
@@ -22,7 +25,8 @@ import time
 L, B, H, E, RHO = 1.45, 0.05, 0.0025, 70e9, 2700.0
 
 
-def _run_hubbeam_scenario(name: str, elements: int, t_end: float, dt: float, part: str) -> dict:
+def _run_hubbeam_scenario(name: str, elements: int, t_end: float, dt: float, part: str,
+                          extra_overrides: tuple[str, ...] = ()) -> dict:
     import os
 
     import numpy as np
@@ -30,7 +34,7 @@ def _run_hubbeam_scenario(name: str, elements: int, t_end: float, dt: float, par
     from hubbeam import api
     from hubbeam.io.scenario import load_scenario
 
-    overrides = [f"beam.elements={elements}", f"analysis.t_end={t_end}", f"analysis.dt={dt}"]
+    overrides = [*extra_overrides, f"beam.elements={elements}", f"analysis.t_end={t_end}", f"analysis.dt={dt}"]
     scenario = load_scenario(os.path.join(os.path.dirname(os.path.abspath(__file__)), name), overrides)
     api.run(scenario.model_copy(update={"analysis": scenario.analysis.model_copy(update={"t_end": 2 * dt})}))
     traj, failure = api.run(scenario)  # the line above loaded the compiled code from the numba cache
@@ -81,6 +85,13 @@ def run_exp1_ffr_modal(elements: int, t_end: float, dt: float) -> dict:
 def run_hubbeam(elements: int, t_end: float, dt: float) -> dict:
     """Case A with hubbeam (benchmarks/case_a.toml); reports the vertical tip deflection."""
     return _run_hubbeam_scenario("case_a.toml", elements, t_end, dt, "vertical")
+
+
+def run_hubbeam_ffr_modal(elements: int, t_end: float, dt: float) -> dict:
+    """Case R with hubbeam: case A (benchmarks/case_a.toml) with the FFR beam reduced to its 4
+    lowest clamped modes; reports the vertical tip deflection."""
+    return _run_hubbeam_scenario("case_a.toml", elements, t_end, dt, "vertical",
+                                 ('beam.formulation="ffr"', "beam.modes=4"))
 
 
 def run_exudyn_cable(elements: int, t_end: float, dt: float) -> dict:
@@ -142,6 +153,40 @@ def run_exudyn_ge(elements: int, t_end: float, dt: float) -> dict:
                                       outputVariableType=exu.OutputVariableType.Displacement))
     mbs.Assemble()
     return _solve_exudyn(mbs, sensor, t_end, dt)
+
+
+def run_exudyn_ffrf(elements: int, t_end: float, dt: float) -> dict:
+    """Case R with Exudyn's ObjectFFRFreducedOrder: the plate as ``elements`` x 1 x 2 Hex20
+    solids (benchmarks/solid_plate.py, ``elements`` along the length graded towards the clamp;
+    x along the length, y along the thickness, z along the width; case R: 32), reduced to its
+    4 lowest modes clamped at x = 0 (Hurty-Craig-Bampton, fixed-interface eigenmodes only;
+    no NGsolve: the mesh's M and K are written by solid_plate.py); the floating frame clamped
+    to ground by a GenericJoint, gravity -y (LoadMassProportional), sensor: the displacement of
+    the tip-face centre node (L, 0, 0).
+    Besides the timing and the tip, the mesh check: ``mesh_mass_kg`` (rho L b h = 0.489 kg) and
+    ``f1_hz``, ``f2_hz`` against Euler-Bernoulli weak-axis bending ``f1_eb_hz``, ``f2_eb_hz``."""
+    import exudyn as exu
+    from exudyn.FEM import ObjectFFRFreducedOrderInterface
+    from exudyn.itemInterface import GenericJoint, MarkerNodeRigid, NodePointGround, SensorSuperElement
+
+    from solid_plate import check, plate_fem
+
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    fem, _, tip_node = plate_fem(elements, modes=4)
+    mesh = check(fem)
+    ffrf = ObjectFFRFreducedOrderInterface(fem).AddObjectFFRFreducedOrder(mbs, gravity=[0, -9.81, 0])
+    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0, 0, 0]))
+    mbs.AddObject(GenericJoint(markerNumbers=[mbs.AddMarker(MarkerNodeRigid(nodeNumber=ground)),
+                                              mbs.AddMarker(MarkerNodeRigid(nodeNumber=ffrf["nRigidBody"]))]))
+    sensor = mbs.AddSensor(SensorSuperElement(bodyNumber=ffrf["oFFRFreducedOrder"], meshNodeNumber=tip_node,
+                                              storeInternal=True,
+                                              outputVariableType=exu.OutputVariableType.Displacement))
+    mbs.Assemble()
+    result = _solve_exudyn(mbs, sensor, t_end, dt)
+    result.update(mesh_nodes=mesh["mesh_nodes"], mesh_mass_kg=mesh["mass_kg"], f1_hz=mesh["f_hz"][0],
+                  f2_hz=mesh["f_hz"][1], f1_eb_hz=mesh["f_weak_eb_hz"][0], f2_eb_hz=mesh["f_weak_eb_hz"][1])
+    return result
 
 
 KANE = {"length": 10.0, "EI": 14000.0, "EA": 7e10 * 4e-4, "rhoA": 1.2, "omega_s": 4.0, "T": 15.0}
@@ -225,7 +270,8 @@ def _solve_exudyn(mbs, sensor, t_end: float, dt: float, component: int | None = 
 
 ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge": run_exudyn_ge,
            "hubbeam-kane": run_hubbeam_kane, "exudyn-cable-kane": run_exudyn_cable_kane,
-           "exp1-ancf": run_exp1_ancf, "exp1-ffr": run_exp1_ffr, "exp1-ffr-modal4": run_exp1_ffr_modal}
+           "exp1-ancf": run_exp1_ancf, "exp1-ffr": run_exp1_ffr, "exp1-ffr-modal4": run_exp1_ffr_modal,
+           "hubbeam-ffr-modal": run_hubbeam_ffr_modal, "exudyn-ffrf": run_exudyn_ffrf}
 
 if __name__ == "__main__":
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -1,6 +1,6 @@
 """Speed benchmark: hubbeam against Exudyn on the same models (issue 6), run side by side.
 
-    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P] [--quick]
+    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R] [--quick]
 
 Every run is a fresh process (benchmarks/engines.py; ``hubbeam run`` for case P), the
 engines of a case alternate within each repetition, and the tables show medians: the
@@ -22,6 +22,10 @@ Case P: the whole ``hubbeam run benchmarks/case_a.toml -o OUT.nc`` (wall clock).
 Case F: the three formulations on the same model, experiment 1 (6 elements, 20 s at 1 ms):
 ANCF, the paper's nodal FFR and FFR reduced to 4 modes, with the P1 strain's peak and end
 value for their accuracy (no peer needed).
+Case R: case A with modal reduction to 4 clamped modes: hubbeam's FFR beam (8 elements)
+against Exudyn's ObjectFFRFreducedOrder on a 32 x 1 x 2 Hex20 solid mesh of the plate
+(benchmarks/solid_plate.py), with the mesh's mass and first two frequencies against
+Euler-Bernoulli.
 """
 
 from __future__ import annotations
@@ -37,6 +41,7 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+RHO_LBH = 2700.0 * 1.45 * 0.05 * 0.0025  # the plate's mass (kg), for case R's mesh check
 
 
 def one_run(engine: str, elements: int, t_end: float, dt: float) -> dict:
@@ -109,18 +114,51 @@ def formulations(reps: int, t_end: float, dt: float) -> None:
         print(f"{e} / exp1-ancf: integration {median(runs[e], 'integration_s') / base:.2f}")
 
 
+def reduced_order(reps: int, t_end: float, dt: float) -> None:
+    """Case R: case A with modal reduction, hubbeam's FFR beam (8 elements, 4 clamped modes)
+    against Exudyn's ObjectFFRFreducedOrder (32 x 1 x 2 Hex20 solids, 4 clamped modes),
+    alternating, medians; with the solid mesh's check (mass, first two frequencies)."""
+    engines = {"hubbeam-ffr-modal": 8, "exudyn-ffrf": 32}
+    one_run("hubbeam-ffr-modal", 8, 2 * dt, dt)  # warm the numba cache of the FFR code
+    runs = {e: [] for e in engines}
+    for _ in range(reps):
+        for e, elements in engines.items():
+            runs[e].append(one_run(e, elements, t_end, dt))
+    print(f"\nCase R (case A, modal reduction to 4 clamped modes): {t_end:g} s at dt = {dt:g} s; median of {reps}, "
+          f"{os.cpu_count()} cores")
+    print(f"{'engine':18s} {'mesh':>22s} {'integration s':>13s} {'process s':>10s} {'tip min (m)':>12s} "
+          f"{'tip end (m)':>12s}   (vertical)")
+    meshes = {"hubbeam-ffr-modal": "8 FFR beam elements", "exudyn-ffrf": "32 x 1 x 2 Hex20"}
+    for e in engines:
+        first = runs[e][0]
+        print(f"{e:18s} {meshes[e]:>22s} {median(runs[e], 'integration_s'):13.3f} {median(runs[e], 'process_s'):10.3f} "
+              f"{first['tip_min']:12.5f} {first['tip_end']:12.5f}")
+    ours, peer = runs["hubbeam-ffr-modal"], runs["exudyn-ffrf"]
+    print(f"hubbeam-ffr-modal / exudyn-ffrf: integration "
+          f"{median(ours, 'integration_s') / median(peer, 'integration_s'):.2f}, process "
+          f"{median(ours, 'process_s') / median(peer, 'process_s'):.2f}; tip min differs by "
+          f"{100 * abs(ours[0]['tip_min'] / peer[0]['tip_min'] - 1):.3f} %, tip end by "
+          f"{100 * abs(ours[0]['tip_end'] / peer[0]['tip_end'] - 1):.3f} %")
+    mesh = peer[0]
+    print(f"exudyn-ffrf mesh ({mesh['mesh_nodes']} nodes): mass {mesh['mesh_mass_kg']:.6f} kg "
+          f"(rho L b h = {RHO_LBH:.6f}); f1 {mesh['f1_hz']:.4f} Hz, f2 {mesh['f2_hz']:.4f} Hz against "
+          f"Euler-Bernoulli {mesh['f1_eb_hz']:.4f}, {mesh['f2_eb_hz']:.4f} Hz "
+          f"({100 * (mesh['f1_hz'] / mesh['f1_eb_hz'] - 1):+.2f} %, "
+          f"{100 * (mesh['f2_hz'] / mesh['f2_eb_hz'] - 1):+.2f} %)")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--t-end", type=float, default=10.0)
     p.add_argument("--dt", type=float, default=1e-3)
-    p.add_argument("--cases", default="A,B,C,P,F", help="comma-separated subset of A, B, C, P, F")
+    p.add_argument("--cases", default="A,B,C,P,F,R", help="comma-separated subset of A, B, C, P, F, R")
     p.add_argument("--quick", action="store_true", help="1 s simulated, one repetition")
     a = p.parse_args()
     if a.quick:
         a.reps, a.t_end = 1, 1.0
     cases = {c.strip().upper() for c in a.cases.split(",")}
-    if cases & {"A", "B"} and importlib.util.find_spec("exudyn") is None:
+    if cases & {"A", "B", "R"} and importlib.util.find_spec("exudyn") is None:
         sys.exit("benchmarks/run.py: the peer is missing; install it with: pip install \".[peer]\"")
     one_run("hubbeam", 8, 2 * a.dt, a.dt)  # warm the numba cache
     if "A" in cases:
@@ -139,6 +177,8 @@ def main() -> None:
                   + (f" ({per / base:.1f}x the 8-element cost)" if base else ""))
     if "F" in cases:
         formulations(a.reps, 20.0 if not a.quick else 1.0, a.dt)
+    if "R" in cases:
+        reduced_order(a.reps, a.t_end, a.dt)
     if "P" in cases:
         times = [cli_run(a.t_end) for _ in range(a.reps)]
         print(f"\nCase P: `hubbeam run benchmarks/case_a.toml -o OUT.nc` ({a.t_end:g} s simulated), whole process: "
