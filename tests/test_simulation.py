@@ -173,10 +173,11 @@ def test_strain_gauges_read_over_a_chunk_are_the_gauges_read_state_by_state():
     state = initial_state(system)
     params = ga.AlphaParameters.from_spectral_radius(0.8)
     steps = CompiledSteps(system, params, ga.NewtonOptions(), 2e-3, state, (False, False, gauges))
-    *_, error, records = steps.advance(state, 60, 0, 20, 60)
-    assert error is None and len(records) == 3
-    for st, work in records:
+    *_, error, chunk = steps.advance(state, 60, 0, 20, 60)
+    assert error is None and len(chunk) == 3
+    for i in range(len(chunk)):
+        st = chunk.state(i)
         for beam, x, y, z in gauges:
             expected = system.surface_strain(st.x, st.chart, x, y, z, beam)
             assert abs(expected) > 1e-7
-            assert work["strains"][(beam, x, y, z)] == pytest.approx(expected, rel=1e-9)  # ANCF: compiled and Python strain measures
+            assert chunk.strains[(beam, x, y, z)][i] == pytest.approx(expected, rel=1e-9)  # ANCF: compiled and Python strain measures

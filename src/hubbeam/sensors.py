@@ -6,7 +6,7 @@ it names one) measure the beam their ``beam`` key names (default: the first).
 
 from __future__ import annotations
 
-from hubbeam.system.hub_system import HubSystem, energy_sums
+from hubbeam.system.hub_system import HubSystem
 
 UNITS = {
     "surface_strain": "1", "hub_angle": "rad", "hub_angular_velocity": "rad/s", "hub_torque": "N m",
@@ -50,9 +50,7 @@ def _energy(sensor, system):
     index = None if beam is None else system.beam_index(beam)
 
     def energy(state, work):
-        given = work.get("energies")  # (hub, beams) computed for a whole chunk of records
-        e = (energy_sums(*given, index) if given is not None
-             else system.energies(state.x, state.v, state.chart, index))
+        e = system.energies(state.x, state.v, state.chart, index)
         e["total"] = e["kinetic"] + e["strain"] + e["gravity"]
         if beam is None:
             e["dissipated"] = work["dissipated"]
@@ -75,26 +73,13 @@ def record_needs(sensors, system: HubSystem) -> tuple[bool, bool, list]:
 
 
 def _surface_strain(sensor, system):
-    where = gauge(sensor, system)
-    beam, x, y, z = where
-
-    def strain(state, work):
-        given = work.get("strains")  # the gauges' strains computed for a whole chunk of records
-        if given is not None and where in given:
-            return given[where]
-        return system.surface_strain(state.x, state.chart, x, y, z, beam)
-    return strain
+    beam, x, y, z = gauge(sensor, system)
+    return lambda state, work: system.surface_strain(state.x, state.chart, x, y, z, beam)
 
 
 def _tip_deflection(sensor, system):
     beam = _beam(sensor, system)
-
-    def tip(state, work):
-        given = work.get("tips")  # computed for a whole chunk of records
-        if given is None:
-            return system.tip_displacement(state.x, beam)
-        return {part: float(value) for part, value in zip(PARTS["tip_deflection"], given[beam])}
-    return tip
+    return lambda state, work: system.tip_displacement(state.x, beam)
 
 
 #: sensor kind -> factory(sensor, system) of its measurement function(state, work), which
@@ -114,11 +99,89 @@ MEASURES = {
 }
 
 
+def _per_state(measure):
+    """A chunk measurement (:func:`prepare_chunk`) that reads each record's state alone."""
+    return lambda chunk: [measure(chunk.state(i), chunk.work(i)) for i in range(len(chunk))]
+
+
+def _chunk_energy(sensor, system):
+    beam = getattr(sensor, "beam", None)
+    index = None if beam is None else system.beam_index(beam)
+    each = _per_state(_energy(sensor, system))
+
+    def energy(chunk):
+        if chunk.energies is None:
+            return each(chunk)
+        hub, beams = chunk.energies
+        if index is not None:
+            rows = beams[:, index]
+            kinetic, strain, gravity = rows[:, 0], rows[:, 1], rows[:, 2]
+            return [{"kinetic": k, "strain": u, "gravity": g, "total": k + u + g}
+                    for k, u, g in zip(kinetic.tolist(), strain.tolist(), gravity.tolist())]
+        # the sums of energy_sums, in its order (the hub's row, then the beams'), column by column
+        kinetic, strain, gravity = hub[:, 0].copy(), hub[:, 1].copy(), hub[:, 2].copy()
+        for k in range(beams.shape[1]):
+            kinetic += beams[:, k, 0]
+            strain += beams[:, k, 1]
+            gravity += beams[:, k, 2]
+        total = kinetic + strain + gravity
+        return [{"kinetic": k, "strain": u, "gravity": g, "total": e, "dissipated": d, "drive": w}
+                for k, u, g, e, d, w in zip(kinetic.tolist(), strain.tolist(), gravity.tolist(), total.tolist(),
+                                            chunk.dissipated.tolist(), chunk.drive.tolist())]
+    return energy
+
+
+def _chunk_surface_strain(sensor, system):
+    where = gauge(sensor, system)
+    each = _per_state(_surface_strain(sensor, system))
+
+    def strain(chunk):
+        given = chunk.strains.get(where)
+        return each(chunk) if given is None else given.tolist()
+    return strain
+
+
+def _chunk_tip_deflection(sensor, system):
+    beam = _beam(sensor, system)
+    each = _per_state(_tip_deflection(sensor, system))
+    parts = PARTS["tip_deflection"]
+
+    def tip(chunk):
+        if chunk.tips is None:
+            return each(chunk)
+        return [dict(zip(parts, row)) for row in chunk.tips[:, beam].tolist()]
+    return tip
+
+
+#: sensor kind -> factory(sensor, system) of its measurement over a chunk of records, for the
+#: kinds that read arrays computed for the whole chunk (the others read the records one by one)
+CHUNK_MEASURES = {
+    "surface_strain": _chunk_surface_strain,
+    "hub_angle": lambda sensor, system: lambda chunk: chunk.x[:, 0].tolist(),
+    "hub_angular_velocity": lambda sensor, system: lambda chunk: chunk.v[:, 0].tolist(),
+    "tip_deflection": _chunk_tip_deflection,
+    "energy": _chunk_energy,
+}
+
+
+def prepare_chunk(sensor, system: HubSystem):
+    """The measurement function(chunk) of one sensor on ``system``: its values (floats, or dicts
+    of parts, as :func:`prepare` gives them) at each record of a chunk, a list. A chunk
+    (:class:`hubbeam.simulation.RecordChunk`) holds the records' times, states and work as
+    arrays (row i: record i; ``state(i)`` and ``work(i)`` give one record as :func:`prepare`
+    reads it) and, when the compiled steps computed them for the whole chunk, ``energies`` =
+    (hub (n, 3), beams (n, beams, 3)) (J), ``tips`` (n, beams, 3) (m) and ``strains``
+    ({gauge: (n,)}); the sensors that read those take them from there."""
+    chunk_measure = CHUNK_MEASURES.get(sensor.kind)
+    if chunk_measure is not None:
+        return chunk_measure(sensor, system)
+    return _per_state(prepare(sensor, system))
+
+
 def prepare(sensor, system: HubSystem):
     """The measurement function(state, work) of one sensor on ``system``: the value (float, or
     dict of parts) at an integrator state; ``work`` holds the dissipated and drive work (J) up
-    to it and, optionally, what :meth:`HubSystem.record_measures` gave for the state:
-    ``energies`` = (hub, beams), ``tips`` and ``strains`` ({gauge: strain})."""
+    to it."""
     return MEASURES[sensor.kind](sensor, system)
 
 

@@ -9,7 +9,7 @@ from decimal import Decimal
 import numpy as np
 
 from hubbeam import interrupt
-from hubbeam.sensors import prepare, record_needs
+from hubbeam.sensors import prepare_chunk, record_needs
 from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.errors import ChartSingularityError, ComputationError, ConvergenceError
@@ -36,12 +36,59 @@ class Trajectory:
     factorisations: int | None = None  # LU factorisations of the iteration matrix (counted by compiled steps)
     wall_time_s: float = 0.0
 
-    def append(self, t, values, snapshot=None):
-        self.times.append(t)
-        for name, val in values.items():
-            self.records.setdefault(name, []).append(val)
-        if snapshot is not None:
-            self.snapshots.append(snapshot)
+    def extend(self, times, values, snapshots=None):
+        """Add the records at ``times``: ``values`` {sensor name: its values, one per time},
+        and the state recorder's ``snapshots`` (one per time) when given."""
+        self.times.extend(times)
+        for name, vals in values.items():
+            self.records.setdefault(name, []).extend(vals)
+        if snapshots is not None:
+            self.snapshots.extend(snapshots)
+
+
+@dataclass
+class RecordChunk:
+    """The records of a chunk of steps as arrays, row i for record i: time (s), the integrator
+    state's x, v, xdd, a, lambda in the charts ``chart``, the dissipated and drive work up to
+    it (J), and what the compiled steps computed for the whole chunk
+    (:meth:`HubSystem.record_measures`): ``energies`` = (hub (n, 3), beams (n, beams, 3)) (J),
+    ``tips`` (n, beams, 3) (m), ``strains`` {gauge: (n,)}. Sensors read it through
+    :func:`hubbeam.sensors.prepare_chunk`."""
+
+    t: np.ndarray
+    x: np.ndarray
+    v: np.ndarray
+    xdd: np.ndarray
+    a: np.ndarray
+    lam: np.ndarray
+    chart: np.ndarray
+    dissipated: np.ndarray
+    drive: np.ndarray
+    energies: tuple | None = None
+    tips: np.ndarray | None = None
+    strains: dict = field(default_factory=dict)
+
+    @classmethod
+    def of_states(cls, records: list) -> RecordChunk | None:
+        """The chunk of a list of (state, work) (None for an empty list)."""
+        if not records:
+            return None
+        states = [st for st, _ in records]
+        stack = lambda name: np.array([getattr(st, name) for st in states], dtype=float)  # noqa: E731
+        return cls(stack("t"), stack("x"), stack("v"), stack("xdd"), stack("a"), stack("lam"), states[0].chart,
+                   np.array([w["dissipated"] for _, w in records], dtype=float),
+                   np.array([w["drive"] for _, w in records], dtype=float))
+
+    def __len__(self) -> int:
+        return self.t.shape[0]
+
+    def state(self, i: int) -> ga.AlphaState:
+        """Record i as an integrator state."""
+        return ga.AlphaState(float(self.t[i]), self.x[i], self.v[i], self.xdd[i], self.a[i], self.lam[i], self.chart)
+
+    def work(self, i: int) -> dict[str, float]:
+        """The dissipated and drive work up to record i (J)."""
+        return {"dissipated": float(self.dissipated[i]), "drive": float(self.drive[i])}
 
 
 def change_chart(system: HubSystem, state: ga.AlphaState, F_new: np.ndarray, eps: float = 1e-4) -> ga.AlphaState:
@@ -112,7 +159,7 @@ class PythonSteps:
                  measures: tuple[bool, bool, list] = (False, False, [])) -> None:
         self.system, self.params, self.newton, self.dt = system, params, newton, dt
         # (energies, tip displacements, strain gauges) (:func:`hubbeam.sensors.record_needs`):
-        # the compiled steps add them to the records' work, where the sensors read them
+        # the compiled steps compute them for a chunk's records (:class:`RecordChunk`), where the sensors read them
         self.measures = measures
         self.work = {"dissipated": 0.0, "drive": 0.0}
         self.kept = None  # the iteration matrix kept between steps
@@ -127,14 +174,14 @@ class PythonSteps:
     def advance(self, state, n_steps, step0, every, total):
         """Up to n_steps steps after step0 of total; states after steps that are multiples of
         ``every`` (and the last) are returned. Returns (state, steps taken, Newton
-        iterations, chart limit reached, error or None, [(state, work)])."""
+        iterations, chart limit reached, error or None, the records' :class:`RecordChunk` or None)."""
         iterations = 0
         records = []
         for k in range(n_steps):
             try:
                 state, its, self.kept = ga.step(self.system, state, self.dt, self.params, self.newton, self.kept)
             except (ConvergenceError, ChartSingularityError) as exc:
-                return state, k, iterations, False, exc, records
+                return state, k, iterations, False, exc, RecordChunk.of_states(records)
             iterations += its
             p_new = self._power(state)
             self.work["dissipated"] += 0.5 * self.dt * (self.power[0] + p_new[0])
@@ -144,8 +191,8 @@ class PythonSteps:
             if step % every == 0 or step == total:
                 records.append((state, dict(self.work)))
             if self.system.chart_margin(state.x, state.chart) < CHART_LIMIT:
-                return state, k + 1, iterations, True, None, records
-        return state, n_steps, iterations, False, None, records
+                return state, k + 1, iterations, True, None, RecordChunk.of_states(records)
+        return state, n_steps, iterations, False, None, RecordChunk.of_states(records)
 
     def chart_changed(self):
         self.kept = None
@@ -194,28 +241,26 @@ class CompiledSteps(PythonSteps):
         self.factorisations += factorisations
         self.work = {"dissipated": self.work_done[0], "drive": self.work_done[1]}
         rt, rx, rv, rxdd, ra, rlam, rwork = records
-        out = [(ga.AlphaState(rt[i], rx[i], rv[i], rxdd[i], ra[i], rlam[i], state.chart),
-                {"dissipated": rwork[i, 0], "drive": rwork[i, 1]}) for i in range(n_rec)]
-        energies, tips, _ = self.measures
-        if (energies or tips or self.gauge_list) and n_rec:
-            measured = self.system.record_measures(rx, rv, chart, n_rec, energies, self.gauges)
-            for i, (_, work) in enumerate(out):
-                work["tips"] = measured["tips"][i]
-                work["strains"] = dict(zip(self.gauge_list, measured["strains"][i]))
+        chunk = None
+        if n_rec:
+            chunk = RecordChunk(rt[:n_rec], rx[:n_rec], rv[:n_rec], rxdd[:n_rec], ra[:n_rec], rlam[:n_rec], state.chart,
+                                rwork[:n_rec, 0], rwork[:n_rec, 1])
+            energies, tips, _ = self.measures
+            if energies or tips or self.gauge_list:
+                measured = self.system.record_measures(rx, rv, chart, n_rec, energies, self.gauges)
+                chunk.tips = measured["tips"] if tips else None
+                chunk.strains = {g: measured["strains"][:, i] for i, g in enumerate(self.gauge_list)}
                 if energies:
-                    work["energies"] = (measured["hub"][i], measured["beams"][i])
-        if self.other_gauges and n_rec:
-            strains = {g: self.system.surface_strains_of_states(rx[:n_rec], chart, g[1], g[2], g[3], g[0])
-                       for g in self.other_gauges}
-            for i, (_, work) in enumerate(out):
-                work.setdefault("strains", {}).update((g, float(values[i])) for g, values in strains.items())
+                    chunk.energies = (measured["hub"], measured["beams"])
+            chunk.strains.update((g, self.system.surface_strains_of_states(rx[:n_rec], chart, g[1], g[2], g[3], g[0]))
+                                 for g in self.other_gauges)
         new = ga.AlphaState(t, x, v, xdd, a, lam, state.chart)
         message = ga.OUTCOME_MESSAGES.get(ga.Outcome(status))
         error = None
         if message is not None:
             text = message.format(its=self.newton.max_iterations, size=size)
             error = (ChartSingularityError if status == ga.Outcome.CHART_SINGULARITY else ConvergenceError)(text)
-        return new, steps, its, status == ga.Outcome.CHART_LIMIT_REACHED, error, out
+        return new, steps, its, status == ga.Outcome.CHART_LIMIT_REACHED, error, chunk
 
     def chart_changed(self):
         self.reuse[ga.REUSE_VALID] = 0
@@ -253,14 +298,18 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
     # the double nearest the decimal t0 + step * dt (not the sum of steps, which drifts: 20.00000000000146)
     t0_decimal, dt_decimal = Decimal(repr(float(state.t))), Decimal(repr(float(dt)))
 
-    measures = [(s.name, prepare(s, system)) for s in sensors]
+    measures = [(s.name, prepare_chunk(s, system)) for s in sensors]
 
-    def record(st, work):
-        st = replace(st, t=float(t0_decimal + dt_decimal * min(len(traj.times) * every, n_steps)))
-        traj.append(st.t, {name: measure(st, work) for name, measure in measures},
-                    None if recorder is None else recorder(system, st))
+    def record(chunk):
+        if chunk is None:
+            return
+        first = len(traj.times)
+        chunk.t = np.array([float(t0_decimal + dt_decimal * min((first + i) * every, n_steps))
+                            for i in range(len(chunk))])
+        traj.extend(chunk.t.tolist(), {name: measure(chunk) for name, measure in measures},
+                    None if recorder is None else [recorder(system, chunk.state(i)) for i in range(len(chunk))])
 
-    record(state, {"dissipated": 0.0, "drive": 0.0})
+    record(RecordChunk.of_states([(state, {"dissipated": 0.0, "drive": 0.0})]))
     steps_class = CompiledSteps if system.compiled else PythonSteps
     stepper = steps_class(system, params, newton, dt, state, record_needs(sensors, system))
     chunk_size = max(1, -(-n_steps // PROGRESS_UPDATES))
@@ -277,8 +326,7 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
             seconds = time.perf_counter() - chunk_start
             if done:
                 chunk = max(1, min(chunk_size, 2 * chunk, int(CHUNK_SECONDS * done / max(seconds, 1e-9))))
-            for st, work in records:
-                record(st, work)
+            record(records)
             k += done
             traj.steps = k
             traj.newton_iterations += its
