@@ -181,3 +181,42 @@ def test_strain_gauges_read_over_a_chunk_are_the_gauges_read_state_by_state():
             expected = system.surface_strain(st.x, st.chart, x, y, z, beam)
             assert abs(expected) > 1e-7
             assert chunk.strains[(beam, x, y, z)][i] == pytest.approx(expected, rel=1e-9)  # ANCF: compiled and Python strain measures
+
+
+def test_sensors_read_over_a_chunk_are_the_sensors_read_state_by_state():
+    """Sensors read a chunk of compiled records at once (the compiled steps' energies, tips and
+    gauges as arrays, :func:`hubbeam.sensors.prepare_chunk`). Every sensor of the spacecraft
+    example -- one panel ANCF, the other shorter, lighter and FFR on 3 modes, both with tip
+    bodies, under a PD controller and gravity -- plus the energy of one beam and a gauge on the FFR panel gives, at every
+    record, what it gives read state by state (:func:`hubbeam.sensors.prepare`: the Python
+    tip positions and strains, the system's energies)."""
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example, validate
+    from hubbeam.sensors import prepare, prepare_chunk, record_needs
+    from hubbeam.simulation import CompiledSteps
+
+    scenario = load_example("spacecraft", ['beams[1].formulation="ffr"', "beams[1].modes=3", "beams[1].length=1.5",
+                                           "beams[1].tip_body.mass=0.4", "environment.gravity=[0.0, -9.81, 0.0]"])
+    extra = [{"name": "energy_b", "kind": "energy", "beam": "panel_b"},
+             {"name": "strain_b", "kind": "surface_strain", "beam": "panel_b", "x": 0.4, "surface": "lower"}]
+    scenario = validate({**scenario.model_dump(exclude_none=True),
+                         "sensors": [s.model_dump(exclude_none=True) for s in scenario.sensors] + extra})
+    system = api.build_system(scenario)
+    assert system.compiled
+    state = initial_state(system)
+    params = ga.AlphaParameters.from_spectral_radius(0.8)
+    steps = CompiledSteps(system, params, ga.NewtonOptions(), 2e-3, state, record_needs(scenario.sensors, system))
+    *_, error, chunk = steps.advance(state, 90, 0, 30, 90)
+    assert error is None and len(chunk) == 3
+    assert {s.kind for s in scenario.sensors} >= {"hub_angle", "hub_angular_velocity", "applied_torque",
+                                                  "tip_deflection", "surface_strain", "angular_momentum", "energy"}
+    for sensor in scenario.sensors:
+        together = prepare_chunk(sensor, system)(chunk)
+        one_by_one = [prepare(sensor, system)(chunk.state(i), chunk.work(i)) for i in range(len(chunk))]
+        assert len(together) == len(one_by_one) == 3
+        for a, b in zip(together, one_by_one):
+            if isinstance(b, dict):
+                assert a.keys() == b.keys(), sensor.name
+                assert [a[k] for k in b] == pytest.approx([b[k] for k in b], rel=1e-9, abs=1e-12), sensor.name
+            else:
+                assert a == pytest.approx(b, rel=1e-9, abs=1e-15), sensor.name
