@@ -60,9 +60,9 @@ def assert_compiled_steps_are_python_steps(system, update, dt=2e-3, steps=40, ev
     assert err_a is None and err_b is None and steps_a == steps_b == steps
     assert its_a == its_b  # the same Newton iterations, step by step
     times = [dt * k for k in range(every, steps + 1, every)]
-    assert rec_a.t.tolist() == rec_b.t.tolist() == pytest.approx(times)
-    for name in ("x", "v", "dissipated", "drive"):  # the records: the same states and work integrals
-        u, w = getattr(rec_a, name), getattr(rec_b, name)
+    assert rec_a.states.t.tolist() == rec_b.states.t.tolist() == pytest.approx(times)
+    for u, w in ((rec_a.states.x, rec_b.states.x), (rec_a.states.v, rec_b.states.v),  # the records: states, work
+                 (rec_a.dissipated, rec_b.dissipated), (rec_a.drive, rec_b.drive)):
         assert np.max(np.abs(u - w)) <= 1e-9 * max(1.0, np.max(np.abs(w)))
     for u, w in ((a.x, b.x), (a.v, b.v), (a.xdd, b.xdd), (a.a, b.a), (a.lam, b.lam)):
         assert np.max(np.abs(u - w)) <= 1e-9 * max(1.0, np.max(np.abs(w)))

@@ -157,8 +157,8 @@ def _chunk_tip_deflection(sensor, system):
 #: kinds that read arrays computed for the whole chunk (the others read the records one by one)
 CHUNK_MEASURES = {
     "surface_strain": _chunk_surface_strain,
-    "hub_angle": lambda sensor, system: lambda chunk: chunk.x[:, 0].tolist(),
-    "hub_angular_velocity": lambda sensor, system: lambda chunk: chunk.v[:, 0].tolist(),
+    "hub_angle": lambda sensor, system: lambda chunk: chunk.states.x[:, 0].tolist(),
+    "hub_angular_velocity": lambda sensor, system: lambda chunk: chunk.states.v[:, 0].tolist(),
     "tip_deflection": _chunk_tip_deflection,
     "energy": _chunk_energy,
 }
@@ -167,7 +167,7 @@ CHUNK_MEASURES = {
 def prepare_chunk(sensor, system: HubSystem):
     """The measurement function(chunk) of one sensor on ``system``: its values (floats, or dicts
     of parts, as :func:`prepare` gives them) at each record of a chunk, a list. A chunk
-    (:class:`hubbeam.simulation.RecordChunk`) holds the records' times, states and work as
+    (:class:`hubbeam.simulation.RecordChunk`) holds the records' states and work as
     arrays (row i: record i; ``state(i)`` and ``work(i)`` give one record as :func:`prepare`
     reads it) and, when the compiled steps computed them for the whole chunk, ``energies`` =
     (hub (n, 3), beams (n, beams, 3)) (J), ``tips`` (n, beams, 3) (m) and ``strains``

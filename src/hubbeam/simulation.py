@@ -48,20 +48,15 @@ class Trajectory:
 
 @dataclass
 class RecordChunk:
-    """The records of a chunk of steps as arrays, row i for record i: time (s), the integrator
-    state's x, v, xdd, a, lambda in the charts ``chart``, the dissipated and drive work up to
-    it (J), and what the compiled steps computed for the whole chunk
-    (:meth:`HubSystem.record_measures`): ``energies`` = (hub (n, 3), beams (n, beams, 3)) (J),
-    ``tips`` (n, beams, 3) (m), ``strains`` {gauge: (n,)}. Sensors read it through
+    """The records of a chunk of steps as arrays, row i for record i: ``states``, the integrator
+    states stacked (an :class:`~hubbeam.solvers.generalized_alpha.AlphaState` whose t is (n,)
+    (s) and x, v, xdd, a, lambda are (n, ...), in the one chart of the chunk), the dissipated
+    and drive work up to each record (J), and what the compiled steps computed for the whole
+    chunk (:meth:`HubSystem.record_measures`): ``energies`` = (hub (n, 3), beams (n, beams, 3))
+    (J), ``tips`` (n, beams, 3) (m), ``strains`` {gauge: (n,)}. Sensors read it through
     :func:`hubbeam.sensors.prepare_chunk`."""
 
-    t: np.ndarray
-    x: np.ndarray
-    v: np.ndarray
-    xdd: np.ndarray
-    a: np.ndarray
-    lam: np.ndarray
-    chart: np.ndarray
+    states: ga.AlphaState
     dissipated: np.ndarray
     drive: np.ndarray
     energies: tuple | None = None
@@ -75,16 +70,18 @@ class RecordChunk:
             return None
         states = [st for st, _ in records]
         stack = lambda name: np.array([getattr(st, name) for st in states], dtype=float)  # noqa: E731
-        return cls(stack("t"), stack("x"), stack("v"), stack("xdd"), stack("a"), stack("lam"), states[0].chart,
+        return cls(ga.AlphaState(stack("t"), stack("x"), stack("v"), stack("xdd"), stack("a"), stack("lam"),
+                                 states[0].chart),
                    np.array([w["dissipated"] for _, w in records], dtype=float),
                    np.array([w["drive"] for _, w in records], dtype=float))
 
     def __len__(self) -> int:
-        return self.t.shape[0]
+        return self.states.t.shape[0]
 
     def state(self, i: int) -> ga.AlphaState:
         """Record i as an integrator state."""
-        return ga.AlphaState(float(self.t[i]), self.x[i], self.v[i], self.xdd[i], self.a[i], self.lam[i], self.chart)
+        s = self.states
+        return ga.AlphaState(float(s.t[i]), s.x[i], s.v[i], s.xdd[i], s.a[i], s.lam[i], s.chart)
 
     def work(self, i: int) -> dict[str, float]:
         """The dissipated and drive work up to record i (J)."""
@@ -243,8 +240,8 @@ class CompiledSteps(PythonSteps):
         rt, rx, rv, rxdd, ra, rlam, rwork = records
         chunk = None
         if n_rec:
-            chunk = RecordChunk(rt[:n_rec], rx[:n_rec], rv[:n_rec], rxdd[:n_rec], ra[:n_rec], rlam[:n_rec], state.chart,
-                                rwork[:n_rec, 0], rwork[:n_rec, 1])
+            chunk = RecordChunk(ga.AlphaState(rt[:n_rec], rx[:n_rec], rv[:n_rec], rxdd[:n_rec], ra[:n_rec], rlam[:n_rec],
+                                              state.chart), rwork[:n_rec, 0], rwork[:n_rec, 1])
             energies, tips, _ = self.measures
             if energies or tips or self.gauge_list:
                 measured = self.system.record_measures(rx, rv, chart, n_rec, energies, self.gauges)
@@ -304,9 +301,9 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
         if chunk is None:
             return
         first = len(traj.times)
-        chunk.t = np.array([float(t0_decimal + dt_decimal * min((first + i) * every, n_steps))
-                            for i in range(len(chunk))])
-        traj.extend(chunk.t.tolist(), {name: measure(chunk) for name, measure in measures},
+        times = [float(t0_decimal + dt_decimal * min((first + i) * every, n_steps)) for i in range(len(chunk))]
+        chunk.states = replace(chunk.states, t=np.array(times))
+        traj.extend(times, {name: measure(chunk) for name, measure in measures},
                     None if recorder is None else [recorder(system, chunk.state(i)) for i in range(len(chunk))])
 
     record(RecordChunk.of_states([(state, {"dissipated": 0.0, "drive": 0.0})]))
