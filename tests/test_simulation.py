@@ -220,3 +220,18 @@ def test_sensors_read_over_a_chunk_are_the_sensors_read_state_by_state():
                 assert [a[k] for k in b] == pytest.approx([b[k] for k in b], rel=1e-9, abs=1e-12), sensor.name
             else:
                 assert a == pytest.approx(b, rel=1e-9, abs=1e-15), sensor.name
+
+
+@pytest.mark.parametrize("t0, dt", [(0.0, 1e-3), (0.3, 5e-3), (12.345, 0.0025), (0.1 + 0.2, 1e-5), (3.0, 0.3)])
+def test_output_times_are_the_doubles_nearest_the_decimal_times(t0, dt):
+    """The output time after k steps is the double nearest the decimal t0 + k dt (not the sum
+    of steps); integer arithmetic over a common power of ten gives what Python's decimal
+    arithmetic gives, for steps up to 10^6."""
+    from decimal import Decimal
+
+    from hubbeam.simulation import decimal_units
+
+    t0_units, dt_units, scale = decimal_units(t0, dt)
+    for k in (0, 1, 7, 999, 20_000, 123_457, 1_000_000):
+        assert (t0_units + dt_units * k) / scale == float(Decimal(repr(t0)) + Decimal(repr(dt)) * k)
+    assert (0 + decimal_units(0.0, 1e-3)[1] * 20_000) / decimal_units(0.0, 1e-3)[2] == 20.0

@@ -88,6 +88,14 @@ class RecordChunk:
         return {"dissipated": float(self.dissipated[i]), "drive": float(self.drive[i])}
 
 
+def decimal_units(*values: float) -> tuple[int, ...]:
+    """The decimals that print as ``values`` (shortest repr) as integers over a common power of
+    ten: (n_1, ..., n_k, scale) with value_i = n_i / scale exactly in decimal arithmetic."""
+    decimals = [Decimal(repr(float(v))) for v in values]
+    digits = max(0, *(-d.as_tuple().exponent for d in decimals))
+    return (*(int(d.scaleb(digits)) for d in decimals), 10**digits)
+
+
 def change_chart(system: HubSystem, state: ga.AlphaState, F_new: np.ndarray, eps: float = 1e-4) -> ga.AlphaState:
     """The integrator state re-expressed in chart F_new.
 
@@ -293,7 +301,8 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
     traj = Trajectory(recorder=recorder)
     # exact time axis: record r is the state after step min(r * every, n_steps); its time is
     # the double nearest the decimal t0 + step * dt (not the sum of steps, which drifts: 20.00000000000146)
-    t0_decimal, dt_decimal = Decimal(repr(float(state.t))), Decimal(repr(float(dt)))
+    # (as exact integers: t0 + step * dt = (t0_units + step * dt_units) / scale, and int / int is correctly rounded)
+    t0_units, dt_units, scale = decimal_units(state.t, dt)
 
     measures = [(s.name, prepare_chunk(s, system)) for s in sensors]
 
@@ -301,7 +310,7 @@ def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radiu
         if chunk is None:
             return
         first = len(traj.times)
-        times = [float(t0_decimal + dt_decimal * min((first + i) * every, n_steps)) for i in range(len(chunk))]
+        times = [(t0_units + dt_units * min((first + i) * every, n_steps)) / scale for i in range(len(chunk))]
         chunk.states = replace(chunk.states, t=np.array(times))
         traj.extend(times, {name: measure(chunk) for name, measure in measures},
                     None if recorder is None else [recorder(system, chunk.state(i)) for i in range(len(chunk))])
