@@ -78,6 +78,35 @@ def _to_chart(F, Y, X):
 
 
 @njit(cache=True, error_model="numpy")
+def _gather(q, o, A, B, C, D, g, Y):
+    """Y = (sum_a A[g, a] r_a, sum_a B[g, a] r_a, sum_a C[g, a] theta_a, sum_a D[g, a] theta_a)
+    (global components; r_a, theta_a: the vector and twist coefficients of Hermite function a
+    in q[o : o + 16]): :func:`gauss_variables` before the rotation to the chart, with the
+    weights read from the tables (A, B, C, D = dS, d2S, S, dS there) and the same sums in the
+    same order, without the index tables."""
+    a0, a1, a2, a3 = A[g, 0], A[g, 1], A[g, 2], A[g, 3]
+    b0, b1, b2, b3 = B[g, 0], B[g, 1], B[g, 2], B[g, 3]
+    for k in range(3):
+        r0, r1, r2, r3 = q[o + k], q[o + 3 + k], q[o + 8 + k], q[o + 11 + k]
+        Y[k] = a0 * r0 + a1 * r1 + a2 * r2 + a3 * r3
+        Y[3 + k] = b0 * r0 + b1 * r1 + b2 * r2 + b3 * r3
+    t0, t1, t2, t3 = q[o + 6], q[o + 7], q[o + 14], q[o + 15]
+    Y[6] = C[g, 0] * t0 + C[g, 1] * t1 + C[g, 2] * t2 + C[g, 3] * t3
+    Y[7] = D[g, 0] * t0 + D[g, 1] * t1 + D[g, 2] * t2 + D[g, 3] * t3
+
+
+@njit(cache=True, error_model="numpy")
+def _scatter(force, o, A, B, C, D, g, jw, Y):
+    """force[o : o + 16] += jw B^T Y, the transpose of :func:`_gather` (Y global)."""
+    for a in range(4):
+        oa = o + _VEC_OFFSETS[a]
+        u1, u2 = A[g, a], B[g, a]
+        for k in range(3):
+            force[oa + k] += jw * (u1 * Y[k] + u2 * Y[3 + k])
+        force[o + _ANG_OFFSETS[a]] += jw * (C[g, a] * Y[6] + D[g, a] * Y[7])
+
+
+@njit(cache=True, error_model="numpy")
 def _to_global(F, X, Y):
     """Y = T X, T = blockdiag(F, F, 1, 1): chart to global components of an 8-vector."""
     for b in range(2):
@@ -122,6 +151,8 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
     """
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
     want_tangent = blocks.shape[0] == n_el
+    if not want_tangent:
+        return _elastic_forces(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damping, force)
     damped = damping != 0.0
     force[:] = 0.0
     X = np.empty(8)
@@ -180,11 +211,19 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
             for j in range(ELEMENT_DOFS):
                 force[o + j] += jw * (w1[j] * gY[DOF_FIRST[j]] + w2[j] * gY[DOF_SECOND[j]])
             if want_tangent:
+                # the same products as sum_k (scale + coef_c c) D_k G_ki G_kj + scale r_k H_kij, in the
+                # same order, with the factors of each k hoisted out of the loops
+                cg = scale + coef_c * damping
+                d0, d1, d2, d3 = cg * D[0], cg * D[1], cg * D[2], cg * D[3]
+                s0_, s1_, s2_, s3_ = scale * r[0], scale * r[1], scale * r[2], scale * r[3]
                 for i in range(8):
+                    a0, a1, a2, a3 = d0 * G[0, i], d1 * G[1, i], d2 * G[2, i], d3 * G[3, i]
                     for j in range(i, 8):
                         acc = 0.0
-                        for k in range(4):
-                            acc += (scale + coef_c * damping) * D[k] * G[k, i] * G[k, j] + scale * r[k] * H[k, i, j]
+                        acc += a0 * G[0, j] + s0_ * H[0, i, j]
+                        acc += a1 * G[1, j] + s1_ * H[1, i, j]
+                        acc += a2 * G[2, j] + s2_ * H[2, i, j]
+                        acc += a3 * G[3, j] + s3_ * H[3, i, j]
                         HW[i, j] = acc
                         HW[j, i] = acc
                 _matrix_to_global(F, HW, tmp, HY)
@@ -210,6 +249,56 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
                 for i in range(ELEMENT_DOFS):
                     for j in range(ELEMENT_DOFS):
                         blocks[el, i, j] += Kn[i, j]
+    return energy, chart_margin, power
+
+
+@njit(cache=True, error_model="numpy")
+def _elastic_forces(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damping, force):
+    """:func:`elastic_kernel` without the matrix: the same arithmetic in the same order, with
+    the Gauss-point variables gathered straight from the Hermite tables (:func:`_gather`) and
+    only the scratch the force needs."""
+    n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
+    damped = damping != 0.0
+    force[:] = 0.0
+    buf = np.empty(44)
+    X, Xd, gW, gY, e, ed, r = buf[0:8], buf[8:16], buf[16:24], buf[24:32], buf[32:36], buf[36:40], buf[40:44]
+    Xd[:] = 0.0
+    ed[:] = 0.0
+    G = np.empty((4, 8))
+    H = np.empty((0, 0, 0))
+    energy = 0.0
+    power = 0.0
+    chart_margin = 2.0
+    for el in range(n_el):
+        o = NODE_DOFS * el
+        for g in range(w.shape[0]):
+            D = stiffness[el, g]
+            _gather(q, o, dS, d2S, S, dS, g, gY)
+            _to_chart(F, gY, X)
+            s0 = strain_jet(X, e, G, H, False)
+            L = np.sqrt(X[0] ** 2 + X[1] ** 2 + X[2] ** 2)
+            chart_margin = min(chart_margin, s0 / L)
+            jw = w[g] * length
+            if damped:
+                _gather(qdot, o, dS, d2S, S, dS, g, gY)
+                _to_chart(F, gY, Xd)
+                for k in range(4):
+                    acc = 0.0
+                    for i in range(8):
+                        acc += G[k, i] * Xd[i]
+                    ed[k] = acc
+            for k in range(4):
+                strain = e[k] - reference[el, g, k]
+                energy += 0.5 * jw * D[k] * strain * strain
+                power += jw * damping * D[k] * ed[k] * ed[k]
+                r[k] = D[k] * (strain + damping * ed[k])  # the section resultant
+            for i in range(8):
+                acc = 0.0
+                for k in range(4):
+                    acc += r[k] * G[k, i]
+                gW[i] = acc
+            _to_global(F, gW, gY)
+            _scatter(force, o, dS, d2S, S, dS, g, jw, gY)
     return energy, chart_margin, power
 
 
@@ -340,40 +429,42 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
     want_matrix = blocks.shape[0] == n_el
     force[:] = 0.0
-    Z = np.empty(8)
-    Xq = np.empty(8)
-    Xv = np.empty(8)
-    Xa = np.empty(8)
-    e = np.empty(4)
+    buf = np.empty(32)
+    Z, Y, QX, QY = buf[0:8], buf[8:16], buf[16:24], buf[24:32]
+    vec = np.empty(16)
+    Xq, Xv, Xa, e, h = vec[0:3], vec[3:6], vec[6:9], vec[9:13], vec[13:16]
     G = np.empty((4, 8))
     H = np.empty((0, 0, 0))
     B = np.empty((3, 4))
-    h = np.empty(3)
-    QX = np.empty(8)
-    QY = np.empty(8)
-    Mx = np.empty((4, 4))
-    Mg = np.empty((4, 4))
-    w1 = np.empty(ELEMENT_DOFS)
-    w2 = np.empty(ELEMENT_DOFS)
     xi = (0, 1, 2, PHI)  # X = (U, phi) inside Z = (U, Udot, phi, phidot)
     vi = (3, 4, 5, PSI)  # Xdot
     energy = 0.0
-    Ke = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
+    if want_matrix:
+        mats = np.empty((2 + ELEMENT_DOFS, 4, 4))
+        Mx, Mg = mats[0], mats[1]
+        Ke = mats[2:].reshape((ELEMENT_DOFS, ELEMENT_DOFS))
+        w1 = np.empty(2 * ELEMENT_DOFS)
+    else:
+        Mx = Mg = Ke = np.empty((0, 0))
+        w1 = np.empty(0)
+    for i in range(8):
+        QX[i] = 0.0
     for el in range(n_el):
         o = NODE_DOFS * el
-        Ke[:, :] = 0.0
+        if want_matrix:
+            Ke[:, :] = 0.0
         for g in range(w.shape[0]):
             # Z = (F^T r0', F^T d r0'/dt, theta_1, d theta_1/dt); the r0'' slots of X are unused
-            dof_weights(S, dS, dS, g, w1, w2)
-            gauss_variables(q, o, F, w1, w1, QY, Xq)
-            gauss_variables(qdot, o, F, w1, w1, QY, Xv)
-            gauss_variables(acc, o, F, w1, w1, QY, Xa)
+            _gather_slopes(q, o, dS, S, g, F, Y, Xq)
+            Z[6] = Y[6]
+            _gather_slopes(qdot, o, dS, S, g, F, Y, Xv)
+            Z[7] = Y[6]
+            _gather_slopes(acc, o, dS, S, g, F, Y, Xa)
+            phi_a = Y[6]
             for i in range(3):
                 Z[i] = Xq[i]
                 Z[3 + i] = Xv[i]
-            Z[6] = Xq[6]
-            Z[7] = Xv[6]
-            strain_jet(Z, e, G, H, H.shape[0] > 0)  # H is empty: gradients only
+            strain_jet(Z, e, G, H, False)  # gradients only
             J = inertia[el, g]
             J0, J1, J2 = J[0], J[1], J[2]
             om0, om1, om2 = e[1], e[2], e[3]
@@ -385,21 +476,24 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
                 rate = 0.0  # (d omega_i / dX) Xdot + B_i Xddot
                 for k in range(4):
                     B[i, k] = G[i + 1, vi[k]]
-                    rate += G[i + 1, xi[k]] * Z[vi[k]] + B[i, k] * Xa[xi[k]]
+                    rate += G[i + 1, xi[k]] * Z[vi[k]] + B[i, k] * (Xa[k] if k < 3 else phi_a)
                 h[i] = J[i] * rate
             h[0] += gy0
             h[1] += gy1
             h[2] += gy2
             jw = w[g] * length
             energy += 0.5 * jw * (J0 * om0 * om0 + J1 * om1 * om1 + J2 * om2 * om2)
-            for i in range(8):
-                QX[i] = 0.0
             for k in range(4):
                 QX[xi[k]] = -(B[0, k] * h[0] + B[1, k] * h[1] + B[2, k] * h[2])
             _to_global(F, QX, QY)
-            for j in range(ELEMENT_DOFS):
-                force[o + j] += jw * w1[j] * QY[DOF_FIRST[j]]
+            for a in range(4):
+                oa = o + _VEC_OFFSETS[a]
+                u = jw * dS[g, a]
+                for k in range(3):
+                    force[oa + k] += u * QY[k]
+                force[o + _ANG_OFFSETS[a]] += jw * S[g, a] * QY[6]
             if want_matrix:
+                dof_weights(S, dS, dS, g, w1, w1[ELEMENT_DOFS:])
                 for r in range(4):
                     for c in range(4):
                         Mx[r, c] = J0 * B[0, r] * B[0, c] + J1 * B[1, r] * B[1, c] + J2 * B[2, r] * B[2, c]
@@ -412,6 +506,18 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
         if want_matrix:
             _add_symmetric(blocks, el, Ke)
     return energy
+
+
+@njit(cache=True, error_model="numpy")
+def _gather_slopes(q, o, dS, S, g, F, Y, X):
+    """X = F^T r0' (3) from the element coordinates q[o : o + 16] at Gauss point g, and
+    Y[6] = theta_1 there (:func:`gauss_variables` with the weights dS, S, only those slots)."""
+    a0, a1, a2, a3 = dS[g, 0], dS[g, 1], dS[g, 2], dS[g, 3]
+    for k in range(3):
+        Y[k] = a0 * q[o + k] + a1 * q[o + 3 + k] + a2 * q[o + 8 + k] + a3 * q[o + 11 + k]
+    Y[6] = S[g, 0] * q[o + 6] + S[g, 1] * q[o + 7] + S[g, 2] * q[o + 14] + S[g, 3] * q[o + 15]
+    for i in range(3):
+        X[i] = F[0, i] * Y[0] + F[1, i] * Y[1] + F[2, i] * Y[2]
 
 
 @njit(cache=True, error_model="numpy")
