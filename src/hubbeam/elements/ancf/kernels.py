@@ -192,21 +192,9 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
             jw = w[g] * length
             if damped:
                 gauss_variables(qdot, o, F, w1, w2, gY, Xd)
-                for k in range(4):
-                    acc = 0.0
-                    for i in range(8):
-                        acc += G[k, i] * Xd[i]
-                    ed[k] = acc
-            for k in range(4):
-                strain = e[k] - reference[el, g, k]
-                energy += 0.5 * jw * D[k] * strain * strain
-                power += jw * damping * D[k] * ed[k] * ed[k]
-                r[k] = D[k] * (strain + damping * ed[k])  # the section resultant
-            for i in range(8):
-                acc = 0.0
-                for k in range(4):
-                    acc += r[k] * G[k, i]
-                gW[i] = acc
+            du, dp = _section_resultant(G, Xd, e, reference[el, g], D, damping, damped, jw, ed, r, gW)
+            energy += du
+            power += dp
             _to_global(F, gW, gY)
             for j in range(ELEMENT_DOFS):
                 force[o + j] += jw * (w1[j] * gY[DOF_FIRST[j]] + w2[j] * gY[DOF_SECOND[j]])
@@ -253,6 +241,33 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
 
 
 @njit(cache=True, error_model="numpy")
+def _section_resultant(G, Xd, e, reference, D, damping, damped, jw, ed, r, gW):
+    """At one Gauss point of weight jw (m): the strain rates ed = G X_dot (when ``damped``), the
+    section resultants r = D (e - e_ref + c ed) (N, N m) and gW = G^T r (chart components);
+    returns this point's strain energy 1/2 jw (e - e_ref)^T D (e - e_ref) (J) and dissipated
+    power jw c ed^T D ed (W)."""
+    energy = 0.0
+    power = 0.0
+    if damped:
+        for k in range(4):
+            acc = 0.0
+            for i in range(8):
+                acc += G[k, i] * Xd[i]
+            ed[k] = acc
+    for k in range(4):
+        strain = e[k] - reference[k]
+        energy += 0.5 * jw * D[k] * strain * strain
+        power += jw * damping * D[k] * ed[k] * ed[k]
+        r[k] = D[k] * (strain + damping * ed[k])
+    for i in range(8):
+        acc = 0.0
+        for k in range(4):
+            acc += r[k] * G[k, i]
+        gW[i] = acc
+    return energy, power
+
+
+@njit(cache=True, error_model="numpy")
 def _elastic_forces(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damping, force):
     """:func:`elastic_kernel` without the matrix: the same arithmetic in the same order, with
     the Gauss-point variables gathered straight from the Hermite tables (:func:`_gather`) and
@@ -282,21 +297,9 @@ def _elastic_forces(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, dam
             if damped:
                 _gather(qdot, o, dS, d2S, S, dS, g, gY)
                 _to_chart(F, gY, Xd)
-                for k in range(4):
-                    acc = 0.0
-                    for i in range(8):
-                        acc += G[k, i] * Xd[i]
-                    ed[k] = acc
-            for k in range(4):
-                strain = e[k] - reference[el, g, k]
-                energy += 0.5 * jw * D[k] * strain * strain
-                power += jw * damping * D[k] * ed[k] * ed[k]
-                r[k] = D[k] * (strain + damping * ed[k])  # the section resultant
-            for i in range(8):
-                acc = 0.0
-                for k in range(4):
-                    acc += r[k] * G[k, i]
-                gW[i] = acc
+            du, dp = _section_resultant(G, Xd, e, reference[el, g], D, damping, damped, jw, ed, r, gW)
+            energy += du
+            power += dp
             _to_global(F, gW, gY)
             _scatter(force, o, dS, d2S, S, dS, g, jw, gY)
     return energy, chart_margin, power
