@@ -191,3 +191,26 @@ def test_rotary_inertia_force_subtracts_the_rotary_mass_times_acceleration():
     kernels.rotary_inertia_kernel(q, qdot, acc, F, fat.element_length, S, dS, w, fat._inertia, 0.0, out,
                                   np.empty((0, 16, 16)))
     assert np.allclose(out, Qv - M_rot @ acc, atol=1e-10 * np.max(np.abs(M_rot @ acc)))
+
+
+def test_elastic_rotary_kernel_adds_the_rotary_mass_to_the_elastic_matrix():
+    """The fused matrix path: elastic blocks plus coef_m M_rot (the rotary kernel's blocks), the
+    force the elastic kernel's alone."""
+    from hubbeam.elements.ancf import kernels
+
+    fat = AncfBeam(1.45, 3, plate(width=0.3, thickness=0.2), gauss_points=5)
+    q, F = bent_state(fat, seed=4, amplitude=0.1)
+    F = rotation([1, 2, 3], 0.4) @ F  # a chart with general entries
+    qdot = np.random.default_rng(5).normal(size=q.size)
+    S, dS, d2S, w = fat._tables
+    coef_m, coef_c, damping = 3.0e4, 20.0, 0.01
+    args = (q, qdot, F, fat.element_length, S, dS, d2S, w, fat._stiffness, fat._reference, damping)
+    f_el, b_el = np.empty(q.size), np.zeros((fat.elements, 16, 16))
+    out_el = kernels.elastic_kernel(*args, coef_c, 1.0, f_el, b_el)
+    kernels.rotary_inertia_kernel(q, qdot, np.zeros(q.size), F, fat.element_length, S, dS, w, fat._inertia, coef_m,
+                                  np.empty(q.size), b_el)
+    f, b = np.empty(q.size), np.zeros((fat.elements, 16, 16))
+    out = kernels.elastic_rotary_kernel(*args, fat._inertia, coef_m, coef_c, 1.0, f, b)
+    assert out == out_el
+    assert np.array_equal(f, f_el)
+    assert np.max(np.abs(b - b_el)) < 1e-13 * np.max(np.abs(b_el))

@@ -267,6 +267,7 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
     phi, jac, hess, lam_k = clamp_work()
     c = np.empty(8)
     tip_jacobian = np.empty((4, 3))
+    no_blocks = np.empty((0, 16, 16))
     for k in range(pack.index.shape[0]):
         n_el = pack.elements[k]
         x0, nq, Fk, q, qd = ancf_beam(pack, k, F, x, v)
@@ -275,14 +276,16 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
         S, dS, d2S, w, le = pack.S[k], pack.dS[k], pack.d2S[k], pack.w[k], pack.element_length[k]
         blocks = np.zeros((n_el if want_matrix else 0, 16, 16))
         fq = np.empty(nq)
-        _, mk, pk = kernels.elastic_kernel(q, qd, Fk, le, S, dS, d2S, w, pack.stiffness[k], pack.reference[k],
-                                           pack.structural_damping[k], coef_c, coef_k, fq, blocks)
+        # the elastic matrix path adds the rotary mass coef_m M_rot too (one chart-to-global rotation)
+        _, mk, pk = kernels.elastic_rotary_kernel(q, qd, Fk, le, S, dS, d2S, w, pack.stiffness[k], pack.reference[k],
+                                                  pack.structural_damping[k], pack.inertia[k][:n_el], coef_m, coef_c,
+                                                  coef_k, fq, blocks)
         margin = min(margin, mk)
         power += pk
         if not mk > terms.CHART_SINGULAR:
             return 0.0, margin, 0.0
         term = np.empty(nq)
-        kernels.rotary_inertia_kernel(q, qd, qa, Fk, le, S, dS, w, pack.inertia[k], coef_m, term, blocks)
+        kernels.rotary_inertia_kernel(q, qd, qa, Fk, le, S, dS, w, pack.inertia[k], coef_m, term, no_blocks)
         for j in range(nq):
             fq[j] -= term[j]  # -(Q_v - M_rot acc)
         power += kernels.drag_kernel(qd, le, S, w, pack.width[k], ctx.drag[0], ctx.drag[1], coef_c, term, blocks)

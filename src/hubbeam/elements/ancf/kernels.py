@@ -11,7 +11,8 @@ component k of the vector coefficient of Hermite function a enters r0'_k with we
 S_a' and r0''_k with S_a''; the twist coefficient of function a enters theta_1 with S_a
 and theta_1' with S_a' (:data:`DOF_FIRST`, :data:`DOF_SECOND`, :func:`dof_weights`). The
 kernels use this sparsity instead of a dense 8 x 16 operator. Strain and frame
-quantities are computed in chart components (U = F^T r0') and rotated back.
+quantities are computed in chart components (U = F^T r0') and rotated back: forces per
+Gauss point, the elastic matrix once per element (:func:`_add_element_to_global`).
 
 Matrix kernels *add* ``scale`` times their element blocks (n_el, 16, 16) to ``blocks``,
 so that an iteration matrix coef_m M + coef_c C + coef_k K is built in one array.
@@ -39,6 +40,10 @@ DOF_FIRST = np.array([0, 1, 2, 0, 1, 2, PHI, PHI, 0, 1, 2, 0, 1, 2, PHI, PHI])
 DOF_SECOND = np.array([3, 4, 5, 3, 4, 5, PSI, PSI, 3, 4, 5, 3, 4, 5, PSI, PSI])
 #: ... and, for the rotary inertia on (r0' (3), theta_1), the variable it moves with weight w1
 ROTARY_COLUMN = np.array([0, 1, 2, 0, 1, 2, 3, 3, 0, 1, 2, 0, 1, 2, 3, 3])
+#: the slots of (U, theta_1) in X, and of (V, theta_1') (the curvature's gradient there is the
+#: rotary inertia's d omega / d Xdot)
+GAUSS_SLOTS = (0, 1, 2, PHI)
+ROTARY_SLOTS = (3, 4, 5, PSI)
 
 
 @njit(cache=True, error_model="numpy")
@@ -117,23 +122,6 @@ def _to_global(F, X, Y):
 
 
 @njit(cache=True, error_model="numpy")
-def _matrix_to_global(F, A, tmp, out):
-    """out = T A T^T for an 8 x 8 matrix A in chart components (T as in :func:`_to_global`)."""
-    for c in range(8):
-        for b in range(2):
-            for i in range(3):
-                tmp[3 * b + i, c] = F[i, 0] * A[3 * b, c] + F[i, 1] * A[3 * b + 1, c] + F[i, 2] * A[3 * b + 2, c]
-        tmp[6, c] = A[6, c]
-        tmp[7, c] = A[7, c]
-    for r in range(8):
-        for b in range(2):
-            for i in range(3):
-                out[r, 3 * b + i] = tmp[r, 3 * b] * F[i, 0] + tmp[r, 3 * b + 1] * F[i, 1] + tmp[r, 3 * b + 2] * F[i, 2]
-        out[r, 6] = tmp[r, 6]
-        out[r, 7] = tmp[r, 7]
-
-
-@njit(cache=True, error_model="numpy")
 def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damping, coef_c, scale, force, blocks):
     """Strain energy (Eq. 19), internal force and (when ``blocks`` has n_el rows) its Newton
     matrix, with Kelvin-Voigt structural damping.
@@ -149,10 +137,29 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
     and H) plus ``coef_c`` times the damping matrix c int G^T D G dx.
     Returns (U, min(1 + d.tau), dissipated power c int e_dot^T D e_dot dx (W)).
     """
+    return elastic_rotary_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damping,
+                                 np.empty((0, 0, 3)), 0.0, coef_c, scale, force, blocks)
+
+
+@njit(cache=True, error_model="numpy")
+def elastic_rotary_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damping, inertia, coef_m, coef_c,
+                          scale, force, blocks):
+    """:func:`elastic_kernel`, and, when it builds the matrix (``blocks`` (n_el, 16, 16)) and ``inertia``
+    (kg m, as in :func:`rotary_inertia_kernel`) has n_el rows, ``coef_m`` times the rotary mass
+    M_rot of :func:`rotary_inertia_kernel` added to the same blocks (its force is left to that
+    kernel). M_rot's B = d omega / d Xdot is the gradient of the curvature with respect to
+    (r0'', theta_1') (omega is the curvature function of (U, Udot, theta_1, theta_1dot), and
+    the curvature is linear in (V, theta_1')), which depends on (U, theta_1) only: it is read
+    from the strains' G at the Gauss point, and J-weighted it joins the point's 8 x 8 matrix on
+    the (U, theta_1) slots, whose weights in the coordinates are M_rot's (dS, S).
+
+    Every Gauss point's 8 x 8 matrix is in chart components; B^T (.) B is summed over the
+    element's points in chart components of the coordinates and rotated once per element
+    (:func:`_add_element_to_global`). Returns what :func:`elastic_kernel` returns."""
     n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
-    want_tangent = blocks.shape[0] == n_el
-    if not want_tangent:
+    if blocks.shape[0] != n_el:
         return _elastic_forces(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damping, force)
+    rotary = inertia.shape[0] == n_el
     damped = damping != 0.0
     force[:] = 0.0
     X = np.empty(8)
@@ -164,20 +171,17 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
     H = np.empty((4, 8, 8))
     gW = np.empty(8)
     gY = np.empty(8)
-    HW = np.empty((8, 8))
-    HY = np.empty((8, 8))
-    AW = np.empty((8, 8))
-    AY = np.empty((8, 8))
-    HXd = np.empty((4, 8))
-    tmp = np.empty((8, 8))
+    mats = np.empty((4, 8, 8))
+    HW, AW, HXd = mats[0], mats[1], mats[2, 0:4]
     R = np.empty((8, ELEMENT_DOFS))
-    Ke = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
-    Kn = np.empty((ELEMENT_DOFS, ELEMENT_DOFS))
+    elmats = np.empty((3, ELEMENT_DOFS, ELEMENT_DOFS))
+    Ke, Kn, Kt = elmats[0], elmats[1], elmats[2]
     w1 = np.empty(ELEMENT_DOFS)
     w2 = np.empty(ELEMENT_DOFS)
     energy = 0.0
     power = 0.0
     chart_margin = 2.0
+    cg = scale + coef_c * damping
     for el in range(n_el):
         o = NODE_DOFS * el
         Ke[:, :] = 0.0
@@ -186,7 +190,7 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
             D = stiffness[el, g]
             dof_weights(S, dS, d2S, g, w1, w2)
             gauss_variables(q, o, F, w1, w2, gY, X)
-            s0 = strain_jet(X, e, G, H, want_tangent)
+            s0 = strain_jet(X, e, G, H, True)
             L = np.sqrt(X[0] ** 2 + X[1] ** 2 + X[2] ** 2)
             chart_margin = min(chart_margin, s0 / L)
             jw = w[g] * length
@@ -198,46 +202,82 @@ def elastic_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, damp
             _to_global(F, gW, gY)
             for j in range(ELEMENT_DOFS):
                 force[o + j] += jw * (w1[j] * gY[DOF_FIRST[j]] + w2[j] * gY[DOF_SECOND[j]])
-            if want_tangent:
-                # the same products as sum_k (scale + coef_c c) D_k G_ki G_kj + scale r_k H_kij, in the
-                # same order, with the factors of each k hoisted out of the loops
-                cg = scale + coef_c * damping
-                d0, d1, d2, d3 = cg * D[0], cg * D[1], cg * D[2], cg * D[3]
-                s0_, s1_, s2_, s3_ = scale * r[0], scale * r[1], scale * r[2], scale * r[3]
-                for i in range(8):
-                    a0, a1, a2, a3 = d0 * G[0, i], d1 * G[1, i], d2 * G[2, i], d3 * G[3, i]
-                    for j in range(i, 8):
+            # HW (chart components): the same products as sum_k (scale + coef_c c) D_k G_ki G_kj +
+            # scale r_k H_kij, in the same order, with the factors of each k hoisted out of the
+            # loops; B^T HW B (B: the weights w1, w2, the same in either components) is summed in
+            # chart components and rotated once per element below
+            d0, d1, d2, d3 = cg * D[0], cg * D[1], cg * D[2], cg * D[3]
+            s0_, s1_, s2_, s3_ = scale * r[0], scale * r[1], scale * r[2], scale * r[3]
+            for i in range(8):
+                a0, a1, a2, a3 = d0 * G[0, i], d1 * G[1, i], d2 * G[2, i], d3 * G[3, i]
+                for j in range(i, 8):
+                    acc = 0.0
+                    acc += a0 * G[0, j] + s0_ * H[0, i, j]
+                    acc += a1 * G[1, j] + s1_ * H[1, i, j]
+                    acc += a2 * G[2, j] + s2_ * H[2, i, j]
+                    acc += a3 * G[3, j] + s3_ * H[3, i, j]
+                    HW[i, j] = acc
+                    HW[j, i] = acc
+            if rotary:  # coef_m B^T J B on (U, theta_1), B[i, k] = G[1 + i, ROTARY_SLOTS[k]]
+                J = inertia[el, g]
+                j0, j1, j2 = coef_m * J[0], coef_m * J[1], coef_m * J[2]
+                for a in range(4):
+                    sa, ta = ROTARY_SLOTS[a], GAUSS_SLOTS[a]
+                    b0, b1, b2 = j0 * G[1, sa], j1 * G[2, sa], j2 * G[3, sa]
+                    for b in range(a + 1):
+                        sb, tb = ROTARY_SLOTS[b], GAUSS_SLOTS[b]
+                        m = b0 * G[1, sb] + b1 * G[2, sb] + b2 * G[3, sb]
+                        HW[ta, tb] += m
+                        if a != b:
+                            HW[tb, ta] += m
+            _add_sandwich(Ke, HW, w1, w2, jw, R, True)
+            if damped:  # c D e_dot through G: G^T c D (H X_dot), not symmetric
+                for k in range(4):
+                    for j in range(8):
                         acc = 0.0
-                        acc += a0 * G[0, j] + s0_ * H[0, i, j]
-                        acc += a1 * G[1, j] + s1_ * H[1, i, j]
-                        acc += a2 * G[2, j] + s2_ * H[2, i, j]
-                        acc += a3 * G[3, j] + s3_ * H[3, i, j]
-                        HW[i, j] = acc
-                        HW[j, i] = acc
-                _matrix_to_global(F, HW, tmp, HY)
-                _add_sandwich(Ke, HY, w1, w2, jw, R, True)
-                if damped:  # c D e_dot through G: G^T c D (H X_dot), not symmetric
-                    for k in range(4):
-                        for j in range(8):
-                            acc = 0.0
-                            for i in range(8):
-                                acc += H[k, j, i] * Xd[i]
-                            HXd[k, j] = acc
-                    for i in range(8):
-                        for j in range(8):
-                            acc = 0.0
-                            for k in range(4):
-                                acc += D[k] * G[k, i] * HXd[k, j]
-                            AW[i, j] = scale * damping * acc
-                    _matrix_to_global(F, AW, tmp, AY)
-                    _add_sandwich(Kn, AY.T, w1, w2, jw, R, False)  # Kn[j, i] += (B^T AY^T B)[j, i] = (B^T AY B)[i, j]
-        if want_tangent:
-            _add_symmetric(blocks, el, Ke)
-            if damped:
-                for i in range(ELEMENT_DOFS):
-                    for j in range(ELEMENT_DOFS):
-                        blocks[el, i, j] += Kn[i, j]
+                        for i in range(8):
+                            acc += H[k, j, i] * Xd[i]
+                        HXd[k, j] = acc
+                for i in range(8):
+                    for j in range(8):
+                        acc = 0.0
+                        for k in range(4):
+                            acc += D[k] * G[k, i] * HXd[k, j]
+                        AW[i, j] = scale * damping * acc
+                _add_sandwich(Kn, AW.T, w1, w2, jw, R, False)  # Kn[j, i] += (B^T AW^T B)[j, i] = (B^T AW B)[i, j]
+        # Kt = the chart block (Ke's lower triangle mirrored, plus Kn), then T_e Kt T_e^T into blocks[el]
+        for j in range(ELEMENT_DOFS):
+            Kt[j, j] = Ke[j, j] + Kn[j, j]
+            for i in range(j):
+                Kt[i, j] = Ke[j, i] + Kn[i, j]
+                Kt[j, i] = Ke[j, i] + Kn[j, i]
+        _add_element_to_global(F, Kt, Ke, blocks, el)
     return energy, chart_margin, power
+
+
+@njit(cache=True, error_model="numpy")
+def _add_element_to_global(F, Kc, tmp, blocks, el):
+    """blocks[el] += T_e Kc T_e^T: a 16 x 16 element block in chart components (Kc) in global
+    components; T_e = blockdiag(F, F, 1, 1, F, F, 1, 1) maps the chart components of the
+    element coordinates (F^T r, F^T r', theta_1, theta_1' at both nodes) to the global ones.
+    As X = T^T Y (:func:`_to_chart`) and each 3-vector of Y is a Hermite sum of the element's
+    3-vectors, T^T B = B T_e^T: sum_g B^T T HW_g T^T B = T_e (sum_g B^T HW_g B) T_e^T.
+    ``tmp`` (16 x 16): scratch."""
+    for r in range(ELEMENT_DOFS):  # tmp = Kc T_e^T
+        for o in _VEC_OFFSETS:
+            k0, k1, k2 = Kc[r, o], Kc[r, o + 1], Kc[r, o + 2]
+            for i in range(3):
+                tmp[r, o + i] = k0 * F[i, 0] + k1 * F[i, 1] + k2 * F[i, 2]
+        for o in _ANG_OFFSETS:
+            tmp[r, o] = Kc[r, o]
+    for o in _VEC_OFFSETS:  # blocks[el] += T_e tmp
+        for i in range(3):
+            f0, f1, f2 = F[i, 0], F[i, 1], F[i, 2]
+            for c in range(ELEMENT_DOFS):
+                blocks[el, o + i, c] += f0 * tmp[o, c] + f1 * tmp[o + 1, c] + f2 * tmp[o + 2, c]
+    for o in _ANG_OFFSETS:
+        for c in range(ELEMENT_DOFS):
+            blocks[el, o, c] += tmp[o, c]
 
 
 @njit(cache=True, error_model="numpy")
@@ -375,11 +415,14 @@ def translational_mass_blocks(length, S, w, rho_a) -> np.ndarray:
 
 @njit(cache=True, error_model="numpy")
 def add_translational_mass(mass, n_el, scale, blocks):
-    """blocks[e] += scale * mass[e] for every element (``mass``: (>= n_el, 16, 16))."""
+    """blocks[e] += scale * mass[e] for every element (``mass``: (>= n_el, 16, 16), the blocks of
+    :func:`translational_mass_blocks`: only the same components of the vector coefficients
+    couple, so only those 48 entries are added)."""
     for el in range(n_el):
-        for i in range(ELEMENT_DOFS):
-            for j in range(ELEMENT_DOFS):
-                blocks[el, i, j] += scale * mass[el, i, j]
+        for oa in _VEC_OFFSETS:
+            for ob in _VEC_OFFSETS:
+                for k in range(3):
+                    blocks[el, oa + k, ob + k] += scale * mass[el, oa + k, ob + k]
 
 
 @njit(cache=True, error_model="numpy")
