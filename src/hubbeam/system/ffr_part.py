@@ -47,7 +47,7 @@ from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.clamp import add_clamp_jacobian, clamp_residual, clamp_work
+from hubbeam.system.clamp import add_clamp_jacobian, clamp_residual
 from hubbeam.system.mount import Mount, tip_from_mount
 from hubbeam.system.parts import BeamPart
 
@@ -351,45 +351,51 @@ def rotations_about(phi: np.ndarray) -> np.ndarray:
 
 
 # ================================================================ compiled terms: the kind "FFR beams"
-#: dimensions of the per-beam arrays of :class:`hubbeam.elements.ffr.kernels.FfrArrays`
-FFR_FIELD_NDIM = {"m": 0, "c0": 1, "Sbar": 2, "I0": 2, "J": 3, "II": 4, "Mff": 2, "K": 2, "EAl": 1,
-                  "mean_stretch": 2, "mean_slope2": 3, "stiffening": 0, "C_struct": 2, "damped": 0,
-                  "tip_force": 1, "tip_moment": 1, "tip_rows": 2, "tip_rotation_rows": 2, "length": 0, "N_pts": 3,
-                  "x_pts": 1, "w_pts": 1, "width": 1}
+#: the constants of :class:`hubbeam.elements.ffr.kernels.FfrArrays` that :class:`FfrBeams` holds
+#: in one array per group of equal shapes, each field in its slot (its place in the group) along
+#: the axis after the beam's: every array of the pack costs its reference count each time compiled
+#: code passes the model or the pack (measured: 11 more arrays, +0.5 us per step_powers on exp1)
+FFR_GROUPS = {"scalars": ("m", "stiffening", "damped", "length"),
+              "vectors": ("c0", "tip_force", "tip_moment"),
+              "rows": ("Sbar", "tip_rows", "tip_rotation_rows"),
+              "squares": ("Mff", "K", "C_struct"),
+              "points": ("x_pts", "w_pts", "width")}
+#: the constants of FfrArrays that FfrBeams holds one array each
+FFR_SINGLE = ("I0", "J", "II", "EAl", "mean_stretch", "mean_slope2", "N_pts")
+#: the columns of :attr:`FfrBeams.places`
+INDEX, X0, LAMBDA0, NF = 0, 1, 2, 3
 
 
 class FfrBeams(NamedTuple):
     """The FFR beams' constants (:func:`hubbeam.elements.ffr.kernels.pack`), one row per FFR
-    beam, zero-padded to the largest beam (the kernels read the leading nf entries)."""
+    beam, zero-padded to the largest beam (the kernels read the leading nf entries); fields of
+    equal shape grouped (:data:`FFR_GROUPS`, slots as listed there; :func:`ffr_arguments`)."""
 
-    index: np.ndarray  # int64 (nb,): the beam's place among all beams
-    x0: np.ndarray  # int64 (nb,): where q_k starts in x
-    lambda0: np.ndarray  # int64 (nb,): where its clamp multipliers start in lambda
-    nf: np.ndarray  # int64 (nb,): elastic coordinates
+    places: np.ndarray  # int64 (nb, 4): the beam's place among all beams (INDEX), where q_k starts in x (X0),
+    #                     where its clamp multipliers start in lambda (LAMBDA0), its elastic coordinates (NF)
     mount: np.ndarray  # (nb, 4) radius, twist, azimuth, precone
-    m: np.ndarray
-    c0: np.ndarray
-    Sbar: np.ndarray
+    scalars: np.ndarray  # (nb, 4): m (kg), stiffening, damped, length (m)
+    vectors: np.ndarray  # (nb, 3, 3): c0, tip_force, tip_moment
+    rows: np.ndarray  # (nb, 3, 3, nf): Sbar, tip_rows, tip_rotation_rows
+    squares: np.ndarray  # (nb, 3, nf, nf): Mff, K, C_struct (structural damping c K, N s)
+    points: np.ndarray  # (nb, 3, npts): x_pts, w_pts, width of the centre-line points
     I0: np.ndarray
     J: np.ndarray
     II: np.ndarray
-    Mff: np.ndarray
-    K: np.ndarray
     EAl: np.ndarray
     mean_stretch: np.ndarray
     mean_slope2: np.ndarray
-    stiffening: np.ndarray
-    C_struct: np.ndarray  # (nb, nf, nf) structural damping c K (N s)
-    damped: np.ndarray
-    tip_force: np.ndarray
-    tip_moment: np.ndarray
-    tip_rows: np.ndarray
-    tip_rotation_rows: np.ndarray
-    length: np.ndarray
     N_pts: np.ndarray
-    x_pts: np.ndarray
-    w_pts: np.ndarray
-    width: np.ndarray
+
+
+def _stacked(values) -> np.ndarray:
+    """The arrays ``values`` (of equal ndim) along a new leading axis, zero-padded to the largest."""
+    values = [np.asarray(v, dtype=float) for v in values]
+    shape = tuple(np.max([v.shape for v in values], axis=0)) if values[0].ndim else ()
+    stacked = np.zeros((len(values),) + shape)
+    for i, v in enumerate(values):
+        stacked[(i,) + tuple(slice(0, n) for n in v.shape)] = v
+    return stacked
 
 
 def pack_ffr_beams(system, layout) -> FfrBeams | None:
@@ -399,18 +405,13 @@ def pack_ffr_beams(system, layout) -> FfrBeams | None:
     if not ffr:
         return None
     packs = [ffr_constants(b) for _, b in ffr]
-    fields = {}
-    for name, ndim in FFR_FIELD_NDIM.items():
-        values = [np.asarray(getattr(p, name), dtype=float) for p in packs]
-        shape = tuple(np.max([v.shape for v in values], axis=0)) if ndim else ()
-        stacked = np.zeros((len(values),) + shape)
-        for i, v in enumerate(values):
-            stacked[(i,) + tuple(slice(0, n) for n in v.shape)] = v
-        fields[name] = stacked
+    fields = {group: _stacked([_stacked([getattr(p, name) for name in names]) for p in packs])
+              for group, names in FFR_GROUPS.items()}
+    fields.update({name: _stacked([getattr(p, name) for p in packs]) for name in FFR_SINGLE})
     ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
-    return FfrBeams(ints([k for k, _ in ffr]), ints([layout.beam_x(k).start for k, _ in ffr]),
-                    ints([layout.clamp_lambda(k).start for k, _ in ffr]), ints([b.beam.ndof for _, b in ffr]),
-                    np.array([b.mount.params() for _, b in ffr], dtype=float).reshape(len(ffr), 4), **fields)
+    places = np.array([(k, layout.beam_x(k).start, layout.clamp_lambda(k).start, b.beam.ndof) for k, b in ffr],
+                      dtype=np.int64).reshape(len(ffr), 4)
+    return FfrBeams(places, np.array([b.mount.params() for _, b in ffr], dtype=float).reshape(len(ffr), 4), **fields)
 
 
 def ffr_bandwidth(system) -> int:
@@ -420,26 +421,36 @@ def ffr_bandwidth(system) -> int:
 
 
 @njit(cache=True)
-def ffr_arguments(pack, k, drag_c):
-    """(inv, tip, drag) of FFR beam k for :mod:`hubbeam.elements.ffr.kernels` (``drag_c``: c1, c2 of Eq. 37)."""
-    inv = (pack.m[k], pack.c0[k], pack.Sbar[k], pack.I0[k], pack.J[k], pack.II[k], pack.Mff[k], pack.K[k], pack.EAl[k],
-           pack.mean_stretch[k], pack.mean_slope2[k], pack.stiffening[k], pack.C_struct[k], pack.damped[k])
-    tip = (pack.tip_force[k], pack.tip_moment[k], pack.tip_rows[k], pack.tip_rotation_rows[k], pack.length[k])
-    drag = (pack.N_pts[k], pack.x_pts[k], pack.w_pts[k], pack.width[k], drag_c[0], drag_c[1])
-    return inv, tip, drag
+def ffr_drag_arguments(pack, k, drag_c):
+    """The drag group of FFR beam k for :mod:`hubbeam.elements.ffr.kernels` (``drag_c``: c1, c2 of Eq. 37)."""
+    pts = pack.points
+    return (pack.N_pts[k], pts[k, 0], pts[k, 1], pts[k, 2], drag_c[0], drag_c[1])
 
 
 @njit(cache=True)
-def ffr_clamp(mount, theta, q, lam, phi, jac, hess):
+def ffr_arguments(pack, k, drag_c):
+    """(inv, tip, drag) of FFR beam k for :mod:`hubbeam.elements.ffr.kernels` (``drag_c``: c1, c2 of Eq. 37).
+    Each array is a view of the pack's (each costs its construction and reference count, about
+    10 to 20 ns): callers that need only some groups build only those (:func:`ffr_drag_arguments`)."""
+    sc, vec, rows, sq = pack.scalars, pack.vectors, pack.rows, pack.squares  # slots: FFR_GROUPS
+    inv = (sc[k, 0], vec[k, 0], rows[k, 0], pack.I0[k], pack.J[k], pack.II[k], sq[k, 0], sq[k, 1], pack.EAl[k],
+           pack.mean_stretch[k], pack.mean_slope2[k], sc[k, 1], sq[k, 2], sc[k, 2])
+    tip = (vec[k, 1], vec[k, 2], rows[k, 1], rows[k, 2], sc[k, 3])
+    return inv, tip, ffr_drag_arguments(pack, k, drag_c)
+
+
+@njit(cache=True)
+def ffr_clamp(mount, theta, q, lam, phi, jac):
     """The six clamp equations of an FFR body frame (see :mod:`hubbeam.system.ffr_part`):
     r_C - R i_k(theta) = 0, Theta1 + theta + psi = 0, Theta2 - p = 0, Theta3 + beta = 0, with
-    their Jacobian on [theta, r_C, Theta] (6 x 7, written into the leading columns of ``jac``)
-    and the multiplier-weighted Hessian (only d2/dtheta2 of the position rows; hess[0, 0])."""
+    their Jacobian on [theta, r_C, Theta] (6 x 7, written into the leading columns of ``jac``).
+    Returns the multiplier-weighted Hessian's only entry, d2/dtheta2 of the position rows."""
     radius, twist, azimuth, precone = mount[0], mount[1], mount[2], mount[3]
     a = theta + azimuth
     c, s = np.cos(a), np.sin(a)
-    jac[:, :] = 0.0
-    hess[:, :] = 0.0
+    for i in range(6):
+        for j in range(7):
+            jac[i, j] = 0.0
     phi[0] = q[0] - radius * c
     phi[1] = q[1]
     phi[2] = q[2] - radius * s
@@ -454,7 +465,7 @@ def ffr_clamp(mount, theta, q, lam, phi, jac, hess):
     jac[3, 4] = 1.0
     jac[4, 5] = 1.0
     jac[5, 6] = 1.0
-    hess[0, 0] = radius * (lam[0] * c + lam[2] * s)
+    return radius * (lam[0] * c + lam[2] * s)
 
 
 def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
@@ -467,21 +478,24 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
     theta = x[ctx.theta]
     power = 0.0
     hub_force = 0.0
-    phi, jac, hess, lam_k = clamp_work()
-    for k in range(pack.nf.shape[0]):
-        n = 6 + pack.nf[k]
-        x0 = pack.x0[k]
-        l0 = pack.lambda0[k]
+    phi = np.empty(6)  # the clamp's Phi, Jacobian (on [theta, r_C, Theta]) and multipliers
+    jac = np.empty((6, 7))
+    lam_k = np.empty(6)
+    places = pack.places
+    for k in range(places.shape[0]):
+        n = 6 + places[k, NF]
+        x0 = places[k, X0]
+        l0 = places[k, LAMBDA0]
         q = x[x0 : x0 + n]
         force = np.empty(n)
         nbk = n if want_matrix else 0
-        block = np.zeros((nbk, nbk))
+        block = np.empty((nbk, nbk))  # ffr_body_terms overwrites it
         inv, tip, drag = ffr_arguments(pack, k, ctx.drag)
         power += ffr_body_terms(inv, q, v[x0 : x0 + n], acc[x0 : x0 + n], ctx.gravity, tip, drag, coef_m, coef_c,
                                 coef_k, load_factor, want_matrix, force, block)
         for i in range(6):
             lam_k[i] = lam[l0 + i]
-        ffr_clamp(pack.mount[k], theta, q, lam_k, phi, jac, hess)
+        hess = ffr_clamp(pack.mount[k], theta, q, lam_k, phi, jac)
         hub_force += clamp_residual(lam_k, phi, jac, 6, scale, zl, l0, force, res)
         for j in range(n):
             res[zx[x0 + j]] += coef_k * force[j]
@@ -498,29 +512,31 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
             for j in range(n):
                 add_entry(ab, brow, bcol, bb, ku, q_start + i, q_start + j, block[i, j])
         add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 6, scale, zl, l0, q_start, z_theta)
-        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta, coef_k * hess[0, 0])
+        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta, coef_k * hess)
     return hub_force, 2.0, power
 
 
 def ffr_beam_energies(pack, ctx, F, x, v, beams):
     """Kinetic, strain and gravity energy of every FFR beam, tip body included (J)."""
-    for k in range(pack.nf.shape[0]):
-        n = 6 + pack.nf[k]
-        x0 = pack.x0[k]
+    places = pack.places
+    for k in range(places.shape[0]):
+        n = 6 + places[k, NF]
+        x0 = places[k, X0]
         inv, _, _ = ffr_arguments(pack, k, ctx.drag)
         kinetic, strain, potential = ffr_energies(inv, x[x0 : x0 + n], v[x0 : x0 + n], ctx.gravity)
-        terms.add_beam_energy(beams, pack.index[k], kinetic, strain, potential)
+        terms.add_beam_energy(beams, places[k, INDEX], kinetic, strain, potential)
     return 0.0, 0.0, 0.0
 
 
 def ffr_power(pack, ctx, F, x, v):
     """Power of the drag of Eq. 37 and of the structural damping on every FFR beam (W)."""
     power = 0.0
-    for k in range(pack.nf.shape[0]):
-        n = 6 + pack.nf[k]
-        x0 = pack.x0[k]
-        inv, _, drag = ffr_arguments(pack, k, ctx.drag)
-        power += ffr_dissipated_power(x[x0 : x0 + n], v[x0 : x0 + n], inv, drag)
+    places = pack.places
+    for k in range(places.shape[0]):
+        n = 6 + places[k, NF]
+        x0 = places[k, X0]
+        power += ffr_dissipated_power(x[x0 : x0 + n], v[x0 : x0 + n], pack.squares[k, 2], pack.scalars[k, 2],
+                                      ffr_drag_arguments(pack, k, ctx.drag))
     return power
 
 
@@ -530,13 +546,15 @@ def ffr_tips(pack, ctx, x, out):
     A = np.empty((3, 3))
     D = np.empty((3, 3))
     tip_at = np.empty(3)
-    for k in range(pack.nf.shape[0]):
-        x0 = pack.x0[k]
+    places = pack.places
+    for k in range(places.shape[0]):
+        x0 = places[k, X0]
         cardan(x[x0 + 3], x[x0 + 4], x[x0 + 5], A, D)
-        local = tip_lever(pack.tip_rows[k], pack.length[k], x[x0 + 6 : x0 + 6 + pack.nf[k]])
+        length = pack.scalars[k, 3]
+        local = tip_lever(pack.rows[k, 1], length, x[x0 + 6 : x0 + 6 + places[k, NF]])
         for i in range(3):
             tip_at[i] = x[x0 + i] + A[i, 0] * local[0] + A[i, 1] * local[1] + A[i, 2] * local[2]
-        tip_from_mount(pack.mount[k], theta, pack.length[k], tip_at, out[pack.index[k]])
+        tip_from_mount(pack.mount[k], theta, length, tip_at, out[places[k, INDEX]])
 
 
 KIND = terms.register(FfrBeams, pack_ffr_beams, ffr_equations, ffr_beam_energies, ffr_power, ffr_tips,

@@ -107,24 +107,24 @@ def cardan_derivatives(t1, t2, t3, dA, dD):
 
 
 @njit(cache=True, error_model="numpy")
-def cardan_rate(t2, t3, r1, r2, r3, h):
-    """h = D'(Theta, Theta') Theta' (Eq. 70), as
-    :func:`~hubbeam.elements.ffr.cardan.angular_velocity_matrix_rate`."""
-    s2, c2 = math.sin(t2), math.cos(t2)
-    s3, c3 = math.sin(t3), math.cos(t3)
-    h[0] = r1 * (c2 * r2)
-    h[1] = r1 * (-s2 * r2 * c3 - c2 * s3 * r3) + r2 * (c3 * r3)
-    h[2] = r1 * (s2 * r2 * s3 - c2 * c3 * r3) + r2 * (-s3 * r3)
+def cardan_rate(c2, s2, c3, s3, r1, r2, r3):
+    """h = D'(Theta, Theta') Theta' (Eq. 70; rad/s^2, a 3-tuple), as
+    :func:`~hubbeam.elements.ffr.cardan.angular_velocity_matrix_rate`, from the cosines and
+    sines of Theta2, Theta3 (D of :func:`cardan` holds s2 = D[0, 0], s3 = D[1, 1], c3 = D[2, 1])
+    and the rates Theta' = (r1, r2, r3)."""
+    return (r1 * (c2 * r2),
+            r1 * (-s2 * r2 * c3 - c2 * s3 * r3) + r2 * (c3 * r3),
+            r1 * (s2 * r2 * s3 - c2 * c3 * r3) + r2 * (-s3 * r3))
 
 
 # ---------------------------------------------------------------------------- shared pieces
 @njit(cache=True, error_model="numpy")
-def _moments(inv, p, pd, with_rate, nf, St, Q2, Q2d, R2):
+def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
     """St = c0 + Sbar p; Q2[k, l, g] = sum_f p_f II[k, l, f, g] (and, when ``with_rate``,
     Q2d the same with p'); R2 = I0 + J p + (J p)^T + p II p (the second moment, body frame).
     II is symmetric as built, II[k, l, f, g] = II[l, k, g, f], so Q2 also gives the
-    contractions on the last index: sum_g II[k, l, f, g] p_g = Q2[l, k, f]."""
-    c0, Sbar, I0, J, II = inv[1], inv[2], inv[3], inv[4], inv[5]
+    contractions on the last index: sum_g II[k, l, f, g] p_g = Q2[l, k, f]. (c0, Sbar, I0, J,
+    II: the invariants of the module docstring.)"""
     for k in range(3):
         acc = 0.0
         for f in range(nf):
@@ -147,26 +147,23 @@ def _moments(inv, p, pd, with_rate, nf, St, Q2, Q2d, R2):
                     if pdf != 0.0:
                         for g in range(nf):
                             Q2d[k, l, g] += pdf * II[k, l, f, g]
-    Jp = np.empty((3, 3))
     for k in range(3):
         for l in range(3):
+            jkl = 0.0  # (J p)[k, l] and (J p)[l, k]
+            jlk = 0.0
             acc = 0.0
             for f in range(nf):
-                acc += J[k, l, f] * p[f]
-            Jp[k, l] = acc
-    for k in range(3):
-        for l in range(3):
-            acc = 0.0
-            for g in range(nf):
-                acc += Q2[k, l, g] * p[g]
-            R2[k, l] = I0[k, l] + Jp[k, l] + Jp[l, k] + acc
+                jkl += J[k, l, f] * p[f]
+                jlk += J[l, k, f] * p[f]
+                acc += Q2[k, l, f] * p[f]
+            R2[k, l] = I0[k, l] + jkl + jlk + acc
 
 
 @njit(cache=True, error_model="numpy")
-def _elastic(inv, p, nf, want_tangent, f_el, K_el):
+def _elastic(K, EAl, a, G, stiff, p, nf, want_tangent, f_el, K_el):
     """Internal force f_el (nf) and (when ``want_tangent``) tangent K_el (nf, nf) of
-    :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>`."""
-    K, EAl, a, G, stiff = inv[7], inv[8], inv[9], inv[10], inv[11]
+    :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>` (K, EAl, a =
+    mean_stretch, G = mean_slope2, stiff = stiffening: see the module docstring)."""
     for i in range(nf):
         acc = 0.0
         for j in range(nf):
@@ -212,61 +209,69 @@ def _elastic(inv, p, nf, want_tangent, f_el, K_el):
 
 @njit(cache=True, error_model="numpy")
 def tip_lever(T, length, p):
-    """The tip point in the body frame, (L, 0, 0) + T p (m; T the tip's displacement rows over
-    p, 3 x nf): the lever arm of the tip force, and the tip centroid's place on the body."""
-    r = np.zeros(3)
-    r[0] = length
-    for i in range(3):
-        for f in range(p.shape[0]):
-            r[i] += T[i, f] * p[f]
-    return r
+    """The tip point in the body frame, (L, 0, 0) + T p (m, a 3-tuple; T the tip's displacement
+    rows over p, 3 x nf): the lever arm of the tip force, and the tip centroid's place on the body."""
+    r0 = length
+    r1 = 0.0
+    r2 = 0.0
+    for f in range(p.shape[0]):
+        pf = p[f]
+        r0 += T[0, f] * pf
+        r1 += T[1, f] * pf
+        r2 += T[2, f] * pf
+    return r0, r1, r2
 
 
 @njit(cache=True, error_model="numpy")
-def _applied_loads(inv, tip, nf, A, St, p, gravity, Qa):
-    """Q_g + Q_tip (6 + nf) on v (Eq. 67 and FfrPart._tip_load): the tip force acts at the
-    deformed tip point (:func:`tip_lever`)."""
-    m, Sbar = inv[0], inv[2]
-    F, Mo, T, R, length = tip
-    gb = np.empty(3)
-    fb = np.empty(3)
-    mb = np.empty(3)
-    for i in range(3):
-        gb[i] = A[0, i] * gravity[0] + A[1, i] * gravity[1] + A[2, i] * gravity[2]
-        fb[i] = A[0, i] * F[0] + A[1, i] * F[1] + A[2, i] * F[2]
-        mb[i] = A[0, i] * Mo[0] + A[1, i] * Mo[1] + A[2, i] * Mo[2]
-    for i in range(3):
-        Qa[i] = m * gravity[i] + F[i]
-    r = tip_lever(T, length, p)
+def _applied_loads(m, Sbar, F, Mo, T, R, length, nf, A, St, p, gravity, factor, out):
+    """out += factor (Q_g + Q_tip) (6 + nf, on v; Eq. 67 and FfrPart._tip_load): m, Sbar the
+    invariants, F, Mo, T, R, length the ``tip`` group of the module docstring. The tip force
+    acts at the deformed tip point (:func:`tip_lever`)."""
+    g0, g1, g2 = gravity[0], gravity[1], gravity[2]
+    F0, F1, F2 = F[0], F[1], F[2]
+    M0, M1, M2 = Mo[0], Mo[1], Mo[2]
+    # gravity, tip force and tip moment in the body frame (A0^T g etc.)
+    gb0 = A[0, 0] * g0 + A[1, 0] * g1 + A[2, 0] * g2
+    gb1 = A[0, 1] * g0 + A[1, 1] * g1 + A[2, 1] * g2
+    gb2 = A[0, 2] * g0 + A[1, 2] * g1 + A[2, 2] * g2
+    fb0 = A[0, 0] * F0 + A[1, 0] * F1 + A[2, 0] * F2
+    fb1 = A[0, 1] * F0 + A[1, 1] * F1 + A[2, 1] * F2
+    fb2 = A[0, 2] * F0 + A[1, 2] * F1 + A[2, 2] * F2
+    mb0 = A[0, 0] * M0 + A[1, 0] * M1 + A[2, 0] * M2
+    mb1 = A[0, 1] * M0 + A[1, 1] * M1 + A[2, 1] * M2
+    mb2 = A[0, 2] * M0 + A[1, 2] * M1 + A[2, 2] * M2
+    out[0] += factor * (m * g0 + F0)
+    out[1] += factor * (m * g1 + F1)
+    out[2] += factor * (m * g2 + F2)
+    r0, r1, r2 = tip_lever(T, length, p)
     # St x gb + r x fb + mb
-    Qa[3] = St[1] * gb[2] - St[2] * gb[1] + r[1] * fb[2] - r[2] * fb[1] + mb[0]
-    Qa[4] = St[2] * gb[0] - St[0] * gb[2] + r[2] * fb[0] - r[0] * fb[2] + mb[1]
-    Qa[5] = St[0] * gb[1] - St[1] * gb[0] + r[0] * fb[1] - r[1] * fb[0] + mb[2]
+    out[3] += factor * (St[1] * gb2 - St[2] * gb1 + r1 * fb2 - r2 * fb1 + mb0)
+    out[4] += factor * (St[2] * gb0 - St[0] * gb2 + r2 * fb0 - r0 * fb2 + mb1)
+    out[5] += factor * (St[0] * gb1 - St[1] * gb0 + r0 * fb1 - r1 * fb0 + mb2)
     for f in range(nf):
-        Qa[6 + f] = (Sbar[0, f] * gb[0] + Sbar[1, f] * gb[1] + Sbar[2, f] * gb[2]
-                     + T[0, f] * fb[0] + T[1, f] * fb[1] + T[2, f] * fb[2]
-                     + R[0, f] * mb[0] + R[1, f] * mb[1] + R[2, f] * mb[2])
+        out[6 + f] += factor * (Sbar[0, f] * gb0 + Sbar[1, f] * gb1 + Sbar[2, f] * gb2
+                                + T[0, f] * fb0 + T[1, f] * fb1 + T[2, f] * fb2
+                                + R[0, f] * mb0 + R[1, f] * mb1 + R[2, f] * mb2)
 
 
 @njit(cache=True, error_model="numpy")
-def _mass_matrix(inv, nf, A, St, Q2, R2, Mv):
+def _mass_matrix(m, Sbar, J, Mff, nf, A, St, Q2, R2, Mv):
     """M_v of Eq. 66 (6 + nf square) on v."""
-    m, Sbar, J, Mff = inv[0], inv[2], inv[4], inv[6]
     n = 6 + nf
     for i in range(3):
         for j in range(3):
             Mv[i, j] = 0.0
         Mv[i, i] = m
     # M[0:3, 3:6] = -A0 skew(St), M[0:3, 6:] = A0 Sbar, and their transposes
-    sk = np.empty((3, 3))
-    sk[0, 0], sk[0, 1], sk[0, 2] = 0.0, -St[2], St[1]
-    sk[1, 0], sk[1, 1], sk[1, 2] = St[2], 0.0, -St[0]
-    sk[2, 0], sk[2, 1], sk[2, 2] = -St[1], St[0], 0.0
+    s0, s1, s2 = St[0], St[1], St[2]
     for a in range(3):
-        for j in range(3):
-            val = -(A[a, 0] * sk[0, j] + A[a, 1] * sk[1, j] + A[a, 2] * sk[2, j])
-            Mv[a, 3 + j] = val
-            Mv[3 + j, a] = val
+        a0, a1, a2 = A[a, 0], A[a, 1], A[a, 2]
+        # row a of A0 skew(St): (a1 s2 - a2 s1, a2 s0 - a0 s2, a0 s1 - a1 s0)
+        v0 = -(a1 * s2 - a2 * s1)
+        v1 = -(a2 * s0 - a0 * s2)
+        v2 = -(a0 * s1 - a1 * s0)
+        Mv[a, 3], Mv[a, 4], Mv[a, 5] = v0, v1, v2
+        Mv[3, a], Mv[4, a], Mv[5, a] = v0, v1, v2
         for f in range(nf):
             val = A[a, 0] * Sbar[0, f] + A[a, 1] * Sbar[1, f] + A[a, 2] * Sbar[2, f]
             Mv[a, 6 + f] = val
@@ -430,12 +435,13 @@ def _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
 
 
 @njit(cache=True, error_model="numpy")
-def ffr_dissipated_power(q, v, inv, drag):
+def ffr_dissipated_power(q, v, Cs, damped, drag):
     """The power dissipated by the drag (Eq. 64) and the structural damping at (q, q'),
     -Q_d . v + p'^T C_struct p' (W, >= 0): what :func:`ffr_body_terms` returns, without the
-    body's other terms (for the energy balance after each step)."""
+    body's other terms (for the energy balance after each step). Cs = C_struct and ``damped``
+    of the invariants, ``drag`` the drag group (module docstring): only these, so that the
+    caller builds no views of the other invariants."""
     power = 0.0
-    Cs, damped = inv[12], inv[13]
     if damped != 0.0:
         nf = q.shape[0] - 6
         for f in range(nf):
@@ -533,9 +539,9 @@ def ffr_energies(inv, q, v, gravity):
     St = np.empty(3)
     Q2 = np.empty((3, 3, nf))
     R2 = np.empty((3, 3))
-    _moments(inv, p, p, False, nf, St, Q2, Q2, R2)
+    _moments(inv[1], inv[2], inv[3], inv[4], inv[5], p, p, False, nf, St, Q2, Q2, R2)
     Mv = np.empty((n, n))
-    _mass_matrix(inv, nf, A, St, Q2, R2, Mv)
+    _mass_matrix(inv[0], inv[2], inv[4], inv[6], nf, A, St, Q2, R2, Mv)
     kinetic = _half_square(Mv, vb, n)
     K, EAl, a, G, stiff = inv[7], inv[8], inv[9], inv[10], inv[11]
     strain = _half_square(K, p, nf)
@@ -574,14 +580,11 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     nf = n - 6
     # v-space rates and accelerations
     A, D, vb = _frame_and_rates(q, v, n)
-    vdot = np.empty(n)
-    h = np.empty(3)
-    cardan_rate(q[4], q[5], v[3], v[4], v[5], h)
-    for i in range(3):
-        vdot[i] = acc[i]
-        vdot[3 + i] = D[i, 0] * acc[3] + D[i, 1] * acc[4] + D[i, 2] * acc[5] + h[i]
-    for f in range(nf):
-        vdot[6 + f] = acc[6 + f]
+    # vdot = H q'' + h: q'' but for omega^b' = D Theta'' + h
+    h0, h1, h2 = cardan_rate(math.cos(q[4]), D[0, 0], D[2, 1], D[1, 1], v[3], v[4], v[5])
+    wd0 = D[0, 0] * acc[3] + D[0, 1] * acc[4] + D[0, 2] * acc[5] + h0
+    wd1 = D[1, 0] * acc[3] + D[1, 1] * acc[4] + D[1, 2] * acc[5] + h1
+    wd2 = D[2, 0] * acc[3] + D[2, 1] * acc[4] + D[2, 2] * acc[5] + h2
     p = q[6:]
     pd = v[6:]
     w0, w1, w2 = vb[3], vb[4], vb[5]
@@ -591,9 +594,9 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     Q2 = np.empty((3, 3, nf))
     Q2d = np.empty((3, 3, nf))
     R2 = np.empty((3, 3))
-    _moments(inv, p, pd, True, nf, St, Q2, Q2d, R2)
+    _moments(inv[1], Sbar, inv[3], J, inv[5], p, pd, True, nf, St, Q2, Q2d, R2)
     Mv = np.empty((n, n))
-    _mass_matrix(inv, nf, A, St, Q2, R2, Mv)
+    _mass_matrix(inv[0], inv[2], inv[4], inv[6], nf, A, St, Q2, R2, Mv)
 
     # Q_v (Eq. 67), with W = [omega^b]x and WW = W W as scalars (the same products as the
     # matrix forms, without their zero terms)
@@ -659,13 +662,11 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
         Q[6 + f] = -s - 2.0 * s3
 
     # applied loads, elastic force
-    Qa = np.empty(n)
-    _applied_loads(inv, tip, nf, A, St, p, gravity, Qa)
-    for i in range(n):
-        Q[i] += load_factor * Qa[i]
+    F, Mo, T, R, length = tip
+    _applied_loads(inv[0], Sbar, F, Mo, T, R, length, nf, A, St, p, gravity, load_factor, Q)
     f_el = np.empty(nf)
     K_el = np.empty((nf, nf))
-    _elastic(inv, p, nf, want_matrix, f_el, K_el)
+    _elastic(inv[7], inv[8], inv[9], inv[10], inv[11], p, nf, want_matrix, f_el, K_el)
     for f in range(nf):
         Q[6 + f] -= f_el[f]
     # structural damping c K p'
@@ -693,16 +694,17 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
             _drag_matrix(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, coef_c, block)
 
     # force = H^T (M_v vdot - Q)
-    r = np.empty(n)
     for i in range(n):
-        s = 0.0
-        for j in range(n):
-            s += Mv[i, j] * vdot[j]
-        r[i] = s - Q[i]
-    for i in range(n):
-        force[i] = r[i]
+        s = Mv[i, 0] * acc[0] + Mv[i, 1] * acc[1] + Mv[i, 2] * acc[2]
+        s += Mv[i, 3] * wd0
+        s += Mv[i, 4] * wd1
+        s += Mv[i, 5] * wd2
+        for j in range(6, n):
+            s += Mv[i, j] * acc[j]
+        force[i] = s - Q[i]
+    r3, r4, r5 = force[3], force[4], force[5]
     for i in range(3):
-        force[3 + i] = D[0, i] * r[3] + D[1, i] * r[4] + D[2, i] * r[5]
+        force[3 + i] = D[0, i] * r3 + D[1, i] * r4 + D[2, i] * r5
 
     if want_matrix:
         _to_q(block, D, n)
@@ -747,8 +749,8 @@ def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
         for f in range(nf):
             s += Sbar[k, f] * p[f]
         St[k] = inv[1][k] + s
-    Qa = np.empty(n)
-    _applied_loads(inv, tip, nf, A, St, p, gravity, Qa)
+    Qa = np.zeros(n)
+    _applied_loads(inv[0], Sbar, F, Mo, T, R, length, nf, A, St, p, gravity, 1.0, Qa)
     gb = np.empty(3)
     fb = np.empty(3)
     for i in range(3):
@@ -829,7 +831,7 @@ def ffr_spin_stiffness(inv, q, w, out):
     St = np.empty(3)
     Q2 = np.empty((3, 3, nf))
     R2 = np.empty((3, 3))
-    _moments(inv, p, p, False, nf, St, Q2, Q2, R2)
+    _moments(inv[1], inv[2], inv[3], inv[4], inv[5], p, p, False, nf, St, Q2, Q2, R2)
     for i in range(n):
         for j in range(n):
             out[i, j] = 0.0
