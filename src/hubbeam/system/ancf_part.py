@@ -288,9 +288,10 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
         kernels.rotary_inertia_kernel(q, qd, qa, Fk, le, S, dS, w, pack.inertia[k], coef_m, term, no_blocks)
         for j in range(nq):
             fq[j] -= term[j]  # -(Q_v - M_rot acc)
-        power += kernels.drag_kernel(qd, le, S, w, pack.width[k], ctx.drag[0], ctx.drag[1], coef_c, term, blocks)
-        for j in range(nq):
-            fq[j] -= term[j]
+        if ctx.drag[0] != 0.0 or ctx.drag[1] != 0.0:
+            power += kernels.drag_kernel(qd, le, S, w, pack.width[k], ctx.drag[0], ctx.drag[1], coef_c, term, blocks)
+            for j in range(nq):
+                fq[j] -= term[j]
         kernels.translational_mass_product(pack.trans_mass[k], qa, fq)
         applied_load(pack, k, q, Fk, load_factor, term, tip_jacobian)
         for j in range(nq):

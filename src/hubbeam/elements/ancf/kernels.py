@@ -185,13 +185,14 @@ def elastic_rotary_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, referenc
     for el in range(n_el):
         o = NODE_DOFS * el
         Ke[:, :] = 0.0
-        Kn[:, :] = 0.0
+        if damped:
+            Kn[:, :] = 0.0
         for g in range(w.shape[0]):
             D = stiffness[el, g]
             dof_weights(S, dS, d2S, g, w1, w2)
             gauss_variables(q, o, F, w1, w2, gY, X)
             s0 = strain_jet(X, e, G, H, True)
-            L = np.sqrt(X[0] ** 2 + X[1] ** 2 + X[2] ** 2)
+            L = e[0] + 1.0  # |U| (eps0 = L - 1: exact for 0.5 <= L <= 2, and so is L)
             chart_margin = min(chart_margin, s0 / L)
             jw = w[g] * length
             if damped:
@@ -245,23 +246,32 @@ def elastic_rotary_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, referenc
                             acc += D[k] * G[k, i] * HXd[k, j]
                         AW[i, j] = scale * damping * acc
                 _add_sandwich(Kn, AW.T, w1, w2, jw, R, False)  # Kn[j, i] += (B^T AW^T B)[j, i] = (B^T AW B)[i, j]
-        # Kt = the chart block (Ke's lower triangle mirrored, plus Kn), then T_e Kt T_e^T into blocks[el]
-        for j in range(ELEMENT_DOFS):
-            Kt[j, j] = Ke[j, j] + Kn[j, j]
-            for i in range(j):
-                Kt[i, j] = Ke[j, i] + Kn[i, j]
-                Kt[j, i] = Ke[j, i] + Kn[j, i]
-        _add_element_to_global(F, Kt, Ke, blocks, el)
+        # Kt = the chart block (Ke's lower triangle mirrored, plus Kn when damped), then T_e Kt T_e^T
+        # into blocks[el] (only its lower triangle computed when Kt is symmetric)
+        if damped:
+            for j in range(ELEMENT_DOFS):
+                Kt[j, j] = Ke[j, j] + Kn[j, j]
+                for i in range(j):
+                    Kt[i, j] = Ke[j, i] + Kn[i, j]
+                    Kt[j, i] = Ke[j, i] + Kn[j, i]
+        else:
+            for j in range(ELEMENT_DOFS):
+                Kt[j, j] = Ke[j, j]
+                for i in range(j):
+                    Kt[i, j] = Ke[j, i]
+                    Kt[j, i] = Ke[j, i]
+        _add_element_to_global(F, Kt, Ke, blocks, el, not damped)
     return energy, chart_margin, power
 
 
 @njit(cache=True, error_model="numpy")
-def _add_element_to_global(F, Kc, tmp, blocks, el):
+def _add_element_to_global(F, Kc, tmp, blocks, el, symmetric):
     """blocks[el] += T_e Kc T_e^T: a 16 x 16 element block in chart components (Kc) in global
     components; T_e = blockdiag(F, F, 1, 1, F, F, 1, 1) maps the chart components of the
     element coordinates (F^T r, F^T r', theta_1, theta_1' at both nodes) to the global ones.
     As X = T^T Y (:func:`_to_chart`) and each 3-vector of Y is a Hermite sum of the element's
     3-vectors, T^T B = B T_e^T: sum_g B^T T HW_g T^T B = T_e (sum_g B^T HW_g B) T_e^T.
+    For a ``symmetric`` Kc only the lower triangle of T_e Kc T_e^T is computed (and mirrored).
     ``tmp`` (16 x 16): scratch."""
     for r in range(ELEMENT_DOFS):  # tmp = Kc T_e^T
         for o in _VEC_OFFSETS:
@@ -273,11 +283,25 @@ def _add_element_to_global(F, Kc, tmp, blocks, el):
     for o in _VEC_OFFSETS:  # blocks[el] += T_e tmp
         for i in range(3):
             f0, f1, f2 = F[i, 0], F[i, 1], F[i, 2]
-            for c in range(ELEMENT_DOFS):
-                blocks[el, o + i, c] += f0 * tmp[o, c] + f1 * tmp[o + 1, c] + f2 * tmp[o + 2, c]
+            row = o + i
+            if symmetric:
+                for c in range(row):
+                    value = f0 * tmp[o, c] + f1 * tmp[o + 1, c] + f2 * tmp[o + 2, c]
+                    blocks[el, row, c] += value
+                    blocks[el, c, row] += value
+                blocks[el, row, row] += f0 * tmp[o, row] + f1 * tmp[o + 1, row] + f2 * tmp[o + 2, row]
+            else:
+                for c in range(ELEMENT_DOFS):
+                    blocks[el, row, c] += f0 * tmp[o, c] + f1 * tmp[o + 1, c] + f2 * tmp[o + 2, c]
     for o in _ANG_OFFSETS:
-        for c in range(ELEMENT_DOFS):
-            blocks[el, o, c] += tmp[o, c]
+        if symmetric:
+            for c in range(o):
+                blocks[el, o, c] += tmp[o, c]
+                blocks[el, c, o] += tmp[o, c]
+            blocks[el, o, o] += tmp[o, o]
+        else:
+            for c in range(ELEMENT_DOFS):
+                blocks[el, o, c] += tmp[o, c]
 
 
 @njit(cache=True, error_model="numpy")
@@ -331,7 +355,7 @@ def _elastic_forces(q, qdot, F, length, S, dS, d2S, w, stiffness, reference, dam
             _gather(q, o, dS, d2S, S, dS, g, gY)
             _to_chart(F, gY, X)
             s0 = strain_jet(X, e, G, H, False)
-            L = np.sqrt(X[0] ** 2 + X[1] ** 2 + X[2] ** 2)
+            L = e[0] + 1.0  # |U| (eps0 = L - 1: exact for 0.5 <= L <= 2, and so is L)
             chart_margin = min(chart_margin, s0 / L)
             jw = w[g] * length
             if damped:
@@ -427,15 +451,19 @@ def add_translational_mass(mass, n_el, scale, blocks):
 
 @njit(cache=True, error_model="numpy")
 def translational_mass_product(mass, u, out):
-    """out += M_trans u (element blocks ``mass`` (>= n_el, 16, 16))."""
+    """out += M_trans u (element blocks ``mass`` (>= n_el, 16, 16); only the 48 entries that
+    :func:`add_translational_mass` adds are nonzero, and only they are read: the same sums, in
+    the same order, without the zeros)."""
     n_el = (u.shape[0] - NODE_DOFS) // NODE_DOFS
     for el in range(n_el):
         o = NODE_DOFS * el
-        for i in range(ELEMENT_DOFS):
-            acc = 0.0
-            for j in range(ELEMENT_DOFS):
-                acc += mass[el, i, j] * u[o + j]
-            out[o + i] += acc
+        for oa in _VEC_OFFSETS:
+            for k in range(3):
+                i = oa + k
+                acc = 0.0
+                for ob in _VEC_OFFSETS:
+                    acc += mass[el, i, ob + k] * u[o + ob + k]
+                out[o + i] += acc
 
 
 def distributed_load(n_el, length, S, w, density, load) -> np.ndarray:
