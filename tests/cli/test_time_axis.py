@@ -82,10 +82,12 @@ def test_control_returns_to_python_at_least_every_half_second(monkeypatch):
     import hubbeam.simulation as simulation
 
     monkeypatch.setattr(simulation, "PROGRESS_UPDATES", 1)
-    sc = load_example("exp1", ["beam.elements=6", "analysis.t_end=6.0", "analysis.dt=0.0005"])
+    # a run of about a second here (12 000 steps of 12 elements), long enough for the chunks to
+    # grow from 8 steps to about CHUNK_SECONDS
+    sc = load_example("exp1", ["beam.elements=12", "analysis.t_end=6.0", "analysis.dt=0.0005"])
     calls = []
     traj, failure = api.run(sc, progress=lambda t: calls.append(time.perf_counter()))
     assert failure is None and len(calls) > 10
     gaps = np.diff(calls)
     assert gaps.max() < 0.9, gaps.max()
-    assert traj.wall_time_s / len(calls) > 0.05  # chunks are not needlessly short either
+    assert gaps.max() > 0.1, gaps.max()  # chunks are not needlessly short either
