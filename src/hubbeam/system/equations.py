@@ -52,17 +52,18 @@ class SystemModel(NamedTuple):
 
 def context(layout, bandwidth: int, gravity, drag) -> Context:
     """The :class:`~hubbeam.system.terms.Context` of a system placed by ``layout``."""
-    return Context(layout.border, layout.z_of_x, layout.z_of_lambda, 2 * bandwidth, THETA,
-                   np.array(gravity, dtype=float), np.array(drag, dtype=float))
+    g0, g1, g2 = (float(g) for g in gravity)
+    c1, c2 = (float(c) for c in drag)
+    return Context(layout.border, layout.z_of_x, layout.z_of_lambda, 2 * bandwidth, THETA, (g0, g1, g2), (c1, c2))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def drive_angle(drive, t):
     """theta_p(t) of the driving constraint (a fixed hub has the profile 'rest')."""
     return drive_values(drive[0], drive[1], drive[2], drive[3], t)[0]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def applied_torque(torque, t, theta, omega):
     """(T, dT/dtheta, dT/domega) of the hub's torque law (N m)."""
     tq = torque
@@ -129,13 +130,14 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     return margin, power
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def step_powers(model, F, t, x, v, lam):
     """(dissipated, drive) power at the state (t, x, v, lambda) in the charts F (W): the power
     of the drag of Eq. 37 and of the structural damping of every part (>= 0), and the power of
     the drive reaction and the applied torque on the hub, (T_applied - lambda_drive) theta'.
-    One function for both, called after every step: each compiled call that takes the model
-    pays for passing it (reference counts of its arrays; about 0.5 us on exp1)."""
+    One function for both, called after every step, and inlined into its compiled callers:
+    each compiled call that takes the model pays for passing it (reference counts of its
+    arrays; about 0.5 us on exp1)."""
     ctx = model.context
     dissipated = 0.0
     for pack in literal_unroll(model.parts):

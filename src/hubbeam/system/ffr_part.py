@@ -420,14 +420,14 @@ def ffr_bandwidth(system) -> int:
     return max([11 + b.beam.ndof for b in system.beams if isinstance(b, FfrPart)], default=1)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ffr_drag_arguments(pack, k, drag_c):
     """The drag group of FFR beam k for :mod:`hubbeam.elements.ffr.kernels` (``drag_c``: c1, c2 of Eq. 37)."""
     pts = pack.points
     return (pack.N_pts[k], pts[k, 0], pts[k, 1], pts[k, 2], drag_c[0], drag_c[1])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ffr_arguments(pack, k, drag_c):
     """(inv, tip, drag) of FFR beam k for :mod:`hubbeam.elements.ffr.kernels` (``drag_c``: c1, c2 of Eq. 37).
     Each array is a view of the pack's (each costs its construction and reference count, about
@@ -532,7 +532,10 @@ def ffr_power(pack, ctx, F, x, v):
     """Power of the drag of Eq. 37 and of the structural damping on every FFR beam (W)."""
     power = 0.0
     places = pack.places
+    still = ctx.drag[0] == 0.0 and ctx.drag[1] == 0.0
     for k in range(places.shape[0]):
+        if still and pack.scalars[k, 2] == 0.0:  # neither drag nor structural damping: no views to build
+            continue
         n = 6 + places[k, NF]
         x0 = places[k, X0]
         power += ffr_dissipated_power(x[x0 : x0 + n], v[x0 : x0 + n], pack.squares[k, 2], pack.scalars[k, 2],

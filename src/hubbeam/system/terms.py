@@ -60,8 +60,9 @@ class Context(NamedTuple):
     z_of_lambda: np.ndarray  # int64 (n_lambda,): z index of each multiplier
     ku: int  # upper bandwidth of the band storage (2 x the half-bandwidth, gbtrf layout)
     theta: int  # the hub angle's place in x
-    gravity: np.ndarray  # (3,) m/s^2
-    drag: np.ndarray  # (2,) c1, c2 of Eq. 37
+    gravity: tuple  # (g0, g1, g2) m/s^2: floats, not an array (a tuple of floats carries no
+    #                 reference count, which every compiled call that passes the context pays)
+    drag: tuple  # (c1, c2) of Eq. 37, floats
 
 
 @dataclass(frozen=True)
@@ -121,14 +122,16 @@ def _no_tips(pack, ctx, x, out):
 
 def _dispatch(stub, pack_class, impl) -> None:
     """Let numba resolve ``stub`` to ``impl`` for packs of ``pack_class`` (``impl``: a plain
-    Python function with the stub's parameter names, which numba compiles where it is called)."""
+    Python function with the stub's parameter names, which numba compiles where it is called).
+    Inlined into the caller: a compiled call pays the reference counts of every array of its
+    tuple arguments (the pack and the context), twice per step and beam kind in the time loop."""
 
     def resolve(pack, *args):
         if getattr(pack, "instance_class", None) is pack_class:
             return impl
         return None
 
-    overload(stub, jit_options={"cache": True}, strict=False)(resolve)
+    overload(stub, jit_options={"cache": True}, strict=False, inline="always")(resolve)
 
 
 def register(pack: type, packer: Callable, equations, energies=None, power=None, tips=None,
