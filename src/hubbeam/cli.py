@@ -931,7 +931,7 @@ def _compile_note() -> None:
     from hubbeam.solvers.compiled_alpha import cache_is_cold
 
     if cache_is_cold():
-        _say("hubbeam: note: compiling the solver for this machine (first run only, a minute or two)")
+        _say("hubbeam: note: compiling the solver for this machine (first run only, about half a minute)")
 
 
 def _progress_bar(t_end: float | None, label: str = "run", unit: str = "s"):
