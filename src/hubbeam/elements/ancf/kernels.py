@@ -248,18 +248,15 @@ def elastic_rotary_kernel(q, qdot, F, length, S, dS, d2S, w, stiffness, referenc
                 _add_sandwich(Kn, AW.T, w1, w2, jw, R, False)  # Kn[j, i] += (B^T AW^T B)[j, i] = (B^T AW B)[i, j]
         # Kt = the chart block (Ke's lower triangle mirrored, plus Kn when damped), then T_e Kt T_e^T
         # into blocks[el] (only its lower triangle computed when Kt is symmetric)
+        for j in range(ELEMENT_DOFS):
+            Kt[j, j] = Ke[j, j]
+            for i in range(j):
+                Kt[i, j] = Ke[j, i]
+                Kt[j, i] = Ke[j, i]
         if damped:
-            for j in range(ELEMENT_DOFS):
-                Kt[j, j] = Ke[j, j] + Kn[j, j]
-                for i in range(j):
-                    Kt[i, j] = Ke[j, i] + Kn[i, j]
-                    Kt[j, i] = Ke[j, i] + Kn[j, i]
-        else:
-            for j in range(ELEMENT_DOFS):
-                Kt[j, j] = Ke[j, j]
-                for i in range(j):
-                    Kt[i, j] = Ke[j, i]
-                    Kt[j, i] = Ke[j, i]
+            for i in range(ELEMENT_DOFS):
+                for j in range(ELEMENT_DOFS):
+                    Kt[i, j] += Kn[i, j]
         _add_element_to_global(F, Kt, Ke, blocks, el, not damped)
     return energy, chart_margin, power
 
