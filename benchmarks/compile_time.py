@@ -1,0 +1,101 @@
+"""Where the first run's compile time goes: numba's typing and lowering against LLVM.
+
+    python benchmarks/compile_time.py [EXAMPLE] [KEY=VALUE ...]   # default: exp1, about 35 s
+
+Runs the bundled example (default ``exp1``) for one output step in this process, with numba's
+on-disk cache pointed at a new empty directory so that everything compiles, and prints
+
+- the compile time of each compiled function (numba's ``numba:compile`` events): its own
+  (``self``: typing, lowering and LLVM for its own module) and with what it compiled on the way
+  (``total``), the largest first, and the functions the run called from Python;
+- LLVM's share: optimising each function as it is lowered, optimising each function's module
+  again after its callees' modules are linked into it, and making that module's machine code;
+  with the modules that hold the most functions (numba links a copy of every callee's module
+  into its caller's and finalises each module to machine code).
+
+The LLVM parts are timed by wrapping three methods of numba's ``JITCodeLibrary``
+(``add_llvm_module``, ``_optimize_final_module``, ``_finalize_specific``): numba internals,
+checked for numba 0.68; if they are missing, the script says so and prints the first part
+only. Not a test: timings do not belong in tests.
+"""
+
+from __future__ import annotations
+
+import collections
+import os
+import sys
+import tempfile
+import time
+
+
+def main(argv: list[str]) -> None:
+    example = argv[0] if argv and "=" not in argv[0] else "exp1"
+    overrides = [a for a in argv if "=" in a]
+    os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="hubbeam-compile-")
+    from numba.core import codegen, event
+
+    llvm = collections.defaultdict(lambda: [0.0, 0.0, 0.0, 0])  # module: function opt, module opt, machine code, fns
+    library = getattr(codegen, "JITCodeLibrary", None)
+    parts = ("add_llvm_module", "_optimize_final_module", "_finalize_specific")
+    wrapped = library is not None and all(hasattr(library, p) for p in parts)
+
+    def timed(slot, method):
+        def wrapper(self, *args):
+            start = time.perf_counter()
+            out = method(self, *args)
+            llvm[self.name][slot] += time.perf_counter() - start
+            if slot == 2:
+                llvm[self.name][3] = sum(1 for f in self._final_module.functions if not f.is_declaration)
+            return out
+        return wrapper
+
+    if wrapped:
+        for slot, name in enumerate(parts):
+            setattr(library, name, timed(slot, getattr(library, name)))
+    else:
+        print("numba's JITCodeLibrary has changed: LLVM's share is not timed")
+
+    start_cpu, start_wall = time.process_time(), time.perf_counter()
+    with event.install_recorder("numba:compile") as recorder:
+        from hubbeam import api
+        from hubbeam.io.scenario import load_example
+
+        scenario = load_example(example, overrides)
+        api.run(load_example(example, overrides + [f"analysis.t_end={scenario.output_dt}"]))
+    cpu, wall = time.process_time() - start_cpu, time.perf_counter() - start_wall
+
+    stack, spans = [], []
+    for stamp, ev in recorder.buffer:
+        if ev.is_start:
+            dispatcher = ev.data.get("dispatcher")
+            stack.append((dispatcher.py_func.__qualname__ if dispatcher is not None else str(ev.data.get("args")),
+                          stamp))
+        else:
+            name, begun = stack.pop()
+            spans.append((name, begun, stamp, len(stack)))
+    own, total, count = collections.Counter(), collections.Counter(), collections.Counter()
+    for name, a, b, depth in spans:
+        children = sum(b2 - a2 for _, a2, b2, d2 in spans if d2 == depth + 1 and a2 >= a and b2 <= b)
+        own[name] += b - a - children
+        total[name] += b - a
+        count[name] += 1
+    compiled = sum(b - a for _, a, b, depth in spans if depth == 0)
+    print(f"{example} {' '.join(overrides)}: process {wall:.1f} s wall, {cpu:.1f} s CPU; compiling {compiled:.1f} s "
+          f"in {len(own)} compiled functions")
+    print(f"\n{'self s':>7} {'total s':>8}  function (the 15 largest)")
+    for name, seconds in own.most_common(15):
+        times = f" x{count[name]}" if count[name] > 1 else ""
+        print(f"{seconds:7.2f} {total[name]:8.2f}  {name}{times}")
+    print("\ncalled from Python: " + ", ".join(f"{name} {b - a:.1f} s" for name, a, b, depth in
+                                               sorted(spans, key=lambda s: s[1]) if depth == 0))
+    if wrapped:
+        sums = [sum(v[i] for v in llvm.values()) for i in range(3)]
+        print(f"\nLLVM {sum(sums):.1f} s in {len(llvm)} modules: optimising each function {sums[0]:.1f} s, "
+              f"each module with its callees linked in {sums[1]:.1f} s, machine code {sums[2]:.1f} s")
+        print(f"{'functions':>9} {'module opt s':>12} {'machine s':>9}  module (the 8 largest)")
+        for name, (_, opt, code, functions) in sorted(llvm.items(), key=lambda kv: -kv[1][3])[:8]:
+            print(f"{functions:9d} {opt:12.2f} {code:9.2f}  {name}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
