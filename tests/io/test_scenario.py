@@ -211,6 +211,8 @@ def test_overrides_use_toml_values_and_bare_words():
         ("analysis.output_dt=0.0015", "analysis.output_dt"),
         ("analysis.t_end=1.0005", "analysis.t_end"),
         ("analysis.dt=0.003", "analysis.output_dt"),
+        ("analysis.output_dt=1.797693134862316e305", "analysis.output_dt"),  # output_dt / dt overflows
+        ("analysis.t_end=1.797693134862316e305", "analysis.t_end"),
         ("loads.beam='blade2'", "loads.beam"),
     ],
 )
@@ -281,6 +283,23 @@ def test_missing_required_key():
     del data["beams"][2]["density"]
     with pytest.raises(ScenarioError, match=r"^beams\[2\].density: required key is missing"):
         validate(data)
+
+
+def test_a_misspelt_key_is_named_with_the_key_it_is_close_to():
+    """A misspelt required key is both unknown and missing: the error names what the user
+    wrote and suggests the key of that table it is close to (required or not); a key close to
+    none gets no suggestion."""
+    data = copy.deepcopy(BASE)
+    data["beam"]["thiknes"] = data["beam"].pop("thickness")
+    assert error_of(data) == "beam.thiknes: unknown key (did you mean thickness?)"
+    data = copy.deepcopy(ROTOR)
+    data["beams"][1]["densty"] = data["beams"][1].pop("density")
+    assert error_of(data) == "beams[1].densty: unknown key (did you mean density?)"
+    for override, error in (("beam.poison_ratio=0.3", "beam.poison_ratio: unknown key (did you mean poisson_ratio?)"),
+                            ("analysis.dtt=0.001", "analysis.dtt: unknown key (did you mean dt?)"),
+                            ('sensors[0].surfce="upper"', "sensors[0].surfce: unknown key (did you mean surface?)"),
+                            ("beam.zzz=1", "beam.zzz: unknown key")):
+        assert error_of(apply_overrides(copy.deepcopy(BASE), [override])) == error
 
 
 def test_a_free_hub_needs_its_inertia_and_torque_is_for_a_free_hub_only():

@@ -17,13 +17,14 @@ damping (``[beams.damping]``) are fields of :class:`Beam`, resolved into a
 from __future__ import annotations
 
 import copy
+import difflib
 import math
 import re
 import tomllib
 import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Literal, Union
+from typing import Annotated, Any, ClassVar, Literal, Union, get_args
 
 from pydantic import (
     BaseModel,
@@ -678,6 +679,11 @@ def _cross_checks(s: Scenario) -> None:
             raise ScenarioError(f"analysis.dt: larger than analysis.t_end ({a.dt} > {a.t_end})")
         if a.output_dt is not None and a.output_dt < a.dt:
             raise ScenarioError(f"analysis.output_dt: smaller than analysis.dt ({a.output_dt} < {a.dt})")
+        for key in ("output_dt", "t_end"):
+            value = getattr(a, key)
+            if value is not None and not math.isfinite(value / a.dt):  # too many steps to count in a float
+                raise ScenarioError(f"analysis.{key}: {value:.12g} s is more steps of analysis.dt = {a.dt:.12g} s "
+                                    "than a number can count")
         if a.output_dt is not None and not _is_multiple(a.output_dt, a.dt):
             raise ScenarioError(f"analysis.output_dt: {a.output_dt:.12g} s is not a whole multiple of analysis.dt = "
                                 f"{a.dt:.12g} s (nearest valid: {_nearest_multiples(a.output_dt, a.dt)})")
@@ -772,6 +778,44 @@ def _explain(err: dict) -> str:
     return msg.removeprefix("Value error, ")
 
 
+def _first_error(errors: list) -> dict:
+    """The error to report: an unknown key before the others (a misspelt required key is both
+    unknown and missing, and the unknown one is what the user wrote), else the first."""
+    return next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
+
+
+def _models_in(annotation) -> list:
+    """The pydantic models an annotation can hold (through Optional, Union, list, Annotated)."""
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return [annotation]
+    return [m for arg in get_args(annotation) for m in _models_in(arg)]
+
+
+def _keys_of_table(loc: tuple) -> list[str]:
+    """The keys the scenario's table at ``loc`` (a pydantic error location) can have."""
+    def keys(model) -> dict:  # as written in a file: by alias where a field has one
+        return {f.alias or name: f for name, f in model.model_fields.items()}
+
+    models = [Scenario]
+    for part in loc:
+        if isinstance(part, int):
+            continue
+        fields = [keys(m)[part] for m in models if part in keys(m)]
+        if fields:
+            models = [m for f in fields for m in _models_in(f.annotation)]
+    return sorted({key for m in models for key in keys(m)})
+
+
+def _did_you_mean(unknown: dict, errors: list) -> str:
+    """' (did you mean NAME?)' for an unknown key close to a key of its table: one missing from
+    it first (a misspelt required key), else any of its keys."""
+    table, name = unknown["loc"][:-1], str(unknown["loc"][-1])
+    missing = [str(e["loc"][-1]) for e in errors if e["type"] == "missing" and e["loc"][:-1] == table]
+    close = (difflib.get_close_matches(name, missing, n=1, cutoff=0.6)
+             or difflib.get_close_matches(name, _keys_of_table(table), n=1, cutoff=0.75))
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
 def validate(data: dict, base_dir: str | Path | None = None) -> Scenario:
     """A validated Scenario from a plain dict (parsed TOML), or ScenarioError. Relative table
     paths (``file`` keys) are taken relative to ``base_dir`` (default: the current directory)."""
@@ -780,9 +824,11 @@ def validate(data: dict, base_dir: str | Path | None = None) -> Scenario:
     try:
         scenario = Scenario.model_validate(data, context={"base_dir": base_dir})
     except ValidationError as exc:
-        err = exc.errors()[0]
+        err = _first_error(exc.errors())
         key = _format_loc(err["loc"]) or "scenario"
         reason = _explain(err)
+        if err["type"] == "extra_forbidden":
+            reason += _did_you_mean(err, exc.errors())
         # validators report "key: reason" for a key of their own model
         if err["type"] == "value_error" and ": " in reason and not reason.startswith(" "):
             sub, reason = reason.split(": ", 1)
