@@ -601,7 +601,7 @@ def _cmd_sweep(args, scenario) -> dict:
             if point.analysis.kind == "dynamic":
                 check_run(point)
         except ScenarioError as exc:
-            raise ScenarioError(f"--vary {', '.join(overrides)}: {exc}") from None
+            raise ScenarioError(f"--vary: at {', '.join(overrides)} (a corner of the ranges): {exc}") from None
     targets = _check([Target("-o", args.output), Target("--plot", args.plot, "figure")], args)
     progress, finish = _progress_bar(total, label="sweep", unit="points")
     partial = None
@@ -834,7 +834,7 @@ def _cmd_animate(args) -> dict:
         raise ScenarioError(f"--stride: must be >= 1 (got {args.stride})")
     if not (math.isfinite(args.fps) and 0.01 <= args.fps <= 100):
         raise ScenarioError(f"--fps: must be between 0.01 and 100 (got {args.fps:g})")
-    from hubbeam.animate import COLORINGS, animate, find_ffmpeg
+    from hubbeam.animate import COLORINGS, animate, find_ffmpeg, frame_indices
 
     if args.color not in COLORINGS:
         raise ScenarioError(f"--color: unknown {args.color!r} (use {', '.join(COLORINGS)})")
@@ -854,7 +854,9 @@ def _cmd_animate(args) -> dict:
         _say(f"hubbeam: note: --fps {args.fps:g}: a GIF stores each frame's time in whole 1/100 s, so it plays at "
              f"{shown:.4g} frames per second")
     if not args.json:
-        print(f"{frames[0]} frames (t = {state.times[0]:g} to {state.times[-1]:g} s) -> {args.output}")
+        drawn = state.times[frame_indices(state, args.stride)]
+        span = f"t = {drawn[0]:g} s" if drawn.size == 1 else f"t = {drawn[0]:g} to {drawn[-1]:g} s"
+        print(f"{frames[0]} frame{'' if frames[0] == 1 else 's'} ({span}) -> {args.output}")
     return {"frames": frames[0], "output": args.output}
 
 

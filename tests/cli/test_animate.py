@@ -47,10 +47,15 @@ def test_a_gif_has_one_frame_per_stored_time(runs, tmp_path, name):
     assert code == 0, err
     with Image.open(movie) as im:
         assert im.n_frames == 6  # t = 0, 0.01, ..., 0.05
-    code, _, err = cli("animate", runs[name], "-o", movie, "--stride", "4", "--color", "none", "--fps", "5")
+    assert "6 frames (t = 0 to 0.05 s)" in out
+    code, out, err = cli("animate", runs[name], "-o", movie, "--stride", "4", "--color", "none", "--fps", "5")
     assert code == 0, err
     with Image.open(movie) as im:
         assert im.n_frames == 2  # t = 0 and 0.04
+    assert "2 frames (t = 0 to 0.04 s)" in out  # the times drawn, not the times stored
+    code, out, err = cli("animate", runs[name], "-o", movie, "--stride", "100")
+    assert code == 0, err
+    assert "1 frame (t = 0 s)" in out
     assert no_temporary_files(tmp_path)
 
 

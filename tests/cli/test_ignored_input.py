@@ -43,3 +43,10 @@ def test_a_measured_row_that_is_not_a_number_is_refused_not_dropped(tmp_path):
     path.write_text("time,strain_P1\n0,1\n0.1,2\n0.2,\n0.3,1\n0.4,2\n0.5,3\n")
     code, out, err = cli("identify", EXP1, path, "--fit", "damping.linear")
     assert code == 2 and "row 4: not a number" in err, err
+
+
+def test_a_misspelt_vary_key_is_named_at_the_corner_it_was_found(tmp_path):
+    code, out, err = cli("sweep", EXP1, "--vary", "beam.thikness=0.002:0.004:3", "-o", tmp_path / "s.nc")
+    assert_contract(code, out, err)
+    assert code == 2 and err.strip() == ("hubbeam: error: --vary: at beam.thikness=0.002 (a corner of the ranges): "
+                                         "beam.thikness: unknown key (did you mean thickness?)"), err

@@ -86,7 +86,8 @@ def remap_chart(nodes: np.ndarray, node_dtau: np.ndarray, F_old: np.ndarray, F_n
         raise ConvergenceError(
             f"the slope r' at node {int(bad[0])} of the beam has collapsed to length {lengths[bad[0]]:.2g} "
             "(Newton converged to a crushed, unphysical state, which has no section frame): the load is too large "
-            "for the mesh or the steps; try more beam.elements, more analysis.load_steps or a smaller analysis.dt")
+            "for the mesh or the steps; try more beam.elements, and more analysis.load_steps (statics) or a smaller "
+            "analysis.dt (time integration)")
     deltas = np.array([twist_offset(F_old, F_new, nd[3:6]) for nd in nodes])
     # keep the offset continuous along the beam (it is defined modulo 2 pi)
     deltas = np.unwrap(deltas)
