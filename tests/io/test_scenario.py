@@ -313,6 +313,14 @@ def test_a_free_hub_needs_its_inertia_and_torque_is_for_a_free_hub_only():
     assert sc.hub.torque_law is None
 
 
+def test_a_drive_or_torque_the_motion_does_not_take_is_reported_before_what_its_table_lacks():
+    expected = "hub.drive: only with hub.motion = 'prescribed' (motion is 'free')"
+    assert error_of(BASE, ["hub.drive.profile='slew'"]) == expected
+    cantilever = load_example("cantilever").to_dict()
+    assert error_of(cantilever, ["hub.torque.law='pd'"]).startswith("hub.torque: only for hub.motion = 'free' (motion "
+                                                                    "is 'fixed')")
+
+
 def test_torque_laws():
     sc = validate(BASE)
     assert sc.hub.torque_law.law == "constant" and sc.hub.torque_law.value == 0.0

@@ -417,6 +417,20 @@ class Hub(_Strict):
     torque: TorqueSpec = 0.0  # N m, or a law
     drive: Drive | None = None
 
+    @model_validator(mode="before")
+    @classmethod
+    def _for_its_motion(cls, data: Any) -> Any:
+        """A drive or a torque that the hub's motion does not take is the error to report, before
+        whatever the drive's or the torque's own table lacks."""
+        motion = data.get("motion", "fixed") if isinstance(data, dict) else None
+        if motion not in ("free", "prescribed", "fixed"):
+            return data  # not a table, or a motion of its own error
+        if motion != "prescribed" and "drive" in data:
+            raise ValueError(f"drive: only with hub.motion = 'prescribed' (motion is {motion!r})")
+        if motion != "free" and "torque" in data:
+            raise ValueError(f"torque: only for hub.motion = 'free' (motion is {motion!r}); remove it")
+        return data
+
     @property
     def torque_law(self) -> HubTorque | None:
         """The free hub's torque law (a number becomes law = 'constant'); None for other motions."""
@@ -663,10 +677,6 @@ def _cross_checks(s: Scenario) -> None:
     hub = s.hub
     if hub.motion == "prescribed" and hub.drive is None:
         raise ScenarioError("hub.drive: required when hub.motion = 'prescribed'")
-    if hub.motion != "prescribed" and hub.drive is not None:
-        raise ScenarioError(f"hub.drive: only with hub.motion = 'prescribed' (motion is {hub.motion!r})")
-    if hub.motion != "free" and "torque" in hub.model_fields_set:
-        raise ScenarioError(f"hub.torque: only for hub.motion = 'free' (motion is {hub.motion!r}); remove it")
     if hub.motion == "free" and "inertia" not in hub.model_fields_set:
         raise ScenarioError("hub.inertia: required for motion = 'free' (kg m^2 about j0)")
 
