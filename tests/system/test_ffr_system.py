@@ -163,6 +163,51 @@ def test_exact_newton_matrix_with_ffr_beams_is_the_derivative_of_the_residual(mo
     assert np.max(np.abs(block - block_fd)) < 1e-6 * np.max(np.abs(block))
 
 
+
+@pytest.mark.parametrize("motion", ["free", "prescribed"])
+def test_drag_damping_matrix_is_the_velocity_derivative_of_the_drag_in_motion(motion):
+    """The Newton matrix's damping part (coef_c C) against central differences in the rates of
+    the drag's share of the residual (the residual with drag minus the residual without it: the
+    inertia, elastic, gravity and constraint rows cancel) at a moving, deformed state: an FFR
+    beam with an offset tip body beside an ANCF beam. At rest (the test above) only the linear
+    drag c1 has a slope; here the speeds are a few m/s, so the quadratic drag c2 |rdot| rdot
+    and its rank-one part (c2 / |rdot|) rdot rdot^T dominate C."""
+    from hubbeam.system.ancf_part import AncfPart
+    from hubbeam.system.ffr_part import FfrPart
+    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.tip_body import TipBody
+
+    body = TipBody(0.2, (2e-4, 3e-4, 4e-4), (0.03, 0.01, -0.02))
+    system = HubSystem([FfrPart(FfrBeam(L, 3, THICK, tip_body=body), Mount(0.35, 0.4, 0.3, 0.1), name="ffr"),
+                        AncfPart(AncfBeam(L, 3, THICK), Mount(0.35, -0.4, np.pi, 0.0), tip_body=body, name="ancf")],
+                       Hub(motion, 9.5, drive=DriveProfile("spin_up", 2.0, 1.0)), gravity=(0.0, -9.81, 0.0),
+                       damping=(1.73, 1.4))
+    still = system.without_damping()
+    layout, s, t = system.layout, system.mass_scale, 0.3
+    x, F = system.initial_state(t)
+    rng = np.random.default_rng(11)
+    x[1:] += 0.01 * rng.normal(size=x.size - 1)
+    v = rng.normal(size=x.size)  # hub, frame and node rates of order 1
+    ffr = layout.beam_x(0)
+    v[ffr.start + 6:ffr.stop] *= 0.3
+    acc = rng.normal(size=x.size)
+    lam = rng.normal(size=layout.n_lambda)
+
+    def drag_rows(rates):
+        return (system.equations(x, rates, acc, lam, F, t, 0.0, 0.0, 1.0, s, want_matrix=False)[0]
+                - still.equations(x, rates, acc, lam, F, t, 0.0, 0.0, 1.0, s, want_matrix=False)[0])
+
+    C = (system.equations(x, v, acc, lam, F, t, 0.0, 1.0, 0.0, s)[1].to_dense()
+         - still.equations(x, v, acc, lam, F, t, 0.0, 1.0, 0.0, s)[1].to_dense())
+    assert np.max(np.abs(drag_rows(v))) > 0.1  # the drag does act here (measured: 0.30)
+    C_x = C[:, layout.z_of_x]  # on the rates of x; the multipliers' columns carry no drag
+    assert np.all(np.delete(C, layout.z_of_x, axis=1) == 0.0)
+    C_fd = central_difference(drag_rows, v, 1e-3)  # the drag is smooth in the rates away from rdot = 0
+    assert np.max(np.abs(C_x - C_fd)) < 1e-5 * np.max(np.abs(C_x))  # measured: 2.3e-7
+    z = layout.z_of_x[ffr]
+    block, block_fd = C_x[np.ix_(z, range(ffr.start, ffr.stop))], C_fd[np.ix_(z, range(ffr.start, ffr.stop))]
+    assert np.max(np.abs(block - block_fd)) < 1e-5 * np.max(np.abs(block))  # measured: 1.3e-7
+
 def test_ffr_energy_balance_with_drag():
     """exp1's free hub and drag with the nodal FFR beam: kinetic + strain + gravity + dissipated
     work stays at its initial value while the drag dissipates a good part of it."""
