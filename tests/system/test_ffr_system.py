@@ -14,7 +14,7 @@ from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
 from hubbeam.system.mount import Mount
 from hubbeam.system.hub_system import single_beam_system
-from tests.conftest import L, central_difference, newton_matrix_and_differences, plate
+from tests.conftest import ALPHA_COEFS, L, central_difference, newton_matrix_and_differences, plate
 
 THICK = plate(thickness=0.01)
 
@@ -161,6 +161,99 @@ def test_exact_newton_matrix_with_ffr_beams_is_the_derivative_of_the_residual(mo
     # the FFR block on its own scale (its load stiffness is small against its elastic stiffness)
     block, block_fd = A[np.ix_(ffr, ffr)], A_fd[np.ix_(ffr, ffr)]
     assert np.max(np.abs(block - block_fd)) < 1e-6 * np.max(np.abs(block))
+
+
+
+@pytest.mark.parametrize("motion", ["free", "prescribed"])
+def test_drag_damping_matrix_is_the_velocity_derivative_of_the_drag_in_motion(motion):
+    """The Newton matrix's damping part (coef_c C) against central differences in the rates of
+    the drag's share of the residual (the residual with drag minus the residual without it: the
+    inertia, elastic, gravity and constraint rows cancel) at a moving, deformed state: an FFR
+    beam with an offset tip body beside an ANCF beam. At rest (the test above) only the linear
+    drag c1 has a slope; here the speeds are a few m/s, so the quadratic drag c2 |rdot| rdot
+    and its rank-one part (c2 / |rdot|) rdot rdot^T dominate C."""
+    from hubbeam.system.ancf_part import AncfPart
+    from hubbeam.system.ffr_part import FfrPart
+    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.tip_body import TipBody
+
+    body = TipBody(0.2, (2e-4, 3e-4, 4e-4), (0.03, 0.01, -0.02))
+    system = HubSystem([FfrPart(FfrBeam(L, 3, THICK, tip_body=body), Mount(0.35, 0.4, 0.3, 0.1), name="ffr"),
+                        AncfPart(AncfBeam(L, 3, THICK), Mount(0.35, -0.4, np.pi, 0.0), tip_body=body, name="ancf")],
+                       Hub(motion, 9.5, drive=DriveProfile("spin_up", 2.0, 1.0)), gravity=(0.0, -9.81, 0.0),
+                       damping=(1.73, 1.4))
+    still = system.without_damping()
+    layout, s, t = system.layout, system.mass_scale, 0.3
+    x, F = system.initial_state(t)
+    rng = np.random.default_rng(11)
+    x[1:] += 0.01 * rng.normal(size=x.size - 1)
+    v = rng.normal(size=x.size)  # hub, frame and node rates of order 1
+    ffr = layout.beam_x(0)
+    v[ffr.start + 6:ffr.stop] *= 0.3
+    acc = rng.normal(size=x.size)
+    lam = rng.normal(size=layout.n_lambda)
+
+    def drag_rows(rates):
+        return (system.equations(x, rates, acc, lam, F, t, 0.0, 0.0, 1.0, s, want_matrix=False)[0]
+                - still.equations(x, rates, acc, lam, F, t, 0.0, 0.0, 1.0, s, want_matrix=False)[0])
+
+    C = (system.equations(x, v, acc, lam, F, t, 0.0, 1.0, 0.0, s)[1].to_dense()
+         - still.equations(x, v, acc, lam, F, t, 0.0, 1.0, 0.0, s)[1].to_dense())
+    assert np.max(np.abs(drag_rows(v))) > 0.1  # the drag does act here (measured: 0.30)
+    C_x = C[:, layout.z_of_x]  # on the rates of x; the multipliers' columns carry no drag
+    assert np.all(np.delete(C, layout.z_of_x, axis=1) == 0.0)
+    C_fd = central_difference(drag_rows, v, 1e-3)  # the drag is smooth in the rates away from rdot = 0
+    assert np.max(np.abs(C_x - C_fd)) < 1e-5 * np.max(np.abs(C_x))  # measured: 2.3e-7
+    z = layout.z_of_x[ffr]
+    block, block_fd = C_x[np.ix_(z, range(ffr.start, ffr.stop))], C_fd[np.ix_(z, range(ffr.start, ffr.stop))]
+    assert np.max(np.abs(block - block_fd)) < 1e-5 * np.max(np.abs(block))  # measured: 1.3e-7
+
+
+@pytest.mark.parametrize("motion", ["free", "prescribed"])
+def test_hub_entry_of_the_newton_matrix_carries_the_ffr_clamp_hessian(motion):
+    """The hub angle's diagonal entry of the Newton matrix against the central difference of the
+    residual along the generalized-alpha correction of theta alone, with clamp multipliers of a
+    rotor's size (hundreds of N): there lambda . d2 Phi / dtheta2 of the FFR clamps' position
+    rows is a visible share of the entry (8e-6 of it: below the whole-matrix tolerance of
+    the test above). Two FFR beams (one with an offset tip body), gravity, drag; the share is
+    what the differences see when the clamp multipliers are set to zero."""
+    from hubbeam.system.ffr_part import FfrPart
+    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.tip_body import TipBody
+
+    body = TipBody(0.2, (2e-4, 3e-4, 4e-4), (0.03, 0.01, -0.02))
+    system = HubSystem([FfrPart(FfrBeam(L, 3, THICK, tip_body=body), Mount(0.35, 0.4, 0.3, 0.1), name="a"),
+                        FfrPart(FfrBeam(L, 2, THICK), Mount(0.5, -0.4, 2.0, 0.0), name="b")],
+                       Hub(motion, 9.5, drive=DriveProfile("spin_up", 2.0, 1.0)), gravity=(0.0, -9.81, 0.0),
+                       damping=(1.73, 1.4))
+    ck, gp, bp = ALPHA_COEFS
+    s, t, layout = system.mass_scale, 0.3, system.layout
+    x0, F = system.initial_state(t)
+    rng = np.random.default_rng(4)
+    x0[1:] += 0.01 * rng.normal(size=x0.size - 1)
+    lam = rng.normal(size=layout.n_lambda)
+    for k, psi in enumerate((0.3, 2.0)):  # each clamp pulls its frame outwards with 300 N, as a spinning rotor's do
+        rows = layout.clamp_lambda(k)
+        lam[rows.start], lam[rows.start + 2] = 300.0 * np.cos(t + psi), 300.0 * np.sin(t + psi)
+    zero = np.zeros_like(x0)
+    z_theta = layout.z_of_x[0]
+
+    def hub_entry(multipliers, h=1e-5):
+        def row(d):
+            dx = zero.copy()
+            dx[0] = d
+            return system.equations(x0 + dx, gp * dx, bp * dx, multipliers, F, t, 0.0, 0.0, ck, s,
+                                    want_matrix=False)[0][z_theta]
+        return (row(h) - row(-h)) / (2 * h)
+
+    A = system.equations(x0, zero, zero, lam, F, t, ck * bp, ck * gp, ck, s, stiffness="exact")[1].to_dense()
+    entry = hub_entry(lam)
+    unclamped = lam.copy()
+    for k in range(2):
+        unclamped[layout.clamp_lambda(k)] = 0.0
+    share = entry - hub_entry(unclamped)
+    assert abs(share) > 1e-6 * abs(entry)  # the clamps' curvature does enter (measured: 8e-6 of it)
+    assert abs(A[z_theta, z_theta] - entry) < 1e-3 * abs(share)  # measured: 5e-11 of the share
 
 
 def test_ffr_energy_balance_with_drag():
