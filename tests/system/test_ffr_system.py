@@ -163,7 +163,6 @@ def test_exact_newton_matrix_with_ffr_beams_is_the_derivative_of_the_residual(mo
     assert np.max(np.abs(block - block_fd)) < 1e-6 * np.max(np.abs(block))
 
 
-
 @pytest.mark.parametrize("motion", ["free", "prescribed"])
 def test_drag_damping_matrix_is_the_velocity_derivative_of_the_drag_in_motion(motion):
     """The Newton matrix's damping part (coef_c C) against central differences in the rates of
