@@ -177,9 +177,10 @@ def predict(x_n, v_n, xdd_n, a_n, h, am, af, beta, gamma, x, v, xdd):
 @njit(cache=True)
 def apply_increment(dz, z_of_x, z_of_lambda, gprime, bprime, lam_factor, x, v, xdd, lam):
     """Newton correction from dz (placed by the layout maps ``z_of_x``, ``z_of_lambda``):
-    x += dx, v += gamma' dx, xdd += beta' dx, lambda += lam_factor dmu. Returns max(|dx|, |dmu|): the multipliers converge with the
-    coordinates (mu is a length, so one tolerance serves both; testing dx alone left the
-    drive's reaction, and so the drive work, off by 1e-4 on an FFR beam on a driven hub)."""
+    x += dx, v += gamma' dx, xdd += beta' dx, lambda += lam_factor dmu. Returns max(|dx|,
+    |dmu|): the multipliers converge with the coordinates (mu is a length, so one tolerance
+    serves both; testing dx alone left the drive's reaction, and so the drive work, off by
+    1e-4 on an FFR beam on a driven hub)."""
     size = 0.0
     for i in range(x.shape[0]):
         d = dz[z_of_x[i]]
