@@ -148,10 +148,13 @@ def _load(args):
     from hubbeam.io.scenario import load_example, load_scenario, table_files
     from hubbeam.io.targets import check_input_file
 
+    dropped: list[str] = []
     if args.scenario is None:  # applicability's default
-        scenario = load_example("exp1", args.overrides)
+        scenario = load_example("exp1", args.overrides, dropped)
     else:
-        scenario = load_scenario(check_input_file(args.scenario, "scenario file"), args.overrides)
+        scenario = load_scenario(check_input_file(args.scenario, "scenario file"), args.overrides, dropped)
+    for line in dropped:
+        _say(f"hubbeam: note: {line}")
     args.tables = [(f"table of {key}", path) for _, key, path in table_files(scenario)]
     return scenario
 

@@ -50,3 +50,10 @@ def test_a_misspelt_vary_key_is_named_at_the_corner_it_was_found(tmp_path):
     assert_contract(code, out, err)
     assert code == 2 and err.strip() == ("hubbeam: error: --vary: at beam.thikness=0.002 (a corner of the ranges): "
                                          "beam.thikness: unknown key (did you mean thickness?)"), err
+
+
+def test_keys_a_switch_drops_are_named_in_a_note(tmp_path):
+    code, out, err = cli("run", EXP1, "--set", "hub.motion=fixed", "--set", "analysis.t_end=0.01")
+    assert_contract(code, out, err)
+    assert code == 0 and "hubbeam: note: --set hub.motion=fixed: hub.torque dropped (motion 'fixed' does not take it)" \
+        in err, err

@@ -487,6 +487,19 @@ def test_switching_a_choice_by_set_drops_the_keys_it_does_not_take():
     assert error_of(data).startswith("hub.drive.T: not a key of profile 'constant'")
 
 
+def test_what_a_switch_drops_is_said():
+    dropped = []
+    apply_overrides(BASE, ['hub.motion="fixed"'], dropped)
+    assert dropped == ["--set hub.motion=\"fixed\": hub.torque dropped (motion 'fixed' does not take it)"]
+    dropped = []
+    apply_overrides(SPACECRAFT, ["hub.torque.law='constant'", "hub.torque.value=1.0", "name='x'"], dropped)
+    assert dropped == ["--set hub.torque.law='constant': hub.torque.kp, hub.torque.kd, hub.torque.reference dropped "
+                       "(law 'constant' does not take them)"]
+    dropped = []
+    apply_overrides(BASE, ['hub.motion="free"', 'beam.formulation="ffr"'], dropped)  # nothing to drop
+    assert dropped == []
+
+
 def test_analysis_steps_only_for_dynamic_analyses():
     validate(apply_overrides(BASE, ["analysis.kind='static'", "analysis.t_end=1.0005"]))
     validate(apply_overrides(BASE, ["analysis.output_dt=0.003"]))  # 3 steps

@@ -1019,19 +1019,22 @@ def _get(data: Any, address: tuple):
     return node
 
 
-def _prune(data: dict, switch: tuple, set_paths: set) -> None:
+def _prune(data: dict, switch: tuple, set_paths: set) -> list[str]:
     """After --set switched ``switch`` (a formulation, motion, profile or law), drop the keys of
-    the old choice that the new one does not take (unless they are set by --set as well)."""
+    the old choice that the new one does not take (unless they are set by --set as well).
+    Returns the dropped keys' names."""
     table = _get(data, switch[:-1])
     value = table.get(switch[-1]) if isinstance(table, dict) else None
     if not isinstance(table, dict) or not isinstance(value, str):
-        return
+        return []
     key = switch[-1]
+    dropped = []
 
     def drop(*names):
         for name in names:
-            if _canonical(switch[:-1] + (name,)) not in set_paths:
-                table.pop(name, None)
+            if _canonical(switch[:-1] + (name,)) not in set_paths and name in table:
+                table.pop(name)
+                dropped.append(name)
 
     if key == "formulation":
         drop(*{"ancf": ("geometric_stiffening", "modes"), "ffr": ("gauss_points",)}.get(value, ()))
@@ -1044,9 +1047,10 @@ def _prune(data: dict, switch: tuple, set_paths: set) -> None:
         drop(*(k for k in ("omega_s", "T", "t1", "angle", "file") if k not in DRIVE_KEYS[value][0]))
     elif key == "law" and value in TORQUE_KEYS:
         drop(*(k for k in ("value", "file", "kp", "kd", "reference") if k not in TORQUE_KEYS[value][0]))
+    return dropped
 
 
-def apply_overrides(data: dict, overrides: list[str]) -> dict:
+def apply_overrides(data: dict, overrides: list[str], dropped: list[str] | None = None) -> dict:
     """Apply --set overrides to parsed TOML data (a new dict is returned).
 
     Keys are dotted paths; a list entry is addressed by a 0-based index (``sensors[1].x``);
@@ -1054,7 +1058,8 @@ def apply_overrides(data: dict, overrides: list[str]) -> dict:
     for every beam); ``beam.KEY`` addresses the one beam of a single-beam scenario. A key may
     be set once. A relative ``file`` value is taken relative to the current directory.
     Switching a formulation, hub.motion, a drive profile or a torque law drops the keys of
-    the old choice that the new one does not take.
+    the old choice that the new one does not take; each drop is added to ``dropped`` (when
+    given) as a line naming the --set and the keys.
     """
     data = copy.deepcopy(data)
     set_paths: dict[tuple, str] = {}
@@ -1079,7 +1084,13 @@ def apply_overrides(data: dict, overrides: list[str]) -> dict:
             if isinstance(address[-1], str) and address[-1] in _SWITCHES:
                 switches.append(address)
     for address in switches:
-        _prune(data, address, set(set_paths))
+        names = _prune(data, address, set(set_paths))
+        if names and dropped is not None:
+            text = set_paths[_canonical(address)].strip()
+            table = text.split("=", 1)[0].strip().rsplit(".", 1)[0]
+            choice = f"{address[-1]} {_get(data, address)!r}"
+            dropped.append(f"--set {text}: {', '.join(f'{table}.{n}' for n in names)} dropped ({choice} does not "
+                           f"take {'it' if len(names) == 1 else 'them'})")
     return data
 
 
@@ -1091,13 +1102,15 @@ def value_at(data: dict, key: str):
     return _get(data, addresses[0])
 
 
-def load_example(name: str, overrides: list[str] | None = None) -> Scenario:
-    """A bundled scenario, overridden and validated."""
-    return validate(apply_overrides(tomllib.loads(example_text(name)), overrides or []))
+def load_example(name: str, overrides: list[str] | None = None, dropped: list[str] | None = None) -> Scenario:
+    """A bundled scenario, overridden and validated (``dropped``: see :func:`apply_overrides`)."""
+    return validate(apply_overrides(tomllib.loads(example_text(name)), overrides or [], dropped))
 
 
-def load_scenario(source: str | Path, overrides: list[str] | None = None) -> Scenario:
-    """Read, override and validate a scenario file (relative table paths: relative to the file)."""
+def load_scenario(source: str | Path, overrides: list[str] | None = None,
+                  dropped: list[str] | None = None) -> Scenario:
+    """Read, override and validate a scenario file (relative table paths: relative to the file;
+    ``dropped``: see :func:`apply_overrides`)."""
     path = Path(source)
     try:
         text = path.read_text(encoding="utf-8")
@@ -1111,4 +1124,4 @@ def load_scenario(source: str | Path, overrides: list[str] | None = None) -> Sce
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{path}: malformed TOML ({exc})") from None
-    return validate(apply_overrides(data, overrides or []), base_dir=path.absolute().parent)
+    return validate(apply_overrides(data, overrides or [], dropped), base_dir=path.absolute().parent)
