@@ -498,6 +498,13 @@ def test_what_a_switch_drops_is_said():
     dropped = []
     apply_overrides(BASE, ['hub.motion="free"', 'beam.formulation="ffr"'], dropped)  # nothing to drop
     assert dropped == []
+    data = copy.deepcopy(ROTOR)
+    for beam in data["beams"]:
+        beam["gauss_points"] = 4
+    dropped = []
+    apply_overrides(data, ['beams[*].formulation="ffr"'], dropped)  # each beam named, once
+    assert dropped == [f"--set beams[*].formulation=\"ffr\": beams[{k}].gauss_points dropped (formulation 'ffr' does "
+                       "not take it)" for k in range(3)]
 
 
 def test_analysis_steps_only_for_dynamic_analyses():

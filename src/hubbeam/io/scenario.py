@@ -1087,7 +1087,7 @@ def apply_overrides(data: dict, overrides: list[str], dropped: list[str] | None 
         names = _prune(data, address, set(set_paths))
         if names and dropped is not None:
             text = set_paths[_canonical(address)].strip()
-            table = text.split("=", 1)[0].strip().rsplit(".", 1)[0]
+            table = _format_loc(address[:-1])  # the table switched (beams[*] names each beam)
             choice = f"{address[-1]} {_get(data, address)!r}"
             dropped.append(f"--set {text}: {', '.join(f'{table}.{n}' for n in names)} dropped ({choice} does not "
                            f"take {'it' if len(names) == 1 else 'them'})")
