@@ -61,7 +61,9 @@ def main(argv: list[str]) -> None:
         from hubbeam.io.scenario import load_example
 
         scenario = load_example(example, overrides)
-        api.run(load_example(example, overrides + [f"analysis.t_end={scenario.output_dt}"]))
+        if not any(o.split("=", 1)[0].strip() == "analysis.t_end" for o in overrides):  # one output step is enough
+            scenario = load_example(example, overrides + [f"analysis.t_end={scenario.output_dt}"])
+        api.run(scenario)
     cpu, wall = time.process_time() - start_cpu, time.perf_counter() - start_wall
 
     stack, spans = [], []
