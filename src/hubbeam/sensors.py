@@ -6,7 +6,7 @@ it names one) measure the beam their ``beam`` key names (default: the first).
 
 from __future__ import annotations
 
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.hub_system import HubSystem, energy_sums
 
 UNITS = {
     "surface_strain": "1", "hub_angle": "rad", "hub_angular_velocity": "rad/s", "hub_torque": "N m",
@@ -112,22 +112,12 @@ def _chunk_energy(sensor, system):
     def energy(chunk):
         if chunk.energies is None:
             return each(chunk)
-        hub, beams = chunk.energies
-        if index is not None:
-            rows = beams[:, index]
-            kinetic, strain, gravity = rows[:, 0], rows[:, 1], rows[:, 2]
-            return [{"kinetic": k, "strain": u, "gravity": g, "total": k + u + g}
-                    for k, u, g in zip(kinetic.tolist(), strain.tolist(), gravity.tolist())]
-        # the sums of energy_sums, in its order (the hub's row, then the beams'), column by column
-        kinetic, strain, gravity = hub[:, 0].copy(), hub[:, 1].copy(), hub[:, 2].copy()
-        for k in range(beams.shape[1]):
-            kinetic += beams[:, k, 0]
-            strain += beams[:, k, 1]
-            gravity += beams[:, k, 2]
-        total = kinetic + strain + gravity
-        return [{"kinetic": k, "strain": u, "gravity": g, "total": e, "dissipated": d, "drive": w}
-                for k, u, g, e, d, w in zip(kinetic.tolist(), strain.tolist(), gravity.tolist(), total.tolist(),
-                                            chunk.dissipated.tolist(), chunk.drive.tolist())]
+        e = energy_sums(*chunk.energies, index)  # every record at once
+        kinetic, strain, gravity = e["kinetic"], e["strain"], e["gravity"]
+        columns = {"kinetic": kinetic, "strain": strain, "gravity": gravity, "total": kinetic + strain + gravity}
+        if index is None:
+            columns.update(dissipated=chunk.dissipated, drive=chunk.drive)
+        return [dict(zip(columns, row)) for row in zip(*(c.tolist() for c in columns.values()))]
     return energy
 
 

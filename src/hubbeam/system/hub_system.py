@@ -53,16 +53,20 @@ class Hub:
         return self.motion != "free"
 
 
-def energy_sums(hub: np.ndarray, beams: np.ndarray, beam: int | None = None) -> dict[str, float]:
+def energy_sums(hub: np.ndarray, beams: np.ndarray, beam: int | None = None) -> dict:
     """{kinetic, strain, gravity} (J) from the hub's row (its kinetic energy and the
     energies of parts that belong to no beam) and the beams' rows (kinetic, strain,
-    gravity): of the whole system, or of beam number ``beam`` alone."""
+    gravity): of the whole system, or of beam number ``beam`` alone. hub (3,) and beams
+    (beams, 3) give floats; a leading axis of records, hub (n, 3) and beams (n, beams, 3),
+    gives arrays (n,), the same sums record by record."""
+    hub, beams = np.asarray(hub, dtype=float), np.asarray(beams, dtype=float)
     if beam is not None:
-        return dict(zip(("kinetic", "strain", "gravity"), (float(e) for e in beams[beam])))
-    kinetic, strain, gravity = (float(e) for e in hub)
-    for row in beams:  # in the beams' order, as a sum over the parts
-        kinetic, strain, gravity = kinetic + float(row[0]), strain + float(row[1]), gravity + float(row[2])
-    return {"kinetic": kinetic, "strain": strain, "gravity": gravity}
+        parts = beams[..., beam, :]
+    else:
+        parts = hub
+        for k in range(beams.shape[-2]):  # in the beams' order, as a sum over the parts
+            parts = parts + beams[..., k, :]
+    return {name: float(e) if e.ndim == 0 else e for name, e in zip(("kinetic", "strain", "gravity"), parts.T)}
 
 
 class HubSystem:
