@@ -128,9 +128,9 @@ def test_to_dict_never_holds_nan():
 
 
 def test_cli_json_replaces_non_finite_values_and_says_where(capsys):
-    from hubbeam.cli import _print_json
+    from hubbeam.cli.common import print_json
 
-    _print_json({"final": {"x": float("nan"), "y": [1.0, float("inf")]}, "ok": 2.0})
+    print_json({"final": {"x": float("nan"), "y": [1.0, float("inf")]}, "ok": 2.0})
     d = json.loads(capsys.readouterr().out)
     assert d["final"] == {"x": None, "y": [1.0, None]} and d["ok"] == 2.0
     assert d["non_finite"]["paths"] == ["final.x", "final.y[1]"]

@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from hubbeam import cli as cli_module
+from hubbeam.cli import common as cli_module
 from tests.cli.helpers import EXAMPLES, assert_contract, cli
 
 PROGRESS = re.compile(r"^hubbeam: note: run t = ([0-9.e+-]+) of 0\.3 s \((\d+) %\)$")
@@ -14,12 +14,12 @@ PROGRESS = re.compile(r"^hubbeam: note: run t = ([0-9.e+-]+) of 0\.3 s \((\d+) %
 
 def test_progress_line_formats(monkeypatch, capsys):
     monkeypatch.setattr(cli_module, "PROGRESS_EVERY", 0.0)
-    update, finish = cli_module._progress_bar(20.0)
+    update, finish = cli_module.progress_bar(20.0)
     update(3.2)
     finish()
-    points, _ = cli_module._progress_bar(12, label="sweep", unit="points")
+    points, _ = cli_module.progress_bar(12, label="sweep", unit="points")
     points(3)
-    counted, _ = cli_module._progress_bar(None, label="identify", unit="simulations")
+    counted, _ = cli_module.progress_bar(None, label="identify", unit="simulations")
     counted(7)
     assert capsys.readouterr().err.splitlines() == ["hubbeam: note: run t = 3.2 of 20 s (16 %)",
                                                     "hubbeam: note: sweep 3 of 12 points (25 %)",
@@ -28,7 +28,7 @@ def test_progress_line_formats(monkeypatch, capsys):
 
 def test_no_line_before_the_interval(monkeypatch, capsys):
     monkeypatch.setattr(cli_module, "PROGRESS_EVERY", 3600.0)
-    update, _ = cli_module._progress_bar(20.0)
+    update, _ = cli_module.progress_bar(20.0)
     for t in (1.0, 10.0, 20.0):
         update(t)
     assert capsys.readouterr().err == ""

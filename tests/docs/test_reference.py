@@ -1,4 +1,4 @@
-"""The scenario reference (docs/scenario.md) against the scenario models of io/scenario.py.
+"""The scenario reference (docs/scenario.md) against the scenario models of the package io/scenario/.
 
 Each model has a table in the page, introduced by ``<!-- keys of MODEL -->``: one row per key
 (first column the key in backticks, the third its default). Every field of every model a
@@ -125,7 +125,7 @@ def test_the_stated_defaults_are_the_code_s(name):
     fields = {f.alias or n: f for n, f in model.model_fields.items()}
     # keys a choice requires (a drive profile's omega_s, a law's value): their model default is a
     # neutral placeholder, and the reference says which choices require them
-    choices = model._keys if issubclass(model, sc._KeyedChoice) else {}
+    choices = model._keys if issubclass(model, sc.KeyedChoice) else {}
     by_choice = {k for _, required in choices.values() for k in required}
     for row in KEYS.get(name, []):
         key, default = _key(row[0]), row[2]
@@ -167,9 +167,9 @@ def test_every_bundled_example_is_listed():
 def _subcommands():
     import argparse
 
-    from hubbeam.cli import _parser
+    from hubbeam.cli.parser import build_parser
 
-    parser = _parser()
+    parser = build_parser()
     action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
     return action.choices
 

@@ -1,0 +1,115 @@
+"""``hubbeam static``, ``modes`` and ``linearize``: analyses about an equilibrium."""
+
+from __future__ import annotations
+
+
+from hubbeam.cli.common import check_targets, numerical_failure, say, write_jobs
+
+def print_static(d: dict) -> None:
+    t = d["tip_displacement"]
+    print(f"tip displacement (hub frame): radial {t['radial']:+.6g} m, vertical {t['vertical']:+.6g} m, "
+          f"tangential {t['tangential']:+.6g} m")
+    print(f"tip position: [{', '.join(f'{v:.6g}' for v in d['tip_position'])}] m")
+    print(f"Newton iterations {d['newton_iterations']} over {d['load_steps']} load steps, "
+          f"{d['chart_switches']} chart replacements")
+
+
+def cmd_static(args, scenario) -> dict:
+    from hubbeam import api
+    from hubbeam.io.targets import Target
+    from hubbeam.errors import ComputationError
+
+    targets = check_targets([Target("--plot", getattr(args, "plot", None), "figure")], args)
+    try:
+        result = api.static(scenario)
+    except ComputationError as exc:
+        if not str(exc).startswith("static"):
+            raise ComputationError(f"static equilibrium: {exc}", partial=exc.partial) from exc
+        raise
+    d = result.to_dict()
+    if targets:
+        from hubbeam import plots
+
+        x0, F0 = result.system.initial_state(0.0)
+        sol = result.solution
+        write_jobs([(targets[0], lambda p: plots.plot_deformed(result.system, x0, F0, sol.x, sol.chart, p,
+                                                          title=f"{scenario.name}: static equilibrium"))])
+    if not args.json:
+        print_static(d)
+    return d
+
+
+def cmd_modes(args, scenario) -> dict:
+    import numpy as np
+
+    from hubbeam import api
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import Target
+
+    targets = check_targets([Target("--shapes", getattr(args, "shapes", None)),
+                      Target("--plot", getattr(args, "plot", None), "figure")], args)
+    try:
+        result = api.modes(scenario)
+        d = result.to_dict()
+        ds = result.shapes_dataset() if targets else None
+    except ScenarioError:
+        raise
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise numerical_failure("modal analysis", exc) from exc
+
+    def figure(path):
+        from hubbeam import plots
+
+        half = [0.5 * max(b.section.width, b.section.thickness) for b in result.static.system.beams]
+        plots.plot_mode_shapes(ds, path, half, title=f"{scenario.name}: mode shapes")
+
+    def shapes(path):
+        from hubbeam.io.results import write_netcdf
+
+        write_netcdf(ds, path)
+
+    write_jobs([(t, figure if t.option == "--plot" else shapes) for t in targets])
+    if len(d["frequencies_hz"]) < scenario.analysis.count:
+        say(f"hubbeam: note: analysis.count = {scenario.analysis.count}, but the model has only "
+             f"{len(d['frequencies_hz'])} (more beam.elements give more)")
+    if not args.json:
+        print(f"natural frequencies (Hz) about the {d['about']}, {d['rigid_modes']} rigid mode(s) left out:")
+        for i, (f, label) in enumerate(zip(d["frequencies_hz"], d["labels"]), 1):
+            print(f"  {i:3d}  {f:12.6f}  {label}")
+    return d
+
+
+def cmd_linearize(args, scenario) -> dict:
+    import numpy as np
+
+    from hubbeam import api
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import Target
+
+    targets = check_targets([Target("-o", args.output)], args)
+    if args.open_loop and scenario.hub.torque_law is None:
+        raise ScenarioError(f"--open-loop: hub.motion = {scenario.hub.motion!r} has no torque law to leave out (only a "
+                            "free hub has one)")
+    inputs = None if args.inputs is None else [i.strip() for i in args.inputs.split(",")]
+    try:
+        model = api.linearize(scenario, inputs, open_loop=args.open_loop)
+    except ScenarioError as exc:
+        raise ScenarioError(f"--{exc}" if str(exc).startswith("inputs:") else str(exc)) from None
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise numerical_failure("linearisation", exc) from exc
+    if targets:
+        from hubbeam.io.results import write_netcdf
+
+        write_jobs([(targets[0], lambda p: write_netcdf(model.to_dataset(scenario), p))])
+    d = model.to_dict()
+    if not args.json:
+        print(f"state space about the {d['about']}: {d['states']} states, inputs {', '.join(d['inputs'])}, "
+              f"outputs {', '.join(d['outputs']) or '(none: the scenario has no sensors)'}")
+        for f, z in list(zip(d["frequencies_hz"], d["damping_ratios"]))[:10]:
+            print(f"  {f:12.6f} Hz  damping ratio {z:.4g}")
+    left_out = [f"outputs left out (not functions of the state, or zero to first order): {', '.join(model.left_out)}"]
+    for note in model.notes + (left_out if model.left_out else []):
+        say(f"hubbeam: note: {note}")
+    return d
+
+

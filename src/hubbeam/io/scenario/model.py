@@ -1,0 +1,364 @@
+"""The scenario as a whole: its tables together, the checks across tables, one-line error messages
+and validation."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated
+
+from pydantic import (
+    BaseModel,
+    Field,
+)
+import difflib
+import unicodedata
+from typing import get_args
+
+from pydantic import ValidationError
+
+from hubbeam.errors import ScenarioError
+from hubbeam.io.scenario.analysis import Analysis, Damping, Environment, Loads
+from hubbeam.io.scenario.beams import Beam, ResolvedBeam, ResolvedTipBody, span_sections
+from hubbeam.io.scenario.common import STEP_TOLERANCE, StrictTable
+from hubbeam.io.scenario.hub import Hub, HubTorque
+from hubbeam.io.scenario.sensors import Sensor
+
+
+class Scenario(StrictTable):
+    name: Annotated[str, Field(min_length=1, max_length=200)] = "scenario"
+    single_beam: Beam | None = Field(default=None, alias="beam")  # a [beam] table
+    beams: Annotated[list[Beam], Field(min_length=1, max_length=100)] | None = None  # [[beams]] tables
+    hub: Hub = Hub()
+    environment: Environment = Environment()
+    damping: Damping = Damping()
+    loads: Loads = Loads()
+    analysis: Analysis = Analysis()
+    sensors: list[Sensor] = []
+
+    # ----------------------------------------------------------- beams
+    @property
+    def beam_tables(self) -> list[Beam]:
+        """The beams as written ([beam] or [[beams]]), in order."""
+        if self.single_beam is not None:
+            return [self.single_beam]
+        return list(self.beams or [])
+
+    @property
+    def beam_names(self) -> tuple[str, ...]:
+        return tuple(b.name or f"beam{i + 1}" for i, b in enumerate(self.beam_tables))
+
+    @property
+    def beam(self) -> Beam:
+        """The one beam of a single-beam scenario (its table as written; the placement keys
+        may be None: :meth:`resolved_beams` has them resolved)."""
+        tables = self.beam_tables
+        if len(tables) != 1:
+            raise ScenarioError(
+                f"beams: this scenario has {len(tables)} beams ({', '.join(self.beam_names)}) where one is expected")
+        return tables[0]
+
+    def beam_index(self, name: str | None = None) -> int:
+        """0-based index of the beam called ``name``; None means the first beam (0)."""
+        if name is None:
+            return 0
+        names = self.beam_names
+        if name not in names:
+            raise ScenarioError(f"beam: no beam named {name!r} (beams: {', '.join(names)})")
+        return names.index(name)
+
+    def resolved_beams(self) -> list[ResolvedBeam]:
+        """Every beam with its defaults filled in (SI units, radians)."""
+        loaded = self.beam_index(self.loads.beam)
+        out = []
+        for i, (b, name) in enumerate(zip(self.beam_tables, self.beam_names)):
+            if b.shear_modulus is not None:
+                g = b.shear_modulus
+            else:
+                nu = 0.33 if b.poisson_ratio is None else b.poisson_ratio
+                g = b.youngs_modulus / (2.0 * (1.0 + nu))
+            from hubbeam.elements.section import Section, saint_venant_torsion_constant
+
+            if b.torsion_constant is not None:
+                jt = b.torsion_constant
+            else:
+                jt = saint_venant_torsion_constant(b.width, b.thickness)
+            tb = b.tip_body
+            tip = None if tb is None else ResolvedTipBody(
+                float(tb.mass), tuple(float(v) for v in tb.inertia), tuple(float(v) for v in tb.offset))
+            zero = (0.0, 0.0, 0.0)
+            out.append(ResolvedBeam(
+                name=name, index=i, formulation=b.formulation, elements=b.elements, length=b.length, width=b.width,
+                thickness=b.thickness, density=b.density, youngs_modulus=b.youngs_modulus, shear_modulus=g,
+                torsion_constant=jt, gauss_points=b.gauss_points, geometric_stiffening=bool(b.geometric_stiffening),
+                azimuth=math.radians(b.azimuth),
+                radius=float(self.hub.radius if b.radius is None else b.radius),
+                twist=math.radians(self.hub.twist if b.twist is None else b.twist),
+                precone=math.radians(b.precone), tip_body=tip,
+                tip_force=tuple(float(v) for v in self.loads.tip_force) if i == loaded else zero,
+                tip_moment=tuple(float(v) for v in self.loads.tip_moment) if i == loaded else zero,
+                modes=b.modes,
+                sections=span_sections(b, Section(b.width, b.thickness, b.density, b.youngs_modulus, g, jt)),
+                structural_damping=float(b.damping.stiffness_proportional) if b.damping is not None else 0.0,
+            ))
+        return out
+
+    # ----------------------------------------------------------- derived values (single beam)
+    @property
+    def shear_modulus(self) -> float:
+        """Shear modulus (Pa) of the single beam."""
+        self.beam  # noqa: B018 - one beam expected
+        return self.resolved_beams()[0].shear_modulus
+
+    @property
+    def twist_rad(self) -> float:
+        """Twist (rad) of the single beam."""
+        self.beam  # noqa: B018 - one beam expected
+        return self.resolved_beams()[0].twist
+
+    @property
+    def output_dt(self) -> float:
+        return self.analysis.output_dt if self.analysis.output_dt is not None else self.analysis.dt
+
+    @property
+    def columns(self) -> list[str]:
+        """The result columns of the sensors, in order (without ``time``)."""
+        return [c for s in self.sensors for c in s.columns]
+
+    def to_dict(self) -> dict:
+        """The scenario as plain data ([beam] or [[beams]] as written; absolute table paths);
+        ``validate(scenario.to_dict())`` gives the scenario back."""
+        return self.model_dump(by_alias=True, exclude_none=True)
+
+
+def _nearest_multiples(value: float, step: float) -> str:
+    n = value / step
+    lo, hi = max(math.floor(n), 1), max(math.ceil(n), 1)
+    vals = sorted({float(f"{k * step:.12g}") for k in (lo, hi)})
+    return " or ".join(f"{v:.12g}" for v in vals)
+
+
+def _is_multiple(value: float, step: float) -> bool:
+    n = round(value / step)
+    return n >= 1 and abs(n * step - value) <= STEP_TOLERANCE * value
+
+
+def _cross_checks(s: Scenario) -> None:
+    """Checks that involve several keys; each raises ScenarioError naming one key."""
+    if any(unicodedata.category(c) == "Cc" for c in s.name):
+        raise ScenarioError("name: must not contain control characters (NUL, tab, line breaks, ...)")
+    if s.single_beam is not None and s.beams is not None:
+        raise ScenarioError("beams: give one [beam] table or [[beams]] tables, not both")
+    if s.single_beam is None and s.beams is None:
+        raise ScenarioError("beam: required key is missing (a [beam] table, or [[beams]] tables for several beams)")
+    tables, names = s.beam_tables, s.beam_names
+    where = "beam" if s.single_beam is not None else "beams"
+    seen: dict[str, int] = {}
+    for i, name in enumerate(names):
+        if name in seen:
+            how = "" if tables[i].name is not None else " by default"
+            raise ScenarioError(f"beams[{i}].name: duplicate beam name {name!r}{how} (also beams[{seen[name]}])")
+        seen[name] = i
+    listed = ", ".join(names)
+
+    hub = s.hub
+    if hub.motion == "prescribed" and hub.drive is None:
+        raise ScenarioError("hub.drive: required when hub.motion = 'prescribed'")
+    if hub.motion == "free" and "inertia" not in hub.model_fields_set:
+        raise ScenarioError("hub.inertia: required for motion = 'free' (kg m^2 about j0)")
+
+    if s.loads.beam is not None and s.loads.beam not in names:
+        raise ScenarioError(f"loads.beam: no beam named {s.loads.beam!r} (beams: {listed})")
+
+    a = s.analysis
+    if a.kind == "dynamic":
+        if a.dt > a.t_end:
+            raise ScenarioError(f"analysis.dt: larger than analysis.t_end ({a.dt} > {a.t_end})")
+        if a.output_dt is not None and a.output_dt < a.dt:
+            raise ScenarioError(f"analysis.output_dt: smaller than analysis.dt ({a.output_dt} < {a.dt})")
+        for key in ("output_dt", "t_end"):
+            value = getattr(a, key)
+            if value is not None and not math.isfinite(value / a.dt):  # too many steps to count in a float
+                raise ScenarioError(f"analysis.{key}: {value:.12g} s is more steps of analysis.dt = {a.dt:.12g} s "
+                                    "than a number can count")
+        if a.output_dt is not None and not _is_multiple(a.output_dt, a.dt):
+            raise ScenarioError(f"analysis.output_dt: {a.output_dt:.12g} s is not a whole multiple of analysis.dt = "
+                                f"{a.dt:.12g} s (nearest valid: {_nearest_multiples(a.output_dt, a.dt)})")
+        if not _is_multiple(a.t_end, a.dt):
+            raise ScenarioError(f"analysis.t_end: {a.t_end:.12g} s is not a whole number of steps of analysis.dt = "
+                                f"{a.dt:.12g} s (nearest valid: {_nearest_multiples(a.t_end, a.dt)})")
+
+    columns: dict[str, int] = {}
+    for i, sen in enumerate(s.sensors):
+        if sen.kind == "applied_torque" and hub.motion != "free":
+            raise ScenarioError(f"sensors[{i}].kind: applied_torque needs hub.motion = 'free' "
+                                f"(motion is {hub.motion!r}; a prescribed hub's torque is hub_torque)")
+        for col in sen.columns:
+            if col == "time":
+                raise ScenarioError(f"sensors[{i}].name: {sen.name!r} makes the column 'time', the time coordinate")
+            if col in columns:
+                j = columns[col]
+                if s.sensors[j].name == sen.name:
+                    raise ScenarioError(f"sensors[{i}].name: duplicate sensor name {sen.name!r} (also sensors[{j}])")
+                raise ScenarioError(f"sensors[{i}].name: {sen.name!r} makes the column {col!r}, which sensors[{j}] "
+                                    f"({s.sensors[j].name!r}, {s.sensors[j].kind}) makes too")
+            columns[col] = i
+        if sen.beam is not None and sen.beam not in names:
+            raise ScenarioError(f"sensors[{i}].beam: no beam named {sen.beam!r} (beams: {listed})")
+        k = s.beam_index(sen.beam)
+        b = tables[k]
+        of = f"{where}[{k}]" if where == "beams" else "beam"
+        label = f"beam {names[k]!r}" if len(tables) > 1 else "the beam"
+        if sen.x is not None and sen.x > b.length:
+            raise ScenarioError(f"sensors[{i}].x: station {sen.x} m is beyond the length of {label} "
+                                f"({of}.length = {b.length} m)")
+        width, thickness = b.size_at(sen.x) if sen.x is not None else (b.width, b.thickness)
+        if sen.y is not None and abs(sen.y) > width / 2 * (1 + 1e-12):
+            raise ScenarioError(f"sensors[{i}].y: {sen.y} m is outside the section of {label} "
+                                f"(|y| <= width/2 = {width / 2})")
+        if sen.z is not None and abs(sen.z) > thickness / 2 * (1 + 1e-12):
+            raise ScenarioError(
+                f"sensors[{i}].z: {sen.z} m is outside the section of {label} (|z| <= thickness/2 = {thickness / 2})")
+
+
+_TYPE_PARTS = {"function-after", "function-before", "function-wrap", "list[float]", "float", "int", "str", "bool",
+               "constrained-float", "constrained-int", "constrained-str", "list[constrained-float]"}
+
+
+def _format_loc(loc: tuple) -> str:
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        elif part in _TYPE_PARTS or str(part).startswith(("<", "function-")):
+            continue
+        else:
+            out += ("." if out else "") + str(part)
+    return out
+
+
+def _explain(err: dict) -> str:
+    kind = err["type"]
+    ctx = err.get("ctx", {})
+    value = err.get("input")
+    if kind == "extra_forbidden":
+        return "unknown key"
+    if kind == "missing":
+        return "required key is missing"
+    if kind in ("finite_number",):
+        return f"must be a finite number (got {value})"
+    if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
+        op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<", "less_than_equal": "<="}[kind]
+        bound = next(iter(ctx.values()))
+        return f"must be {op} {bound} (got {value})"
+    if kind == "literal_error":
+        return f"must be one of {ctx.get('expected')} (got {value!r})"
+    if kind in ("too_short", "too_long"):
+        n = ctx.get("min_length") if kind == "too_short" else ctx.get("max_length")
+        bound = "at least" if kind == "too_short" else "at most"
+        if ctx.get("min_length") == 3 or ctx.get("max_length") == 3:
+            bound = "exactly"  # a 3-vector
+        return f"must have {bound} {n} entr{'y' if n == 1 else 'ies'} (got {ctx.get('actual_length')})"
+    if kind == "string_too_short":
+        return "must not be empty"
+    if kind == "string_too_long":
+        return f"must be at most {ctx.get('max_length')} characters long"
+    if kind == "string_pattern_mismatch":
+        return f"must be an identifier: letters, digits and _, not starting with a digit (got {value!r})"
+    if kind in ("float_type", "int_type", "string_type", "bool_type", "list_type", "model_type", "dict_type",
+                "model_attributes_type"):
+        want = {"float_type": "a number", "int_type": "an integer", "string_type": "a string",
+                "bool_type": "true or false", "list_type": "a list", "model_type": "a table", "dict_type": "a table",
+                "model_attributes_type": "a table"}[kind]
+        return f"must be {want} (got {type(value).__name__} {value!r})"
+    msg = err["msg"]
+    return msg.removeprefix("Value error, ")
+
+
+def _first_error(errors: list) -> dict:
+    """The error to report: an unknown key before the others (a misspelt required key is both
+    unknown and missing, and the unknown one is what the user wrote), else the first."""
+    return next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
+
+
+def _models_in(annotation) -> list:
+    """The pydantic models an annotation can hold (through Optional, Union, list, Annotated)."""
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return [annotation]
+    return [m for arg in get_args(annotation) for m in _models_in(arg)]
+
+
+def _keys_of_table(loc: tuple) -> list[str]:
+    """The keys the scenario's table at ``loc`` (a pydantic error location) can have."""
+    def keys(model) -> dict:  # as written in a file: by alias where a field has one
+        return {f.alias or name: f for name, f in model.model_fields.items()}
+
+    models = [Scenario]
+    for part in loc:
+        if isinstance(part, int):
+            continue
+        fields = [keys(m)[part] for m in models if part in keys(m)]
+        if fields:
+            models = [m for f in fields for m in _models_in(f.annotation)]
+    return sorted({key for m in models for key in keys(m)})
+
+
+def _did_you_mean(unknown: dict, errors: list) -> str:
+    """' (did you mean NAME?)' for an unknown key close to a key of its table: one missing from
+    it first (a misspelt required key), else any of its keys."""
+    table, name = unknown["loc"][:-1], str(unknown["loc"][-1])
+    missing = [str(e["loc"][-1]) for e in errors if e["type"] == "missing" and e["loc"][:-1] == table]
+    close = (difflib.get_close_matches(name, missing, n=1, cutoff=0.6)
+             or difflib.get_close_matches(name, _keys_of_table(table), n=1, cutoff=0.75))
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
+def validate(data: dict, base_dir: str | Path | None = None) -> Scenario:
+    """A validated Scenario from a plain dict (parsed TOML), or ScenarioError. Relative table
+    paths (``file`` keys) are taken relative to ``base_dir`` (default: the current directory)."""
+    if not isinstance(data, dict):
+        raise ScenarioError("scenario: must be a TOML table")
+    try:
+        scenario = Scenario.model_validate(data, context={"base_dir": base_dir})
+    except ValidationError as exc:
+        err = _first_error(exc.errors())
+        key = _format_loc(err["loc"]) or "scenario"
+        reason = _explain(err)
+        if err["type"] == "extra_forbidden":
+            reason += _did_you_mean(err, exc.errors())
+        # validators report "key: reason" for a key of their own model
+        if err["type"] == "value_error" and ": " in reason and not reason.startswith(" "):
+            sub, reason = reason.split(": ", 1)
+            key = f"{key}.{sub}" if key != "scenario" else sub
+        raise ScenarioError(f"{key}: {reason}") from None
+    _cross_checks(scenario)
+    _check_tables(scenario)
+    return scenario
+
+
+def table_files(s: Scenario) -> list[tuple[str, str, str]]:
+    """(kind "drive" or "torque", key, absolute path) of every CSV table the scenario reads:
+    its inputs, which no output of a command may overwrite."""
+    hub = s.hub
+    tables = []
+    if hub.drive is not None and hub.drive.profile == "table":
+        tables.append(("drive", "hub.drive.file", hub.drive.file))
+    torque = hub.torque if isinstance(hub.torque, HubTorque) else None
+    if torque is not None and torque.law == "table":
+        tables.append(("torque", "hub.torque.file", torque.file))
+    if torque is not None and torque.reference is not None and torque.reference.profile == "table":
+        tables.append(("drive", "hub.torque.reference.file", torque.reference.file))
+    return tables
+
+
+def _check_tables(s: Scenario) -> None:
+    """The numbers of the CSV tables a scenario names (columns, rows, times)."""
+    tables = table_files(s)
+    if not tables:
+        return
+    from hubbeam.io.tables import read_drive_table, read_torque_table
+
+    for what, key, path in tables:
+        (read_drive_table if what == "drive" else read_torque_table)(path, key)
+
+

@@ -1,0 +1,265 @@
+"""``--set KEY=VALUE`` overrides, and reading scenario files and bundled examples."""
+
+from __future__ import annotations
+
+import copy
+import re
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from hubbeam.errors import ScenarioError
+from hubbeam.io.examples import example_text
+from hubbeam.io.scenario.hub import DRIVE_KEYS, TORQUE_KEYS
+from hubbeam.io.scenario.model import Scenario, _format_loc, validate
+
+
+_SEGMENT = re.compile(r"([^.\[\]]+)((?:\[(?:\d+|\*)\])*)")
+_INDEX = re.compile(r"\[(\d+|\*)\]")
+#: keys whose value selects which other keys of the same table apply
+_SWITCHES = {"formulation", "motion", "profile", "law"}
+
+
+def parse_override(text: str) -> tuple[list[str], object]:
+    """'beam.elements=8' -> (['beam', 'elements'], 8); the value uses TOML syntax, a bare word is a string."""
+    if "=" not in text:
+        raise ScenarioError(f"--set {text}: expected KEY=VALUE")
+    key, raw = text.split("=", 1)
+    key = key.strip()
+    if not key or any(not part for part in key.split(".")):
+        raise ScenarioError(f"--set {text}: malformed key {key!r}")
+    try:
+        value = tomllib.loads(f"v = {raw.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw.strip()
+    return key.split("."), value
+
+
+def _tokens(key: str, text: str) -> list:
+    """'beams[1].tip_body.mass' -> ['beams', 1, 'tip_body', 'mass'] ('*' for [*])."""
+    out: list = []
+    for seg in key.split("."):
+        m = _SEGMENT.fullmatch(seg)
+        if not m:
+            raise ScenarioError(f"--set {text}: malformed key {key!r}")
+        out.append(m.group(1))
+        out += [int(i) if i != "*" else "*" for i in _INDEX.findall(m.group(2))]
+    return out
+
+
+def _beam_name(table: Any, i: int) -> str:
+    if isinstance(table, dict) and isinstance(table.get("name"), str):
+        return table["name"]
+    return f"beam{i + 1}"
+
+
+def _addresses(data: dict, tokens: list, text: str) -> list[tuple]:
+    """The places a --set key addresses, with a beam named by index or name turned into its
+    table: ('beam', ...) for a single [beam], ('beams', i, ...) for [[beams]]."""
+    head, rest = tokens[0], tokens[1:]
+    single = data.get("beam")
+    many = data.get("beams")
+    if head == "beam":
+        if isinstance(many, list) and single is None:
+            if len(many) != 1:
+                raise ScenarioError(f"--set {text}: the scenario has {len(many)} beams; address one as "
+                                    f"beams[i].KEY (0-based) or beams.NAME.KEY")
+            return [("beams", 0, *rest)]
+        return [("beam", *rest)]
+    if head == "beams" and rest:
+        sel, rest = rest[0], rest[1:]
+        if isinstance(single, dict) and many is None:
+            tables, to = [single], (lambda i: ("beam",))
+        elif isinstance(many, list):
+            tables, to = many, (lambda i: ("beams", i))
+        else:
+            raise ScenarioError(f"--set {text}: the scenario has no beams to address")
+        names = [_beam_name(t, i) for i, t in enumerate(tables)]
+        if sel == "*":
+            picked = list(range(len(tables)))
+        elif isinstance(sel, int):
+            if sel >= len(tables):
+                raise ScenarioError(f"--set {text}: beam index {sel} is out of range (the scenario has "
+                                    f"{len(tables)} beam{'s' if len(tables) > 1 else ''}: 0..{len(tables) - 1})")
+            picked = [sel]
+        else:
+            if sel not in names:
+                raise ScenarioError(f"--set {text}: no beam named {sel!r} (beams: {', '.join(names)})")
+            picked = [names.index(sel)]
+        return [address for i in picked for address in _expand(data, (*to(i), *rest), text)]
+    return _expand(data, tuple(tokens), text)
+
+
+def _expand(data: dict, address: tuple, text: str) -> list[tuple]:
+    """``address`` with every ``[*]`` replaced by each index of that list."""
+    if "*" not in address:
+        return [address]
+    k = address.index("*")
+    node = _get(data, address[:k])
+    if not isinstance(node, list):
+        raise ScenarioError(f"--set {text}: {_show(address[:k])} is not a list")
+    return [a for i in range(len(node)) for a in _expand(data, (*address[:k], i, *address[k + 1:]), text)]
+
+
+def _canonical(address: tuple) -> tuple:
+    return ("beams", 0, *address[1:]) if address[:1] == ("beam",) else address
+
+
+def _set(data: dict, address: tuple, value, text: str) -> None:
+    node: Any = data
+    for k, part in enumerate(address[:-1]):
+        shown = _show(address[:k + 1])
+        if isinstance(part, int) or part == "*":
+            if not isinstance(node, list):
+                raise ScenarioError(f"--set {text}: {_show(address[:k])} is not a list")
+            if part == "*" or part >= len(node):
+                raise ScenarioError(f"--set {text}: index {part} of {_show(address[:k])} is out of range "
+                                    f"({len(node)} entries)")
+            node = node[part]
+        else:
+            if not isinstance(node, dict):
+                raise ScenarioError(f"--set {text}: {_show(address[:k])} is not a table")
+            node = node.setdefault(part, {})
+            if not isinstance(node, (dict, list)):
+                raise ScenarioError(f"--set {text}: {shown} is not a table (it is {node!r}; set the whole "
+                                    f"{shown} instead, e.g. {shown}={{...}})")
+        if not isinstance(node, (dict, list)):
+            raise ScenarioError(f"--set {text}: {shown} is not a table")
+    last = address[-1]
+    if isinstance(last, int):
+        if not isinstance(node, list) or last >= len(node):
+            raise ScenarioError(f"--set {text}: index {last} of {_show(address[:-1])} is out of range")
+        node[last] = value
+    else:
+        if not isinstance(node, dict):
+            raise ScenarioError(f"--set {text}: {_show(address[:-1])} is not a table")
+        node[last] = value
+
+
+def _show(address: tuple) -> str:
+    out = ""
+    for part in address:
+        out += f"[{part}]" if isinstance(part, int) else ("." if out else "") + str(part)
+    return out
+
+
+def _get(data: Any, address: tuple):
+    node = data
+    for part in address:
+        if isinstance(part, int):
+            if not isinstance(node, list) or part >= len(node):
+                return None
+            node = node[part]
+        else:
+            if not isinstance(node, dict) or part not in node:
+                return None
+            node = node[part]
+    return node
+
+
+def _prune(data: dict, switch: tuple, set_paths: set) -> list[str]:
+    """After --set switched ``switch`` (a formulation, motion, profile or law), drop the keys of
+    the old choice that the new one does not take (unless they are set by --set as well).
+    Returns the dropped keys' names."""
+    table = _get(data, switch[:-1])
+    value = table.get(switch[-1]) if isinstance(table, dict) else None
+    if not isinstance(table, dict) or not isinstance(value, str):
+        return []
+    key = switch[-1]
+    dropped = []
+
+    def drop(*names):
+        for name in names:
+            if _canonical(switch[:-1] + (name,)) not in set_paths and name in table:
+                table.pop(name)
+                dropped.append(name)
+
+    if key == "formulation":
+        drop(*{"ancf": ("geometric_stiffening", "modes"), "ffr": ("gauss_points",)}.get(value, ()))
+    elif key == "motion" and switch[:-1] == ("hub",):
+        if value != "free":
+            drop("torque")
+        if value != "prescribed":
+            drop("drive")
+    elif key == "profile" and value in DRIVE_KEYS:
+        drop(*(k for k in ("omega_s", "T", "t1", "angle", "file") if k not in DRIVE_KEYS[value][0]))
+    elif key == "law" and value in TORQUE_KEYS:
+        drop(*(k for k in ("value", "file", "kp", "kd", "reference") if k not in TORQUE_KEYS[value][0]))
+    return dropped
+
+
+def apply_overrides(data: dict, overrides: list[str], dropped: list[str] | None = None) -> dict:
+    """Apply --set overrides to parsed TOML data (a new dict is returned).
+
+    Keys are dotted paths; a list entry is addressed by a 0-based index (``sensors[1].x``);
+    a beam by index or name (``beams[1].twist``, ``beams.blade2.twist``, and ``beams[*].KEY``
+    for every beam); ``beam.KEY`` addresses the one beam of a single-beam scenario. A key may
+    be set once. A relative ``file`` value is taken relative to the current directory.
+    Switching a formulation, hub.motion, a drive profile or a torque law drops the keys of
+    the old choice that the new one does not take; each drop is added to ``dropped`` (when
+    given) as a line naming the --set and the keys.
+    """
+    data = copy.deepcopy(data)
+    set_paths: dict[tuple, str] = {}
+    switches = []
+    for text in overrides or []:
+        _, value = parse_override(text)  # checks the KEY=VALUE form
+        key = text.split("=", 1)[0].strip()
+        for address in _addresses(data, _tokens(key, text), text):
+            canon = _canonical(address)
+            for other, other_text in set_paths.items():
+                other_key = other_text.split("=", 1)[0].strip()
+                also = "" if other_key == key else f" (also as {other_key})"
+                if other == canon:
+                    raise ScenarioError(f"--set {key}: given more than once{also}")
+                n = min(len(other), len(canon))
+                if other[:n] == canon[:n]:
+                    raise ScenarioError(f"--set {key}: overlaps --set {other_key} (set a key or its table once)")
+            if address[-1] == "file" and isinstance(value, str) and value:
+                value = str(Path(value).expanduser().absolute())  # a path typed here: from the current directory
+            _set(data, address, value, text)
+            set_paths[canon] = text
+            if isinstance(address[-1], str) and address[-1] in _SWITCHES:
+                switches.append(address)
+    for address in switches:
+        names = _prune(data, address, set(set_paths))
+        if names and dropped is not None:
+            text = set_paths[_canonical(address)].strip()
+            table = _format_loc(address[:-1])  # the table switched (beams[*] names each beam)
+            choice = f"{address[-1]} {_get(data, address)!r}"
+            dropped.append(f"--set {text}: {', '.join(f'{table}.{n}' for n in names)} dropped ({choice} does not "
+                           f"take {'it' if len(names) == 1 else 'them'})")
+    return data
+
+
+def value_at(data: dict, key: str):
+    """The value a --set key addresses in parsed scenario data (None if not set there)."""
+    addresses = _addresses(data, _tokens(key, key), key)
+    if len(addresses) != 1:
+        raise ScenarioError(f"{key}: addresses {len(addresses)} values; name one")
+    return _get(data, addresses[0])
+
+
+def load_example(name: str, overrides: list[str] | None = None, dropped: list[str] | None = None) -> Scenario:
+    """A bundled scenario, overridden and validated (``dropped``: see :func:`apply_overrides`)."""
+    return validate(apply_overrides(tomllib.loads(example_text(name)), overrides or [], dropped))
+
+
+def load_scenario(source: str | Path, overrides: list[str] | None = None,
+                  dropped: list[str] | None = None) -> Scenario:
+    """Read, override and validate a scenario file (relative table paths: relative to the file;
+    ``dropped``: see :func:`apply_overrides`)."""
+    path = Path(source)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ScenarioError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise ScenarioError(f"{path}: is a directory, not a scenario file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ScenarioError(f"{path}: cannot read ({exc.__class__.__name__})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"{path}: malformed TOML ({exc})") from None
+    return validate(apply_overrides(data, overrides or [], dropped), base_dir=path.absolute().parent)
