@@ -14,7 +14,7 @@ from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
 from hubbeam.elements.section import Section
 from hubbeam.system.ffr_part import FfrPart
-from hubbeam.system.hub_system import Hub, HubSystem
+from hubbeam.system.multibody import Hub, MultibodySystem
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
@@ -115,7 +115,7 @@ def torque_law(law) -> TorqueLaw:
     return TorqueLaw.pd(law.kp, law.kd, drive_profile(law.reference, "hub.torque.reference"))
 
 
-def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> HubSystem:
+def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> MultibodySystem:
     """The hub system a scenario describes. ``torque``: a torque law that replaces the
     scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function torque(t, theta, omega),
     which integrates step by step in Python). ``scenario``: a Scenario or a scenario file's path."""
@@ -123,13 +123,13 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> HubSyst
     hub = scenario.hub
     drive = drive_profile(hub.drive, "hub.drive") if hub.drive is not None else DriveProfile("rest")
     law = torque if torque is not None else torque_law(hub.torque_law)
-    return HubSystem([beam_part(spec) for spec in scenario.resolved_beams()],
+    return MultibodySystem([beam_part(spec) for spec in scenario.resolved_beams()],
                      Hub(hub.motion, hub.inertia, law, drive),
                      gravity=np.array(scenario.environment.gravity), damping=(scenario.damping.linear,
                                                                               scenario.damping.quadratic))
 
 
-def reduction_warnings(scenario: Scenario, system: HubSystem | None = None) -> list[str]:
+def reduction_warnings(scenario: Scenario, system: MultibodySystem | None = None) -> list[str]:
     """One line for each thing the kept modes of a modally reduced FFR beam (``modes = N``)
     may miss in the scenario: a share of the static deflection under gravity above 1 %, or a
     drive or PD reference (spin_up, slew, exponential over T s: up to about 2 / T Hz) that
@@ -144,22 +144,24 @@ def reduction_warnings(scenario: Scenario, system: HubSystem | None = None) -> l
     drive = hub.drive if hub.drive is not None else (law.reference if law is not None and law.law == "pd" else None)
     excitation = 2.0 / drive.T if drive is not None and drive.profile in ("spin_up", "slew", "exponential") else None
     out = []
-    for part in system.beams:
+    x0, F0 = system.initial_state()
+    for k, part in enumerate(system.beams):
         if isinstance(part, FfrPart):
-            out += coverage_warnings(part.beam, part.mount.frame(0.0).T @ system.gravity, excitation, name=part.name)
+            out += coverage_warnings(part.beam, system.root_pose(k, x0, F0)[1].T @ system.gravity, excitation,
+                                     name=part.name)
     return out
 
 
-def tip_displacement(system: HubSystem, x: np.ndarray, beam: int = 0) -> dict[str, float]:
+def tip_displacement(system: MultibodySystem, x: np.ndarray, beam: int = 0, F=None) -> dict[str, float]:
     """Tip centroid displacement of a beam from its undeformed place, in its hub frame (m)."""
-    return system.tip_displacement(x, beam)
+    return system.tip_displacement(x, beam, F)
 
 
 @dataclass
 class StaticResult:
     """Static equilibrium of a scenario and its summary."""
 
-    system: HubSystem
+    system: MultibodySystem
     solution: StaticSolution
 
     def to_dict(self) -> dict:

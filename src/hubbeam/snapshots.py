@@ -57,14 +57,15 @@ class StateRecorder:
         self.hub_radius = max(float(part.mount.radius) for part in system.beams)
         #: every beam's undeformed centre line at the stations with the hub at theta = 0 (m, global):
         #: turned by the hub angle, the place the deflection is measured from
-        self.references = tuple(part.centre_line_at(*part.initial_state(0.0), st)
-                                for part, st in zip(system.beams, self.stations))
+        x0, F0 = system.initial_state(0.0)
+        self.references = tuple(system.centre_line_at(x0, F0, st, k) for k, st in enumerate(self.stations))
 
     def __call__(self, system, state) -> Snapshot:
         beams = []
         for k, part, q, chart in system.parts(state.x, state.chart):
             xs = self.stations[k]
-            frames = part.frames_at(q, chart, xs)
+            frames = system.frames_at(state.x, state.chart, xs, k)
             strain = part.surface_strains(q, chart, xs, np.zeros(xs.size), 0.5 * self.thicknesses[k])
-            beams.append(BeamSnapshot(part.centre_line_at(q, chart, xs), frames[:, :, 1], frames[:, :, 2], strain))
-        return Snapshot(float(state.x[0]), tuple(beams))
+            beams.append(BeamSnapshot(system.centre_line_at(state.x, state.chart, xs, k), frames[:, :, 1],
+                                      frames[:, :, 2], strain))
+        return Snapshot(float(state.x[system.theta_index]), tuple(beams))

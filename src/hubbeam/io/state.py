@@ -59,10 +59,10 @@ class RunState:
 
 
 def hub_rotation(theta) -> np.ndarray:
-    """A_h(theta) (nt x 3 x 3) of Eq. 74 (:func:`hubbeam.system.hub.hub_frame`) for every hub angle (rad)."""
-    from hubbeam.system.hub import hub_frame
+    """A_h(theta) (nt x 3 x 3) of Eq. 74 (:func:`hubbeam.system.mount.hub_rotation`) for every hub angle (rad)."""
+    from hubbeam.system.mount import hub_rotation as one
 
-    return np.array([hub_frame(float(t)) for t in np.atleast_1d(np.asarray(theta, dtype=float))]).reshape(-1, 3, 3)
+    return np.array([one(float(t)) for t in np.atleast_1d(np.asarray(theta, dtype=float))]).reshape(-1, 3, 3)
 
 
 def _text(value) -> str:

@@ -6,7 +6,7 @@ the kinetic energy of the system moving at u is split into the hub's and, for ev
 its own directions, the ``flap`` (centre line along j0, out of the hub plane), ``lag`` (along
 the beam's k_k, in the hub plane across the beam), ``axial`` (along the beam axis) and
 ``torsion`` (section rotation about the beam axis) parts
-(:meth:`hubbeam.system.hub_system.HubSystem.kinetic_energy_split`). The fractions add up to
+(:meth:`hubbeam.system.multibody.MultibodySystem.kinetic_energy_split`). The fractions add up to
 1. The label is the largest part's name; when that part is below :data:`DOMINANT` of the
 total, the two largest joined by "+" in the order of :data:`MOTIONS` (``"flap+lag"``).
 
@@ -79,7 +79,7 @@ def span_shapes(system, x, F, shapes, points_per_element: int = 8):
         xs = part.stations(points_per_element)
         disp, twist = [], []
         for u in np.asarray(shapes).T:
-            d, t = part.span_shape(q, chart, u[system.layout.beam_x(k)], x[0], xs)
+            d, t = system.span_shape(k, x, F, u, xs)
             disp.append(d)
             twist.append(t)
         out.append((xs, np.array(disp), np.array(twist)))

@@ -17,7 +17,7 @@ from numpy.linalg import LinAlgError
 
 from hubbeam.errors import ChartSingularityError, ConvergenceError
 from hubbeam.solvers.generalized_alpha import MatrixUpdate, NewtonAction, newton_decide, reuse_state
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 #: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
 CHART_SWITCH_MARGIN = 0.5
@@ -37,7 +37,7 @@ class StaticSolution:
 
 
 
-def replace_chart_if_needed(system: HubSystem, x: np.ndarray, F: np.ndarray, force: bool = False):
+def replace_chart_if_needed(system: MultibodySystem, x: np.ndarray, F: np.ndarray, force: bool = False):
     """(x, F, switched): x re-expressed in a better chart when the current one is near singular."""
     if not force and system.chart_margin(x, F) >= CHART_SWITCH_MARGIN:
         return x, F, False
@@ -74,7 +74,7 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
 
 
 def solve_static(
-    system: HubSystem,
+    system: MultibodySystem,
     load_steps: int = 20,
     max_iterations: int = 30,
     max_cuts: int = 8,
