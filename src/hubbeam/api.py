@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -14,6 +14,8 @@ from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
 from hubbeam.elements.section import Section
 from hubbeam.system.ffr_part import FfrPart
+from hubbeam.system.base import Base, BaseMotion, HubPlacement
+from hubbeam.system.base_laws import AttitudeLaw
 from hubbeam.system.multibody import Hub, MultibodySystem
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.mount import Mount
@@ -115,18 +117,60 @@ def torque_law(law) -> TorqueLaw:
     return TorqueLaw.pd(law.kp, law.kd, drive_profile(law.reference, "hub.torque.reference"))
 
 
+def base_of(scenario: Scenario) -> Base:
+    """The :class:`~hubbeam.system.base.Base` of a scenario's ``[base]`` (SI units, radians)."""
+    b = scenario.base
+    init = b.initial
+    law = None
+    if b.torque is not None:
+        t = b.torque
+        law = AttitudeLaw(t.kp, t.kd, t.target or (0.0, 0.0, 0.0),
+                          None if t.slew is None else t.slew.axis, 0.0 if t.slew is None else t.slew.angle,
+                          1.0 if t.slew is None else t.slew.T)
+    table = None
+    if b.motion == "table":
+        from hubbeam.io.tables import read_pose_table
+
+        table = read_pose_table(b.file, "base.file")
+    inertia = b.inertia_matrix if b.inertia_matrix is not None else np.zeros((3, 3))
+    return Base(b.motion, init.position, init.rotation, init.velocity, init.angular_velocity, b.mass or 0.0,
+                inertia, b.centre_of_mass, table, law)
+
+
 def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> MultibodySystem:
-    """The hub system a scenario describes. ``torque``: a torque law that replaces the
-    scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function torque(t, theta, omega),
-    which integrates step by step in Python). ``scenario``: a Scenario or a scenario file's path."""
+    """The system a scenario describes: its base, its hub and its beams. ``torque``: a torque law
+    that replaces the scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function
+    torque(t, theta, omega), which integrates step by step in Python). ``scenario``: a Scenario
+    or a scenario file's path."""
     scenario = as_scenario(scenario)
     hub = scenario.hub
     drive = drive_profile(hub.drive, "hub.drive") if hub.drive is not None else DriveProfile("rest")
     law = torque if torque is not None else torque_law(hub.torque_law)
+    base = base_of(scenario)
+    # a hub fixed to a free base is part of the base body: no rotor of its own
+    inertia = 0.0 if (base.motion == BaseMotion.FREE and hub.motion == "fixed") else hub.inertia
     return MultibodySystem([beam_part(spec) for spec in scenario.resolved_beams()],
-                     Hub(hub.motion, hub.inertia, law, drive),
-                     gravity=np.array(scenario.environment.gravity), damping=(scenario.damping.linear,
-                                                                              scenario.damping.quadratic))
+                           Hub(hub.motion, inertia, law, drive),
+                           gravity=np.array(scenario.environment.gravity),
+                           damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
+                           placement=HubPlacement(hub.position, np.radians(hub.orientation)))
+
+
+#: what statics, modes and linearize say when they leave a free base's gravity out
+FREE_FALL_NOTE = ("the base is free: its uniform gravity field is left out of the equilibrium and the linear model "
+                  "(a free body in free fall is not deformed by it)")
+
+
+def equilibrium_system(scenario: Scenario, notes: list | None = None) -> MultibodySystem:
+    """The system of a scenario for statics, modes and linearize: a free base's uniform gravity
+    is removed (the equivalence principle: a body in free fall is not deformed by it), with a
+    note in ``notes``."""
+    system = build_system(scenario)
+    if system.base.motion == BaseMotion.FREE and np.any(system.gravity):
+        system = system.with_gravity((0.0, 0.0, 0.0))
+        if notes is not None:
+            notes.append(FREE_FALL_NOTE)
+    return system
 
 
 def reduction_warnings(scenario: Scenario, system: MultibodySystem | None = None) -> list[str]:
@@ -163,12 +207,13 @@ class StaticResult:
 
     system: MultibodySystem
     solution: StaticSolution
+    notes: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         sol = self.solution
         lam = sol.multipliers
         system = self.system
-        layout = system.layout_for(True)
+        layout = system.layout_for(True, static=True)
         out = {
             "tip_displacement": tip_displacement(system, sol.x),
             "tip_position": [float(v) for v in system.tip_position(sol.x)],
@@ -261,10 +306,12 @@ class ModalResult:
 
 
 def static(scenario: Scenario) -> StaticResult:
-    """Static equilibrium under gravity and loads, hub held at theta = 0 (load stepping)."""
+    """Static equilibrium under gravity and loads, hub held at theta = 0 and a free base at its
+    initial pose (load stepping; a free base's gravity left out: :func:`equilibrium_system`)."""
     scenario = as_scenario(scenario)
-    system = build_system(scenario)
-    return StaticResult(system, solve_static(system, load_steps=scenario.analysis.load_steps))
+    notes: list[str] = []
+    system = equilibrium_system(scenario, notes)
+    return StaticResult(system, solve_static(system, load_steps=scenario.analysis.load_steps), notes)
 
 
 def modes(scenario: Scenario) -> ModalResult:
@@ -275,16 +322,17 @@ def modes(scenario: Scenario) -> ModalResult:
     from hubbeam.solvers.modal import modal_analysis, rotating_modal_analysis
 
     scenario = as_scenario(scenario)
-    system = build_system(scenario)
+    notes: list[str] = []
+    system = equilibrium_system(scenario, notes)
     count = scenario.analysis.count
     load_steps = scenario.analysis.load_steps
     if scenario.hub.motion == "prescribed" and system.drive.kind == "constant":
         omega = system.drive(0.0)[1]
         steady = solve_static(system, load_steps=load_steps, spin=omega)
-        return ModalResult(StaticResult(system, steady), rotating_modal_analysis(system, steady, omega, count=count),
+        return ModalResult(StaticResult(system, steady, notes), rotating_modal_analysis(system, steady, omega, count=count),
                            about=f"steadily rotating state at omega = {omega:g} rad/s (centrifugal and gyroscopic "
                                  "terms; drag left out)")
-    st = StaticResult(system, solve_static(system, load_steps=load_steps))
+    st = StaticResult(system, solve_static(system, load_steps=load_steps), notes)
     about = "static equilibrium under the scenario's gravity and loads"
     if scenario.hub.motion == "prescribed":
         about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
@@ -303,7 +351,8 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
     from hubbeam.analysis.state_space import linearise
 
     scenario = as_scenario(scenario)
-    system = build_system(scenario)
+    notes: list[str] = []
+    system = equilibrium_system(scenario, notes)
     if open_loop:
         system = system.with_hub(torque=TorqueLaw())
     load_steps = scenario.analysis.load_steps
@@ -320,8 +369,9 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
             about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
         equilibrium = solve_static(system, load_steps=load_steps)
     model = linearise(system, equilibrium, omega, inputs, scenario.sensors, about)
+    model.notes.extend(notes)
     if not system.hub.held:
-        needed = -float(equilibrium.multipliers[system.layout_for(True).drive_lambda])  # the torque that holds it
+        needed = -float(equilibrium.multipliers[system.layout_for(True, static=True).drive_lambda])  # the torque that holds it
         missing = needed - system.applied_torque(0.0, equilibrium.x, np.zeros(system.nx))
         scale = system.static_force_scale(equilibrium.x, equilibrium.chart) * system.length_scale  # N m
         if abs(missing) > 1e-4 * max(scale, abs(needed)):  # above the discretisation's own small torque

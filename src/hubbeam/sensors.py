@@ -11,12 +11,19 @@ from hubbeam.system.multibody import MultibodySystem, energy_sums
 UNITS = {
     "surface_strain": "1", "hub_angle": "rad", "hub_angular_velocity": "rad/s", "hub_torque": "N m",
     "applied_torque": "N m", "tip_deflection": "m", "energy": "J", "angular_momentum": "N m s",
-    "constraint_violation": "m",
+    "constraint_violation": "m", "base_position": "m", "base_rotation": "rad", "base_velocity": "m/s",
+    "base_angular_velocity": "rad/s", "centre_of_mass": "m", "linear_momentum": "N s",
+    "system_angular_momentum": "N m s", "base_torque": "N m",
 }
+
+#: the sensors of a base and of the whole system in space: three components each
+VECTOR_SENSORS = ("base_position", "base_rotation", "base_velocity", "base_angular_velocity", "centre_of_mass",
+                  "linear_momentum", "system_angular_momentum", "base_torque")
 
 #: the parts of a sensor that gives several values (its columns are NAME_PART)
 PARTS = {"tip_deflection": ("radial", "vertical", "tangential"),
-         "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive")}
+         "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive"),
+         **{kind: ("x", "y", "z") for kind in VECTOR_SENSORS}}
 
 
 def columns(sensor) -> list[str]:
@@ -82,9 +89,36 @@ def _tip_deflection(sensor, system):
     return lambda state, work: system.tip_displacement(state.x, beam, state.chart)
 
 
+def _vector(measure):
+    """A three-component sensor: the function(system, state) of a 3-vector as {x, y, z}."""
+    def factory(sensor, system):
+        def value(state, work):
+            v = measure(system, state)
+            return {"x": float(v[0]), "y": float(v[1]), "z": float(v[2])}
+        return value
+    return factory
+
+
+def _system_angular_momentum(system, state):
+    """About the system's centre of mass (N m s, global)."""
+    mom = system.momenta(state.x, state.v, state.chart)
+    import numpy as np
+
+    return mom["angular"] - np.cross(mom["centre_of_mass"], mom["linear"])
+
+
 #: sensor kind -> factory(sensor, system) of its measurement function(state, work), which
 #: gives a float or a dict of parts; what depends on the sensor alone is found once
 MEASURES = {
+    "base_position": _vector(lambda system, st: system.base_motion(st.x, st.v)[0]),
+    "base_rotation": _vector(lambda system, st: system.base_rotation_vector(st.x)),
+    "base_velocity": _vector(lambda system, st: system.base_motion(st.x, st.v)[2]),
+    "base_angular_velocity": _vector(lambda system, st: system.base_motion(st.x, st.v)[1].T
+                                     @ system.base_motion(st.x, st.v)[3]),
+    "centre_of_mass": _vector(lambda system, st: system.momenta(st.x, st.v, st.chart)["centre_of_mass"]),
+    "linear_momentum": _vector(lambda system, st: system.momenta(st.x, st.v, st.chart)["linear"]),
+    "system_angular_momentum": _vector(_system_angular_momentum),
+    "base_torque": _vector(lambda system, st: system.base_torque(st.t, st.x, st.v)),
     "surface_strain": _surface_strain,
     "hub_angle": lambda sensor, system: lambda state, work: float(state.x[system.theta_index]),
     "hub_angular_velocity": lambda sensor, system: lambda state, work: float(state.v[system.theta_index]),

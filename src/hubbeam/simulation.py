@@ -150,7 +150,7 @@ def initial_state(system: MultibodySystem, load_steps: int = 20, start: str = "r
         x0, F0 = system.initial_state(0.0)
     if system.motion != "fixed":
         x0, F0 = system.axis_chart(x0, F0)
-    return ga.init(system, x0, F0)
+    return ga.init(system, x0, F0, v0=system.initial_rates(x0, F0))
 
 
 class PythonSteps:

@@ -50,7 +50,7 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
     or raises. Converged when the shared controller (:func:`newton_decide`, matrix rebuilt
     every iteration) accepts the increment (relative to the length scale) or the residual is
     below ``tol_force`` (N)."""
-    layout = system.layout_for(True)
+    layout = system.layout_for(True, static=True)
     scale_x = max(system.length_scale, 1e-12)
     reuse = reuse_state()
     norm = np.inf
@@ -98,7 +98,7 @@ def solve_static(
     if spin is not None:
         x, F = system.axis_chart(x, F)
     spin = spin or 0.0
-    mu = np.zeros(system.n_constraints(held=True))
+    mu = np.zeros(system.n_constraints(held=True, static=True))
     # force and step tolerances: relative to the loads, above the round-off floor of EA
     f_ref = system.static_force_scale(x, F, spin)
     tol_force = 1e-9 * f_ref + 1e-13 * max(b.section.stiffness[0] for b in system.beams)

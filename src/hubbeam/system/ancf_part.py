@@ -84,15 +84,16 @@ class AncfPart(ChartedBeamPart):
         rel = nodes[:, 0:3] - np.asarray(origin, dtype=float)
         vel[:, 0:3] = np.asarray(velocity, dtype=float) + np.cross(w, rel)
         vel[:, 3:6] = np.cross(w, nodes[:, 3:6])
-        acc[:, 0:3] = np.cross(w, np.cross(w, rel)) + (0.0 if acceleration is None else np.asarray(acceleration))
-        acc[:, 3:6] = np.cross(w, np.cross(w, nodes[:, 3:6]))
         d = chart[:, 0]
         tau = nodes[:, 3:6] / np.linalg.norm(nodes[:, 3:6], axis=1)[:, None]
         dt = tau @ d
         tw = tau @ w
         vel[:, 6] = tw + (d @ w - dt * tw) / (1.0 + dt)
-        if np.any(acc[:, 3:6]) and not np.allclose(np.cross(d, w), 0.0, atol=1e-12 * np.linalg.norm(w)):
-            raise ValueError("steady rotation rates need the axis chart (director along the axis); see axis_chart")
+        if acceleration is not None:
+            acc[:, 0:3] = np.cross(w, np.cross(w, rel)) + np.asarray(acceleration)
+            acc[:, 3:6] = np.cross(w, np.cross(w, nodes[:, 3:6]))
+            if np.any(w) and not np.allclose(np.cross(d, w), 0.0, atol=1e-12 * np.linalg.norm(w)):
+                raise ValueError("steady rotation rates need the axis chart (director along the axis); see axis_chart")
         return vel.ravel(), acc.ravel()
 
     # ------------------------------------------------------------ charts

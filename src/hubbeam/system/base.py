@@ -10,7 +10,8 @@ by ``hub.orientation`` (R_h), so the hub's frame at theta is R R_h A_h(theta) (d
   and the Euler parameters e of R (:mod:`hubbeam.system.frames`, link ``FREE``), whose norm a
   constraint fixes; its mass and inertia (about its centre of mass, base axes) at the centre
   of mass c_b (base axes). Euler parameters have no singular attitude: a free body tumbles
-  through any number of turns about any axis with one chart.
+  through any number of turns about any axis with one chart. Statics hold it at its initial
+  pose by the six constraints of a table.
 - ``table``: the same seven coordinates, driven by six constraints to the position and
   rotation of a table (:mod:`hubbeam.system.base_laws`).
 """
@@ -19,7 +20,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -135,15 +136,3 @@ class HubPlacement:
     @property
     def rotation(self) -> np.ndarray:
         return rotation_vector_matrix(self.orientation)
-
-
-DEFAULT_BASE = Base()
-DEFAULT_PLACEMENT = HubPlacement()
-
-
-@dataclass(frozen=True)
-class Support:
-    """The base and the hub's place on it (the frames every beam hangs on)."""
-
-    base: Base = field(default_factory=Base)
-    placement: HubPlacement = field(default_factory=HubPlacement)

@@ -155,7 +155,7 @@ class MultibodySystem:
             base_held=base.table is not None)
         self.frames = Frames(base, placement, self.beams, self.layout)
         self.rigid_bodies = self._rigid_bodies()
-        self._models: dict[bool, SystemModel] = {}
+        self._models: dict[tuple[bool, bool], SystemModel] = {}
 
     def _rigid_bodies(self) -> list[RigidBody]:
         """The hub's rotor (its inertia about its axis) and a free base's body."""
@@ -194,11 +194,13 @@ class MultibodySystem:
         """The hub angle's place in x."""
         return self.layout.theta
 
-    def layout_for(self, held: bool) -> Layout:
-        return self.layout.with_held(held)
+    def layout_for(self, held: bool, static: bool = False) -> Layout:
+        """The layout with the hub held or not; ``static``: statics, which also hold a free base
+        at its initial pose (six constraints, as a table's)."""
+        return self.layout.with_held(held, self.base.table is not None or (static and self.base.moves))
 
-    def n_constraints(self, held: bool) -> int:
-        return self.layout_for(held).n_lambda
+    def n_constraints(self, held: bool, static: bool = False) -> int:
+        return self.layout_for(held, static).n_lambda
 
     def beam_index(self, name: str | None) -> int:
         """Index of the beam called ``name`` (None: the first)."""
@@ -323,6 +325,26 @@ class MultibodySystem:
             v[s], a[s] = part.rigid_rates(q, chart, v_O, w, O, np.zeros(3) if steady else None)
         return v, a
 
+    def initial_rates(self, x, F) -> np.ndarray:
+        """The rates at t = 0 of a system at rest relative to its base: the base's own (a free
+        base's initial velocity and angular velocity, or a table's rates at t = 0) carried
+        rigidly by everything on it (zero for a fixed base)."""
+        if not self.base.moves:
+            return np.zeros(self.nx)
+        if self.base.table is not None:
+            from hubbeam.system.base_laws import rotation_vector_quaternion, table_values
+            from hubbeam.system.frames import euler_rate_matrix
+
+            values = table_values(self.base.table.knots, self.base.table.coefs, 0.0)
+            q, dq, ddq = np.empty(4), np.empty(4), np.empty(4)
+            rotation_vector_quaternion(values[3], values[4], values[5], q, dq, ddq)
+            E = np.empty((3, 4))
+            euler_rate_matrix(q, E)
+            return self.rigid_rates(x, F, velocity=values[1], angular_velocity=2.0 * E @ dq)[0]
+        R0 = self.frames.pose(self.frames.base, x)[1]
+        return self.rigid_rates(x, F, velocity=self.base.velocity, angular_velocity=R0 @ np.asarray(
+            self.base.angular_velocity))[0]
+
     def steady_rotation_rates(self, x, F, omega: float) -> tuple[np.ndarray, np.ndarray]:
         """Velocity and acceleration of x when the whole system turns rigidly with the hub at
         theta' = omega (rad/s) on a base at rest (angular velocity w = -omega j_h, Eq. 74)."""
@@ -387,16 +409,18 @@ class MultibodySystem:
         torque law)."""
         return self.hub.held or self.hub.torque.compilable
 
-    def model(self, held: bool | None = None) -> SystemModel:
-        """The constants of the compiled equations for the hub held or not (default: its motion)."""
+    def model(self, held: bool | None = None, static: bool = False) -> SystemModel:
+        """The constants of the compiled equations for the hub held or not (default: its motion)
+        and, with ``static``, a free base held (:meth:`layout_for`)."""
         held = self.hub.held if held is None else held
-        if held not in self._models:
-            layout = self.layout_for(held)
+        key = (bool(held), bool(static) and self.base.moves)
+        if key not in self._models:
+            layout = self.layout_for(*key)
             bandwidth = self.bandwidth_for(layout)
-            self._models[held] = SystemModel(terms.packs(self, layout),
-                                             context(layout, bandwidth, self.gravity, self.damping, self.frames.table),
-                                             bandwidth)
-        return self._models[held]
+            self._models[key] = SystemModel(terms.packs(self, layout),
+                                            context(layout, bandwidth, self.gravity, self.damping, self.frames.table),
+                                            bandwidth)
+        return self._models[key]
 
     @property
     def functions(self) -> Compiled:
@@ -406,16 +430,16 @@ class MultibodySystem:
 
     # ------------------------------------------------------------ equations
     def equations(self, x, v, acc, lam, F, t, coef_m, coef_c, coef_k, scale, load_factor=1.0,
-                  want_matrix=True, held=None, stiffness="dynamic"):
+                  want_matrix=True, held=None, stiffness="dynamic", static=False):
         """Scaled residual on z and Newton matrix coef_m M + coef_c C + coef_k (K - dQ/dx +
         lambda.d2 Phi) of the equations of motion (Eq. 77), lambda = scale mu / coef_k (see
         :func:`~hubbeam.system.equations.system_equations`). ``held`` overrides the hub's
-        drive constraint (statics hold the hub). ``stiffness``: "dynamic" (the iteration
-        matrix) or "exact" (every load's and frame's stiffness, for statics and modes).
-        Returns (residual, BorderedBandMatrix)."""
+        drive constraint (statics hold the hub); ``static`` holds a free base too.
+        ``stiffness``: "dynamic" (the iteration matrix) or "exact" (every load's and frame's
+        stiffness, for statics and modes). Returns (residual, BorderedBandMatrix)."""
         held = self.hub.held if held is None else held
-        model = self.model(held)
-        layout = self.layout_for(held)
+        model = self.model(held, static)
+        layout = self.layout_for(held, static)
         res = np.empty(layout.nz)
         matrix = BorderedBandMatrix.empty(layout.nz, layout.border, model.bandwidth)
         F = np.ascontiguousarray(F, dtype=float)
@@ -454,7 +478,7 @@ class MultibodySystem:
         small dependence of the gyroscopic and drag loads on q is left out); FFR beams have the
         exact stiffness by differences (their rates do not depend on their coordinates)."""
         s = self.constraint_scale
-        layout = self.layout_for(True)
+        layout = self.layout_for(True, static=True)
         lam = s * np.asarray(mu, dtype=float)
         if spin:
             vel, acc = self.steady_rotation_rates(x, F, spin)
@@ -462,7 +486,7 @@ class MultibodySystem:
         else:
             vel = acc = np.zeros(self.nx)
         res, matrix = self.equations(x, vel, acc, lam, F, 0.0, 0.0, 0.0, 1.0, s, load_factor=factor, held=True,
-                                     stiffness="exact")
+                                     stiffness="exact", static=True)
         if not spin:
             return res, matrix
         _, j_h = self.hub_axis(x)
@@ -473,7 +497,7 @@ class MultibodySystem:
             if not isinstance(part, AncfPart):
                 continue
             sx = layout.beam_x(k)
-            M = self.mass_matrix(x, F, held=True) if M is None else M
+            M = self.mass_matrix(x, F, held=True, static=True) if M is None else M
             D = np.zeros((part.ndof, part.ndof))  # -factor M D: D = d(acc)/dq of the rigid rotation, on r and r'
             for node in range(part.beam.nodes):
                 for off in (0, 3):
@@ -484,13 +508,14 @@ class MultibodySystem:
                 matrix.add(zx[sx.start + i], zx[sx.start + j], K[i, j])
         return res, matrix
 
-    def mass_matrix(self, x, F, held: bool | None = None) -> np.ndarray:
+    def mass_matrix(self, x, F, held: bool | None = None, static: bool = False) -> np.ndarray:
         """The dense mass matrix M(x) on x (kg, kg m, kg m^2; every part's, tip bodies' and
         rigid bodies' included): the compiled Newton matrix with coef_m = 1 and nothing else."""
         held = self.hub.held if held is None else held
-        layout = self.layout_for(held)
+        layout = self.layout_for(held, static)
         zero = np.zeros(self.nx)
-        _, matrix = self.equations(x, zero, zero, np.zeros(layout.n_lambda), F, 0.0, 1.0, 0.0, 0.0, 0.0, held=held)
+        _, matrix = self.equations(x, zero, zero, np.zeros(layout.n_lambda), F, 0.0, 1.0, 0.0, 0.0, 0.0, held=held,
+                                   static=static)
         zx = layout.z_of_x
         return matrix.to_dense()[np.ix_(zx, zx)]
 
@@ -521,12 +546,10 @@ class MultibodySystem:
         return A[np.ix_(layout.z_of_lambda, layout.z_of_x)]
 
     def lambda_from_held(self, lam, held: bool) -> np.ndarray:
-        """Multipliers of the held layout (a static solution's) for the layout with the hub
-        held or free (the drive multiplier dropped)."""
+        """Multipliers of the static layout (a static solution's: the hub and a free base held)
+        for the dynamic layout with the hub held or free (the drives statics add dropped)."""
         lam = np.asarray(lam, dtype=float)
-        if held:
-            return lam
-        return self.layout_for(True).lambda_in(self.layout_for(False), lam)
+        return self.layout_for(True, static=True).lambda_in(self.layout_for(held), lam)
 
     def _clamp(self, k: int, x, F, lam=None):
         """(Phi, Jacobian, lambda-weighted Hessian, columns (x indices)) of beam k's clamp."""
@@ -546,6 +569,10 @@ class MultibodySystem:
         out = np.zeros(layout.n_lambda)
         if held and self.motion == "prescribed":
             out[layout.drive_lambda] = -self.hub.drive(t)[2]
+        if layout.norm_lambda is not None:  # (e . e - 1)/2: e' . e'
+            out[layout.norm_lambda] = float(v[layout.base_x][3:] @ v[layout.base_x][3:])
+        if layout.base_lambda is not None:
+            out[layout.base_lambda] = self._base_drive_acceleration_terms(x, v, t)
         for k, part in enumerate(self.beams):
             sl = layout.clamp_lambda(k)
             if sl.stop == sl.start:
@@ -554,6 +581,19 @@ class MultibodySystem:
             c = np.asarray(v)[cols]
             out[sl] = [c @ self._clamp(k, x, F, e)[2] @ c for e in np.eye(CLAMP_EQUATIONS)]
         return out
+
+    def _base_drive_acceleration_terms(self, x, v, t) -> np.ndarray:
+        """Phi_tt + 2 Phi_xt v of the base's six drive constraints: -r_tab'' and
+        G(e_tab'') e + 2 G(e_tab') e' (:mod:`hubbeam.system.base_laws`)."""
+        from hubbeam.system.base_laws import BaseLaws, conjugate_product_matrix, driven_pose
+
+        laws = next(p for p in self.model().parts if isinstance(p, BaseLaws))
+        r, dr, ddr, q, dq, ddq = driven_pose(laws, float(t))
+        e, de = x[self.layout.base_x][3:], v[self.layout.base_x][3:]
+        G1, G2 = np.empty((3, 4)), np.empty((3, 4))
+        conjugate_product_matrix(dq, G1)
+        conjugate_product_matrix(ddq, G2)
+        return np.concatenate([-ddr, G2 @ e + 2.0 * G1 @ de])
 
     def constraint_violation(self, x, F, t) -> float:
         """Largest violation of the clamps' position equations (m)."""
@@ -684,6 +724,27 @@ class MultibodySystem:
         frame, rate = self._frame_and_rate(k, x, u, F)
         return part.span_shape(x[self.layout.beam_x(k)], F[k], np.asarray(u)[self.layout.beam_x(k)],
                                self.root_axes(k, x, F), np.asarray(stations, dtype=float), frame, rate)
+
+    def base_motion(self, x, v):
+        """The base frame (origin, axes, origin velocity, angular velocity; global) at (x, v)."""
+        return self.frames.motion(self.frames.base, x, v)
+
+    def base_rotation_vector(self, x) -> np.ndarray:
+        """The rotation vector (rad, |phi| <= pi) of the base axes at x."""
+        from hubbeam.system.frames import rotation_vector
+
+        return rotation_vector(self.frames.pose(self.frames.base, x)[1])
+
+    def base_torque(self, t, x, v) -> np.ndarray:
+        """A free base's attitude torque (N m, base axes) at the state; zero without a law."""
+        from hubbeam.system.base_laws import BaseLaws, attitude_torque
+
+        laws = [p for p in self.model().parts if isinstance(p, BaseLaws)]
+        if not laws:
+            return np.zeros(3)
+        _, R, _, w = self.base_motion(x, v)
+        e = np.ascontiguousarray(x[self.layout.base_x][3:], dtype=float)
+        return np.array(attitude_torque(laws[0], float(t), e, R.T @ w))
 
     def angular_momentum(self, x, v, F) -> float:
         """The whole system's absolute angular momentum about the hub axis (the line through O

@@ -151,14 +151,19 @@ def _dispatch(stub, pack_class, impl) -> None:
     """Let numba resolve ``stub`` to ``impl`` for packs of ``pack_class`` (``impl``: a plain
     Python function with the stub's parameter names, which numba compiles where it is called).
     Inlined into the caller: a compiled call pays the reference counts of every array of its
-    tuple arguments (the pack and the context), twice per step and beam kind in the time loop."""
+    tuple arguments (the pack and the context), twice per step and beam kind in the time loop.
+    Only hubbeam's own kinds go to numba's on-disk cache: a cache index records the classes of
+    every signature compiled, and a class of a script or a test module in it (a default term
+    such as ``_no_power`` is compiled for every kind) would make the index unreadable in every
+    other process (see :func:`native`)."""
 
     def resolve(pack, *args):
         if getattr(pack, "instance_class", None) is pack_class:
             return impl
         return None
 
-    overload(stub, jit_options={"cache": True}, strict=False, inline="always")(resolve)
+    cache = native_class(pack_class)
+    overload(stub, jit_options={"cache": cache}, strict=False, inline="always")(resolve)
 
 
 def register(pack: type, packer: Callable, equations, energies=None, power=None, tips=None,
@@ -183,11 +188,16 @@ def register(pack: type, packer: Callable, equations, energies=None, power=None,
     return kind
 
 
+def native_class(pack_class: type) -> bool:
+    """Whether a pack class is defined inside hubbeam."""
+    return pack_class.__module__.split(".")[0] == "hubbeam"
+
+
 def native(packs: tuple) -> bool:
     """Whether every pack's kind is defined inside hubbeam (numba may then keep the system's
     compiled functions in its on-disk cache; see
     :func:`hubbeam.system.equations.uncached_twins`)."""
-    return all(type(p).__module__.split(".")[0] == "hubbeam" for p in packs)
+    return all(native_class(type(p)) for p in packs)
 
 
 def packs(system, layout) -> tuple:
