@@ -53,6 +53,13 @@ def build_parser() -> argparse.ArgumentParser:
     lin.add_argument("--inputs", help="comma-separated: hub_torque, tip_force:BEAM (default: hub_torque on a free hub, "
                                       "the first beam's tip force on a held one)")
     lin.add_argument("--open-loop", action="store_true", help="leave the scenario's hub torque law out")
+    lin.add_argument("--outputs", metavar="A,B,...", help="only these outputs (sensor columns), in this order")
+    size = lin.add_mutually_exclusive_group()
+    size.add_argument("--reduce", type=int, metavar="N", help="modal truncation to the N lowest modes, the others "
+                                                               "residualised (DC gain kept; rigid, unstable modes kept)")
+    size.add_argument("--balanced", type=int, metavar="N", help="balanced reduction of the stable part to N states "
+                                                                 "(Hankel singular values in the JSON)")
+    lin.add_argument("--fmax", type=float, metavar="F", help="drop (residualise) the modes above F Hz")
     camp = scenario_cmd("campbell", "natural frequencies about the steadily rotating state against hub speed")
     camp.add_argument("--omega", required=True, metavar="START:STOP:N", help="hub speeds (rad/s)")
     camp.add_argument("--count", type=int, default=6, help="modes per speed (default 6)")

@@ -424,10 +424,17 @@ class HubSystem:
         """Kinetic (hub and beams, rotary inertia and tip bodies included), strain and gravity
         energy (J); of one beam when ``beam`` is its index (compiled:
         :func:`~hubbeam.system.equations.beam_energies`)."""
+        return energy_sums(*self.energy_table(x, v, F), beam)
+
+    def energy_table(self, x, v, F) -> tuple[np.ndarray, np.ndarray]:
+        """(hub (3,), beams (beams, 3)): the (kinetic, strain, gravity) energy (J) of the hub
+        (J theta'^2 / 2 and the parts that belong to no beam) and of each beam (tip bodies in
+        their beam's row), as :func:`energy_sums` adds them (compiled:
+        :func:`~hubbeam.system.equations.beam_energies`)."""
         hub, beams = np.zeros(3), np.zeros((len(self.beams), 3))
         self.functions.beam_energies(self.model(), np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(x, dtype=float),
                       np.ascontiguousarray(v, dtype=float), beams, hub)
-        return energy_sums(hub, beams, beam)
+        return hub, beams
 
     def gauge_table(self, gauges) -> tuple[tuple, list]:
         """The strain gauges (beam, station, y, z) (index, m, m, m) on ANCF beams packed for
