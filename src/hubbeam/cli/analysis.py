@@ -32,8 +32,9 @@ def cmd_static(args, scenario) -> dict:
 
         x0, F0 = result.system.initial_state(0.0)
         sol = result.solution
+        title, subtitle = plots.run_title(f"{scenario.name}: static equilibrium", args.overrides)
         write_jobs([(targets[0], lambda p: plots.plot_deformed(result.system, x0, F0, sol.x, sol.chart, p,
-                                                          title=f"{scenario.name}: static equilibrium"))])
+                                                               title=title, subtitle=subtitle))])
     if not args.json:
         print_static(d)
     return d
@@ -61,7 +62,8 @@ def cmd_modes(args, scenario) -> dict:
         from hubbeam import plots
 
         half = [0.5 * max(b.section.width, b.section.thickness) for b in result.static.system.beams]
-        plots.plot_mode_shapes(ds, path, half, title=f"{scenario.name}: mode shapes")
+        title, subtitle = plots.run_title(f"{scenario.name}: mode shapes", args.overrides)
+        plots.plot_mode_shapes(ds, path, half, title=title, subtitle=subtitle)
 
     def shapes(path):
         from hubbeam.io.results import write_netcdf
