@@ -100,6 +100,10 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--color", default="strain", help="strain (upper surface, default), deflection or none")
     an.add_argument("--stride", type=int, default=1, help="draw every N-th stored output time (default 1)")
     an.add_argument("--fps", type=float, default=20.0, help="frames per second of the movie (default 20)")
+    an.add_argument("--scale", type=float, default=1.0, metavar="K",
+                    help="draw the deflections K times larger (from the undeformed beam turned with the hub; default 1)")
+    an.add_argument("--view", default="iso", metavar="VIEW",
+                    help="camera: iso (default), top (down the hub axis), front, side, or ELEVATION,AZIMUTH in degrees")
     an.add_argument("--json", action="store_true", help="print one JSON object on stdout")
     vt = sub.add_parser("vtk", help="a run stored with --state as a ParaView time series (.pvd and .vtu files)")
     vt.add_argument("result", help="NetCDF file of hubbeam run -o OUT.nc --state")
