@@ -4,8 +4,6 @@ The Python part is the oracle: the kernels must give its forces and matrices to 
 and its central-difference stiffness (at rest and in steady rotation) to the differences'
 accuracy. The Cardan derivative matrices are checked by differences of cardan.py."""
 
-import time
-
 import numpy as np
 import pytest
 
@@ -252,34 +250,6 @@ def test_spin_stiffness_is_the_derivative_in_steady_rotation(theta):
     assert close(S, central_difference(spin_rows, q, 1e-6), 1e-6)
     K_exact = fk.static_stiffness(arrays, q, GRAVITY, factor, spin)
     assert close(K_exact, part.stiffness(q, GRAVITY, (0.0, 0.0), factor, spin), 1e-6)
-
-
-# ---------------------------------------------------------------------------- timing (printed)
-def test_timing_against_python(capsys):
-    part = make_part(stiffening=True, tip_loads=True, tip_body=BODY)
-    arrays = fk.pack(part)
-    q, v, acc = random_state(part, np.random.default_rng(3))
-    n = q.size
-    damping = (0.4, 1.7)
-    force, block = np.empty(n), np.empty((n, n))
-    inv, tip, drag = arrays.inv, arrays.tip, arrays.drag(damping)
-    fk.ffr_body_terms(inv, q, v, acc, GRAVITY, tip, drag, 1.0, 0.5, 0.25, 1.0, True, force, block)
-
-    def best(fun, reps):
-        times = []
-        for _ in range(5):
-            t0 = time.perf_counter()
-            for _ in range(reps):
-                fun()
-            times.append((time.perf_counter() - t0) / reps)
-        return min(times)
-
-    t_kernel = best(lambda: fk.ffr_body_terms(inv, q, v, acc, GRAVITY, tip, drag, 1.0, 0.5, 0.25, 1.0, True,
-                                              force, block), 200)
-    t_python = best(lambda: part.forces(q, v, acc, GRAVITY, damping, tangent=True), 20)
-    with capsys.disabled():
-        print(f"\nFFR forces (nf = {n - 6}, drag, stiffening, matrix): kernel {t_kernel * 1e6:.1f} us, "
-              f"FfrPart.forces {t_python * 1e6:.1f} us, ratio {t_python / t_kernel:.0f}x")
 
 
 @pytest.mark.parametrize("structural", [0.0, 2e-3])
