@@ -435,12 +435,14 @@ def dc_gain(A, B, C, D, rigid_modes: int = 0) -> np.ndarray:
 
 def frequency_response(A, B, C, D, freq_hz) -> np.ndarray:
     """G(i 2 pi f) = C (i 2 pi f I - A)^-1 B + D at each frequency (Hz): (frequencies, outputs,
-    inputs), complex. A is brought once to complex Schur form Z T Z^H (T upper triangular),
+    inputs), complex. A (balanced, :func:`_scaled`) is brought once to complex Schur form
+    Z T Z^H (T upper triangular),
     after which each frequency costs one triangular solve (backward stable, O(n^2) per input,
     where a dense solve per frequency is O(n^3))."""
     A, B, C, D = (np.asarray(M, dtype=float) for M in (A, B, C, D))
-    T, Z = scipy.linalg.schur(A.astype(complex), output="complex")
-    Bz, Cz = Z.conj().T @ B, C @ Z
+    scaled = _scaled(A, B, C)  # the same balancing as the reductions: the Schur form is more accurate
+    T, Z = scipy.linalg.schur(scaled.A.astype(complex), output="complex")
+    Bz, Cz = Z.conj().T @ scaled.B, scaled.C @ Z
     out = np.empty((len(freq_hz), C.shape[0], B.shape[1]), dtype=complex)
     diagonal = np.arange(A.shape[0])
     M = np.empty_like(T)

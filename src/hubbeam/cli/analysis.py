@@ -132,7 +132,7 @@ def cmd_linearize(args, scenario) -> dict:
         print(f"state space about the {d['about']}: {size}, inputs {', '.join(d['inputs'])}, "
               f"outputs {', '.join(d['outputs']) or '(none: the scenario has no sensors)'}")
         for f, z in list(zip(d["frequencies_hz"], d["damping_ratios"]))[:10]:
-            print(f"  {f:12.6f} Hz  damping ratio {z:.4g}")
+            print(f"  {f:12.6f} Hz  damping ratio {z or 0.0:.4g}")  # never "-0"
         if "hankel_singular_values" in d:
             sigma = d["hankel_singular_values"]
             print(f"  Hankel singular values: {', '.join(f'{v:.4g}' for v in sigma[:8])}"
