@@ -51,7 +51,7 @@ class Coloring:
 
 #: --color choices: the upper surface's axial strain, the deflection's magnitude, or one colour
 COLORINGS = {
-    "strain": Coloring("upper-surface axial strain", lambda state, k: state.beams[k].surface_strain),
+    "strain": Coloring("upper-surface axial strain (\u00b5\u03b5)", lambda state, k: 1e6 * state.beams[k].surface_strain),
     "deflection": Coloring("deflection (m)",
                            lambda state, k: np.linalg.norm(state.beams[k].displacement(state.hub_angle), axis=2)),
     "none": Coloring("", None),

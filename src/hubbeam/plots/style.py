@@ -81,7 +81,7 @@ def finish(fig, path, title: str = "", subtitle: str = "", layout: bool = True) 
     if layout:
         fig.tight_layout()
     elif title or subtitle:  # keep the caller's layout, make room for the title above it
-        fig.subplots_adjust(top=1.0 - (0.45 + 0.17 * (subtitle.count("\n") + bool(subtitle))) / fig.get_figheight())
+        fig.subplots_adjust(top=1.0 - (0.6 + 0.17 * (subtitle.count("\n") + bool(subtitle))) / fig.get_figheight())
     fig.savefig(path)
     plt.close(fig)
 
