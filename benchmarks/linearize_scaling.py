@@ -1,13 +1,15 @@
 """How ``hubbeam linearize`` scales with the number of beams (issue 29, class 7).
 
-    python benchmarks/linearize_scaling.py            # 1, 10, 20, 40 one-element beams; 1 beam of 40 elements
+    OPENBLAS_NUM_THREADS=1 python benchmarks/linearize_scaling.py   # 1, 10, 20, 40 one-element beams; 1 beam of 40 elements
     python benchmarks/linearize_scaling.py --command modes   # the same models through hubbeam modes
     python benchmarks/linearize_scaling.py --beams 40 --reps 1
 
 Each case is one fresh ``hubbeam linearize FILE --json`` process (a warm numba cache: one
 untimed run first), timed by its wall clock and by its CPU time (user + system, which the
 other load of a shared machine disturbs less); ``--command modes`` times ``hubbeam modes``
-on the same files instead, the analysis linearize should scale like.
+on the same files instead, the analysis linearize should scale like. One BLAS thread
+(OPENBLAS_NUM_THREADS=1) keeps the CPU time honest on a shared machine: waiting BLAS threads
+spin and count as CPU time.
 
 The models: N one-element ANCF beams on a free hub (spread
 evenly in azimuth, each with a tip-deflection and a root-strain sensor, plus the hub angle,
