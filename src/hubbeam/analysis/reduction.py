@@ -122,7 +122,8 @@ def spectrum(A, B, C, rigid_modes: int = 0) -> Spectrum:
     c_norms = np.maximum(np.linalg.norm(C, axis=1), 1e-300)
     reach = (np.abs(left.conj().T @ B) / b_norms).max(axis=1, initial=0.0) / np.linalg.norm(left, axis=0)
     seen = (np.abs(C @ right) / c_norms[:, None]).max(axis=0, initial=0.0) / np.linalg.norm(right, axis=0)
-    visible = (reach > VISIBLE_COSINE) & (seen > VISIBLE_COSINE)
+    # a model without inputs (or outputs) is judged by the other side alone
+    visible = ((reach > VISIBLE_COSINE) | (B.shape[1] == 0)) & ((seen > VISIBLE_COSINE) | (C.shape[0] == 0))
     cluster = np.arange(n)
     order = np.argsort(size)
     for a, i in enumerate(order):  # equal eigenvalues are neighbours in |lambda|

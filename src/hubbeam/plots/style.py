@@ -7,8 +7,9 @@ figure leaves out is for its caller to say, on the terminal). :func:`run_title` 
 title of a scenario's figure: its name and, on a second line, the ``--set`` overrides that
 made it, so that a variant never carries its baseline's title. :func:`quantity` gives a
 sensor kind's physical name and display unit (strain in microstrain, lengths in mm when they
-stay below 0.1 m, ...); :func:`axis_label` writes "name (unit)". Any figure of the project
-(and of other helpers' studies) can use these five.
+stay below 0.1 m, ...); :func:`axis_label` writes "name (unit)". Every figure of hubbeam
+draws with these (the Campbell diagram's, :mod:`hubbeam.plots.campbell`, can adopt them the
+same way: ``with paper_style(): fig, axes = figure(...); ...; finish(fig, path, *run_title(...))``).
 """
 
 from __future__ import annotations
