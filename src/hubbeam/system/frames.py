@@ -132,6 +132,19 @@ class Chain:
         """This chain continued by ``links``."""
         return Chain(self.links + tuple(links))
 
+    def merged(self) -> "Chain":
+        """The same frame with every run of constant links merged into one (fewer products to
+        evaluate; the pose and its derivatives are the same)."""
+        out: list[Link] = []
+        for link in self.links:
+            if link.kind == LinkKind.CONSTANT and out and out[-1].kind == LinkKind.CONSTANT:
+                prev = out.pop()
+                R1, t1 = np.array(prev.rotation), np.array(prev.offset)
+                R2, t2 = np.array(link.rotation), np.array(link.offset)
+                link = constant(t1 + R1 @ t2, R1 @ R2)
+            out.append(link)
+        return Chain(tuple(out))
+
     @property
     def coordinates(self) -> list[int]:
         """x indices of the chain's coordinate columns, in chain order."""
@@ -147,27 +160,36 @@ class Chain:
 
 
 class ChainTable(NamedTuple):
-    """Every chain of a system in arrays for compiled code (:meth:`of`)."""
+    """Every chain of a system in arrays for compiled code (:meth:`of`), and the place where
+    their kinematics at the current state are kept (:func:`evaluate_chains`: once per evaluation
+    of the system's equations, read by every part that hangs on a frame)."""
 
     links: np.ndarray  # int64 (n_links, 3): kind, first coordinate's x index, row in params
     params: np.ndarray  # (n_links, 13): Link.params
     start: np.ndarray  # int64 (n_chains + 1): chain k's links are links[start[k]:start[k + 1]]
     columns: np.ndarray  # int64 (n_columns,): the chains' coordinate columns' x indices
     column_start: np.ndarray  # int64 (n_chains + 1): chain k's columns are columns[column_start[k]:...]
+    pose: np.ndarray  # (n_chains, 3, 4): each chain's origin (column 0) and axes (1:4) at the state
+    jac: np.ndarray  # (n_chains, 2, 3, w): Jr, Jw of each chain's columns (w: the widest chain's)
+    hess: np.ndarray  # (n_chains, 2, 3, w, w): Hr, Hw
+    work: np.ndarray  # (w, 5): scratch of :func:`chain_kinematics_into` for the widest chain
 
     @classmethod
     def of(cls, chains) -> "ChainTable":
         links, params, start, columns, cstart = [], [], [0], [], [0]
         for chain in chains:
-            for link in chain.links:
+            for link in chain.merged().links:
                 links.append((int(link.kind), link.coordinate, len(params)))
                 params.append(link.params())
             start.append(len(links))
             columns += chain.coordinates
             cstart.append(len(columns))
         ints = lambda v, shape: np.array(v, dtype=np.int64).reshape(shape)  # noqa: E731
+        n = len(start) - 1
+        w = max((cstart[k + 1] - cstart[k] for k in range(n)), default=0)
         return cls(ints(links, (len(links), 3)), np.array(params, dtype=float).reshape(len(params), 13),
-                   ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)))
+                   ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)),
+                   np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((w, 5)))
 
     def width(self, k: int) -> int:
         """Number of coordinate columns of chain k."""
@@ -175,14 +197,6 @@ class ChainTable(NamedTuple):
 
 
 # ---------------------------------------------------------------------------- small pieces
-@njit(cache=True)
-def cross_into(a, b, out):
-    """out = a x b (3-vectors)."""
-    out[0] = a[1] * b[2] - a[2] * b[1]
-    out[1] = a[2] * b[0] - a[0] * b[2]
-    out[2] = a[0] * b[1] - a[1] * b[0]
-
-
 @njit(cache=True)
 def euler_rotation(e, R):
     """R = the rotation of the normalised Euler parameters e / |e| (columns: the body axes, global)."""
@@ -210,263 +224,323 @@ def euler_rate_matrix(e, E):
 
 
 @njit(cache=True)
-def _rotate_about(R, axis, angle, out):
-    """out = R Rot(axis, angle) (axis a unit vector of the frame R)."""
-    c, s = math.cos(angle), math.sin(angle)
-    a0, a1, a2 = axis[0], axis[1], axis[2]
-    C = 1.0 - c
-    Q = np.empty((3, 3))
-    Q[0, 0] = c + a0 * a0 * C
-    Q[0, 1] = a0 * a1 * C - a2 * s
-    Q[0, 2] = a0 * a2 * C + a1 * s
-    Q[1, 0] = a1 * a0 * C + a2 * s
-    Q[1, 1] = c + a1 * a1 * C
-    Q[1, 2] = a1 * a2 * C - a0 * s
-    Q[2, 0] = a2 * a0 * C - a1 * s
-    Q[2, 1] = a2 * a1 * C + a0 * s
-    Q[2, 2] = c + a2 * a2 * C
-    for i in range(3):
-        for j in range(3):
-            out[i, j] = R[i, 0] * Q[0, j] + R[i, 1] * Q[1, j] + R[i, 2] * Q[2, j]
+def _euler_into(e0, e1, e2, e3, P):
+    """P[:, 1:4] = the rotation of the normalised Euler parameters (:func:`euler_rotation`, scalars)."""
+    s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
+    P[0, 1] = (e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3) / s
+    P[1, 2] = (e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3) / s
+    P[2, 3] = (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) / s
+    P[0, 2] = 2.0 * (e1 * e2 - e0 * e3) / s
+    P[1, 1] = 2.0 * (e1 * e2 + e0 * e3) / s
+    P[0, 3] = 2.0 * (e1 * e3 + e0 * e2) / s
+    P[2, 1] = 2.0 * (e1 * e3 - e0 * e2) / s
+    P[1, 3] = 2.0 * (e2 * e3 - e0 * e1) / s
+    P[2, 2] = 2.0 * (e2 * e3 + e0 * e1) / s
 
 
 @njit(cache=True)
-def _ancf_section(F, u, phi, R):
-    """The section frame R = F [tau m n](F^T u, phi) (global columns) of slope u and twist phi."""
-    U = np.empty(3)
-    for a in range(3):
-        U[a] = F[0, a] * u[0] + F[1, a] * u[1] + F[2, a] * u[2]
-    L = math.sqrt(U[0] * U[0] + U[1] * U[1] + U[2] * U[2])
-    T0, T1, T2 = U[0] / L, U[1] / L, U[2] / L
+def _rotate_about(P, a0, a1, a2, angle):
+    """P[:, 1:4] = R Rot(a, angle) in place (R = P[:, 1:4]; a a unit vector of the frame R)."""
+    c, s = math.cos(angle), math.sin(angle)
+    C = 1.0 - c
+    q00, q01, q02 = c + a0 * a0 * C, a0 * a1 * C - a2 * s, a0 * a2 * C + a1 * s
+    q10, q11, q12 = a1 * a0 * C + a2 * s, c + a1 * a1 * C, a1 * a2 * C - a0 * s
+    q20, q21, q22 = a2 * a0 * C - a1 * s, a2 * a1 * C + a0 * s, c + a2 * a2 * C
+    for i in range(3):
+        r0, r1, r2 = P[i, 1], P[i, 2], P[i, 3]
+        P[i, 1] = r0 * q00 + r1 * q10 + r2 * q20
+        P[i, 2] = r0 * q01 + r1 * q11 + r2 * q21
+        P[i, 3] = r0 * q02 + r1 * q12 + r2 * q22
+
+
+@njit(cache=True, inline="always")
+def _ancf_section(F, x, c, P):
+    """The section frame R = F [tau m n](F^T u, phi) (global columns) of slope u = x[c:c+3] and
+    twist phi = x[c+3] into P[:, 1:4]; returns |u|."""
+    U0 = F[0, 0] * x[c] + F[1, 0] * x[c + 1] + F[2, 0] * x[c + 2]
+    U1 = F[0, 1] * x[c] + F[1, 1] * x[c + 1] + F[2, 1] * x[c + 2]
+    U2 = F[0, 2] * x[c] + F[1, 2] * x[c + 1] + F[2, 2] * x[c + 2]
+    L = math.sqrt(U0 * U0 + U1 * U1 + U2 * U2)
+    T0, T1, T2 = U0 / L, U1 / L, U2 / L
     den = 1.0 + T0
     h1, h2 = T1 / den, T2 / den
     # m0, n0 (chart components) of the untwisted chart frame
     m00, m01, m02 = -h1 * (T0 + 1.0), 1.0 - h1 * T1, -h1 * T2
     n00, n01, n02 = -h2 * (T0 + 1.0), -h2 * T1, 1.0 - h2 * T2
-    c, s = math.cos(phi), math.sin(phi)
-    loc = np.empty((3, 3))
-    loc[0, 0], loc[1, 0], loc[2, 0] = T0, T1, T2
-    loc[0, 1], loc[1, 1], loc[2, 1] = c * m00 + s * n00, c * m01 + s * n01, c * m02 + s * n02
-    loc[0, 2], loc[1, 2], loc[2, 2] = -s * m00 + c * n00, -s * m01 + c * n01, -s * m02 + c * n02
+    co, si = math.cos(x[c + 3]), math.sin(x[c + 3])
+    m0, m1, m2 = co * m00 + si * n00, co * m01 + si * n01, co * m02 + si * n02
+    n0, n1, n2 = -si * m00 + co * n00, -si * m01 + co * n01, -si * m02 + co * n02
     for i in range(3):
-        for j in range(3):
-            R[i, j] = F[i, 0] * loc[0, j] + F[i, 1] * loc[1, j] + F[i, 2] * loc[2, j]
+        P[i, 1] = F[i, 0] * T0 + F[i, 1] * T1 + F[i, 2] * T2
+        P[i, 2] = F[i, 0] * m0 + F[i, 1] * m1 + F[i, 2] * m2
+        P[i, 3] = F[i, 0] * n0 + F[i, 1] * n1 + F[i, 2] * n2
     return L
 
 
-@njit(cache=True)
-def _ancf_rate_columns(d, tau, L, y, out):
-    """out = A y, the angular velocity of the chart's untwisted frame for the slope rate y:
-    (tau x y - tau d.(tau x y) / (1 + d.tau)) / L."""
-    cross_into(tau, y, out)
-    k = (d[0] * out[0] + d[1] * out[1] + d[2] * out[2]) / (1.0 + d[0] * tau[0] + d[1] * tau[1] + d[2] * tau[2])
-    for i in range(3):
-        out[i] = (out[i] - tau[i] * k) / L
+@njit(cache=True, inline="always")
+def _cross_unit(a0, a1, a2, i):
+    """a x e_i (e_i the i-th unit vector), a 3-tuple."""
+    if i == 0:
+        return 0.0, a2, -a1
+    if i == 1:
+        return -a2, 0.0, a0
+    return a1, -a0, 0.0
 
 
-@njit(cache=True)
-def _ancf_rate_derivative(d, tau, L, y, b, out):
-    """out = d(A y)/d u_b (u = r0', y fixed): the derivative of :func:`_ancf_rate_columns` along
-    the slope's component b."""
-    dL = tau[b]
-    t = np.empty(3)  # d tau / d u_b
-    for i in range(3):
-        t[i] = ((1.0 if i == b else 0.0) - tau[i] * tau[b]) / L
-    den = 1.0 + d[0] * tau[0] + d[1] * tau[1] + d[2] * tau[2]
-    ty = np.empty(3)
-    cross_into(tau, y, ty)
-    dty = np.empty(3)
-    cross_into(t, y, dty)
-    k = (d[0] * ty[0] + d[1] * ty[1] + d[2] * ty[2]) / den
-    dk = (d[0] * dty[0] + d[1] * dty[1] + d[2] * dty[2]) / den \
-        - k * (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]) / den
-    for i in range(3):
-        Ay = (ty[i] - tau[i] * k) / L
-        out[i] = -dL / L * Ay + (dty[i] - t[i] * k - tau[i] * dk) / L
+@njit(cache=True, inline="always")
+def _ancf_rate_column(d0, d1, d2, t0, t1, t2, L, b):
+    """A e_b, the angular velocity of the chart's untwisted frame for a unit rate of the slope's
+    component b (a 3-tuple): (tau x e_b - tau d.(tau x e_b) / (1 + d.tau)) / L."""
+    c0, c1, c2 = _cross_unit(t0, t1, t2, b)
+    k = (d0 * c0 + d1 * c1 + d2 * c2) / (1.0 + d0 * t0 + d1 * t1 + d2 * t2)
+    return (c0 - t0 * k) / L, (c1 - t1 * k) / L, (c2 - t2 * k) / L
+
+
+@njit(cache=True, inline="always")
+def _ancf_rate_derivative(d0, d1, d2, t0, t1, t2, L, i, b):
+    """d(A e_i)/d u_b (u = r0'): the derivative of :func:`_ancf_rate_column` along the slope's
+    component b (a 3-tuple)."""
+    dL = (t0, t1, t2)[b]
+    # d tau / d u_b
+    s0 = ((1.0 if b == 0 else 0.0) - t0 * dL) / L
+    s1 = ((1.0 if b == 1 else 0.0) - t1 * dL) / L
+    s2 = ((1.0 if b == 2 else 0.0) - t2 * dL) / L
+    den = 1.0 + d0 * t0 + d1 * t1 + d2 * t2
+    y0, y1, y2 = _cross_unit(t0, t1, t2, i)
+    z0, z1, z2 = _cross_unit(s0, s1, s2, i)
+    k = (d0 * y0 + d1 * y1 + d2 * y2) / den
+    dk = (d0 * z0 + d1 * z1 + d2 * z2) / den - k * (d0 * s0 + d1 * s1 + d2 * s2) / den
+    f = -dL / L
+    return (f * (y0 - t0 * k) / L + (z0 - s0 * k - t0 * dk) / L,
+            f * (y1 - t1 * k) / L + (z1 - s1 * k - t1 * dk) / L,
+            f * (y2 - t2 * k) / L + (z2 - s2 * k - t2 * dk) / L)
 
 
 # ---------------------------------------------------------------------------- the kinematics
 #: column types: how a column moves the frame (for the derivative rules)
 SCREW, TRANSLATION, ROOT_ROTATION = 0, 1, 2
+#: columns of the scratch rows (one per coordinate column) of :func:`chain_kinematics_into`
+W_TYPE, W_DIRECTION, W_ORIGIN = 0, 1, 2
 
 
 @njit(cache=True)
 def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
-    """The pose of chain k at the coordinates x (charts F for ANCF tips): its origin r (3, m)
-    and axes R (3 x 3, columns global), and, for each of its nc coordinate columns (the chain's
-    order: :attr:`ChainTable.columns`), Jr[:, i] (m or m/rad per unit coordinate) and
-    Jw[:, i] (rad per unit coordinate, global axes). With ``order`` 2 also Hr[:, i, l] =
-    dJr[:, i]/dc_l and Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). Jr, Jw (3, nc) and
-    Hr, Hw (3, nc, nc) are overwritten."""
+    """:func:`chain_kinematics_into` into r (3), R (3 x 3), Jr, Jw (3, nc), Hr, Hw (3, nc, nc)
+    (its arrays allocated here: for tests, front ends and differences, not for every step)."""
+    nc = table.column_start[k + 1] - table.column_start[k]
+    P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
+    chain_kinematics_into(table, k, x, F, order, P, J, H, np.empty((nc, 5)))
+    for i in range(3):
+        r[i] = P[i, 0]
+        for j in range(3):
+            R[i, j] = P[i, 1 + j]
+        for c in range(nc):
+            Jr[i, c] = J[0, i, c]
+            Jw[i, c] = J[1, i, c]
+            if order >= 2:
+                for l in range(nc):
+                    Hr[i, c, l] = H[0, i, c, l]
+                    Hw[i, c, l] = H[1, i, c, l]
+
+
+@njit(cache=True, inline="always")
+def _euler_rate_entry(e0, e1, e2, e3, a, i):
+    """E[a, i] of :func:`euler_rate_matrix` (E is linear in e)."""
+    if a == 0:
+        return (-e1, e0, -e3, e2)[i]
+    if a == 1:
+        return (-e2, e3, e0, -e1)[i]
+    return (-e3, -e2, e1, e0)[i]
+
+
+@njit(cache=True, inline="always")
+def _cross_columns(J, sa, ja, sb, jb, H, s, i, l, add):
+    """H[s, :, i, l] (+)= J[sa, :, ja] x J[sb, :, jb] (no views: scalars only)."""
+    a0, a1, a2 = J[sa, 0, ja], J[sa, 1, ja], J[sa, 2, ja]
+    b0, b1, b2 = J[sb, 0, jb], J[sb, 1, jb], J[sb, 2, jb]
+    c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+    if add:
+        H[s, 0, i, l] += c0
+        H[s, 1, i, l] += c1
+        H[s, 2, i, l] += c2
+    else:
+        H[s, 0, i, l] = c0
+        H[s, 1, i, l] = c1
+        H[s, 2, i, l] = c2
+
+
+@njit(cache=True, inline="always")
+def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
+    """The pose of chain k at the coordinates x (charts F for ANCF tips): P (3 x 4), its
+    origin r (column 0, m) and axes R (columns 1-3, global); for each of its nc coordinate
+    columns (the chain's order: :attr:`ChainTable.columns`) J[0, :, i] = Jr[:, i] (m or m/rad
+    per unit coordinate) and J[1, :, i] = Jw[:, i] (rad per unit coordinate, global axes).
+    With ``order`` 2 also H[0, :, i, l] = Hr[:, i, l] = dJr[:, i]/dc_l and H[1, :, i, l] =
+    Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). J (2, 3, >= nc) and H (2, 3, >= nc, >= nc)
+    are overwritten on their first nc columns; ``work`` (>= nc, 5): scratch (a column's type,
+    a translation's axis, the point a rotation turns about). Scalars only: no allocation (a
+    step evaluates every chain), inlined into its callers."""
     l0, l1 = table.start[k], table.start[k + 1]
     nc = table.column_start[k + 1] - table.column_start[k]
+    par = table.params
     for i in range(3):
-        r[i] = 0.0
+        P[i, 0] = 0.0
         for j in range(3):
-            R[i, j] = 1.0 if i == j else 0.0
-    kind_of = np.empty(nc, dtype=np.int64)  # SCREW, TRANSLATION or ROOT_ROTATION
-    direction = np.zeros(nc, dtype=np.int64)  # a translation column's global axis
-    origin = np.empty((nc, 3))  # the point a rotation column turns about
+            P[i, 1 + j] = 1.0 if i == j else 0.0
     root_columns = 0  # the first link's own columns (their mutual derivatives are explicit)
     root_kind = -1
     col = 0
-    tmp = np.empty((3, 3))
-    E = np.empty((3, 4))
-    d = np.empty(3)
-    tau = np.empty(3)
     slope_length = 1.0
+    tau0 = tau1 = tau2 = 0.0  # an ANCF tip's section axis (later links turn P)
     for li in range(l0, l1):
         kind = table.links[li, KIND]
         c0 = table.links[li, COORD]
-        par = table.params[table.links[li, PARAM]]
+        pr = table.links[li, PARAM]
         if kind == LinkKind.CONSTANT:
             for i in range(3):
-                r[i] += R[i, 0] * par[0] + R[i, 1] * par[1] + R[i, 2] * par[2]
-            for i in range(3):
-                for j in range(3):
-                    tmp[i, j] = R[i, 0] * par[3 + j] + R[i, 1] * par[6 + j] + R[i, 2] * par[9 + j]
-            for i in range(3):
-                for j in range(3):
-                    R[i, j] = tmp[i, j]
+                R0, R1, R2 = P[i, 1], P[i, 2], P[i, 3]
+                P[i, 0] += R0 * par[pr, 0] + R1 * par[pr, 1] + R2 * par[pr, 2]
+                P[i, 1] = R0 * par[pr, 3] + R1 * par[pr, 6] + R2 * par[pr, 9]
+                P[i, 2] = R0 * par[pr, 4] + R1 * par[pr, 7] + R2 * par[pr, 10]
+                P[i, 3] = R0 * par[pr, 5] + R1 * par[pr, 8] + R2 * par[pr, 11]
         elif kind == LinkKind.REVOLUTE:
-            axis = par[0:3]
+            a0, a1, a2, sign = par[pr, 0], par[pr, 1], par[pr, 2], par[pr, 3]
             for i in range(3):
-                Jw[i, col] = par[3] * (R[i, 0] * axis[0] + R[i, 1] * axis[1] + R[i, 2] * axis[2])
-                origin[col, i] = r[i]
-            kind_of[col] = SCREW
-            _rotate_about(R, axis, par[3] * x[c0], tmp)
-            for i in range(3):
-                for j in range(3):
-                    R[i, j] = tmp[i, j]
+                J[1, i, col] = sign * (P[i, 1] * a0 + P[i, 2] * a1 + P[i, 3] * a2)
+                work[col, W_ORIGIN + i] = P[i, 0]
+            work[col, W_TYPE] = SCREW
+            _rotate_about(P, a0, a1, a2, sign * x[c0])
             col += 1
         elif kind == LinkKind.FREE:
             root_kind = kind
             root_columns = 7
             for i in range(3):
-                r[i] = x[c0 + i]
+                P[i, 0] = x[c0 + i]
             for j in range(3):
                 for a in range(3):
-                    Jw[a, col + j] = 0.0
-                kind_of[col + j] = TRANSLATION
-                direction[col + j] = j
-            e = x[c0 + 3:c0 + 7]
-            euler_rotation(e, R)
-            euler_rate_matrix(e, E)
-            s = e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]
+                    J[1, a, col + j] = 0.0
+                work[col + j, W_TYPE] = TRANSLATION
+                work[col + j, W_DIRECTION] = j
+            e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
+            _euler_into(e0, e1, e2, e3, P)
+            s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
             for a in range(4):
                 for i in range(3):
-                    Jw[i, col + 3 + a] = 2.0 * E[i, a] / s
-                    origin[col + 3 + a, i] = r[i]
-                kind_of[col + 3 + a] = ROOT_ROTATION
+                    J[1, i, col + 3 + a] = 2.0 * _euler_rate_entry(e0, e1, e2, e3, i, a) / s
+                    work[col + 3 + a, W_ORIGIN + i] = P[i, 0]
+                work[col + 3 + a, W_TYPE] = ROOT_ROTATION
             col += 7
         else:  # ANCF_TIP
             root_kind = kind
             root_columns = 7
-            Fc = F[int(par[0])]
+            Fc = F[int(par[pr, 0])]
             for i in range(3):
-                r[i] = x[c0 + i]
-                d[i] = Fc[i, 0]
+                P[i, 0] = x[c0 + i]
             for j in range(3):
                 for a in range(3):
-                    Jw[a, col + j] = 0.0
-                kind_of[col + j] = TRANSLATION
-                direction[col + j] = j
-            slope_length = _ancf_section(Fc, x[c0 + 3:c0 + 6], x[c0 + 6], R)
-            for i in range(3):
-                tau[i] = R[i, 0]
-            y = np.zeros(3)
-            out = np.empty(3)
+                    J[1, a, col + j] = 0.0
+                work[col + j, W_TYPE] = TRANSLATION
+                work[col + j, W_DIRECTION] = j
+            slope_length = _ancf_section(Fc, x, c0 + 3, P)
+            tau0, tau1, tau2 = P[0, 1], P[1, 1], P[2, 1]
             for b in range(3):
-                y[:] = 0.0
-                y[b] = 1.0
-                _ancf_rate_columns(d, tau, slope_length, y, out)
+                o0, o1, o2 = _ancf_rate_column(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length, b)
+                J[1, 0, col + 3 + b], J[1, 1, col + 3 + b], J[1, 2, col + 3 + b] = o0, o1, o2
                 for i in range(3):
-                    Jw[i, col + 3 + b] = out[i]
-                    origin[col + 3 + b, i] = r[i]
-                kind_of[col + 3 + b] = ROOT_ROTATION
+                    work[col + 3 + b, W_ORIGIN + i] = P[i, 0]
+                work[col + 3 + b, W_TYPE] = ROOT_ROTATION
+            J[1, 0, col + 6], J[1, 1, col + 6], J[1, 2, col + 6] = tau0, tau1, tau2
             for i in range(3):
-                Jw[i, col + 6] = tau[i]
-                origin[col + 6, i] = r[i]
-            kind_of[col + 6] = ROOT_ROTATION
+                work[col + 6, W_ORIGIN + i] = P[i, 0]
+            work[col + 6, W_TYPE] = ROOT_ROTATION
             col += 7
-    # translational columns at the final origin
-    dr = np.empty(3)
+    # origin velocities: a translation's axis, or a rotation's axis x (r - the point it turns about)
     for i in range(nc):
-        if kind_of[i] == TRANSLATION:
+        if work[i, W_TYPE] == TRANSLATION:
             for a in range(3):
-                Jr[a, i] = 1.0 if a == direction[i] else 0.0
+                J[0, a, i] = 1.0 if a == work[i, W_DIRECTION] else 0.0
         else:
-            for a in range(3):
-                dr[a] = r[a] - origin[i, a]
-            cross_into(Jw[:, i], dr, Jr[:, i])
+            d0 = P[0, 0] - work[i, W_ORIGIN]
+            d1 = P[1, 0] - work[i, W_ORIGIN + 1]
+            d2 = P[2, 0] - work[i, W_ORIGIN + 2]
+            w0, w1, w2 = J[1, 0, i], J[1, 1, i], J[1, 2, i]
+            J[0, 0, i] = w1 * d2 - w2 * d1
+            J[0, 1, i] = w2 * d0 - w0 * d2
+            J[0, 2, i] = w0 * d1 - w1 * d0
     if order < 2:
         return
-    v = np.empty(3)
     for i in range(nc):
         for l in range(nc):
             if i < root_columns and l < root_columns:
                 continue  # below
             if l <= i:
-                cross_into(Jw[:, l], Jw[:, i], Hw[:, i, l])
-                cross_into(Jw[:, l], Jr[:, i], Hr[:, i, l])
+                _cross_columns(J, 1, l, 1, i, H, 1, i, l, False)
+                _cross_columns(J, 1, l, 0, i, H, 0, i, l, False)
             else:
                 for a in range(3):
-                    Hw[a, i, l] = 0.0
-                cross_into(Jw[:, i], Jr[:, l], Hr[:, i, l])
+                    H[1, a, i, l] = 0.0
+                _cross_columns(J, 1, i, 0, l, H, 0, i, l, False)
     if root_columns == 0:
         return
     # the first link's own columns among each other
     for i in range(root_columns):
         for l in range(root_columns):
             for a in range(3):
-                Hw[a, i, l] = 0.0
-                Hr[a, i, l] = 0.0
+                H[1, a, i, l] = 0.0
+                H[0, a, i, l] = 0.0
     c0 = table.links[l0, COORD]
+    dr0, dr1, dr2 = P[0, 0] - x[c0], P[1, 0] - x[c0 + 1], P[2, 0] - x[c0 + 2]
     if root_kind == LinkKind.FREE:
-        e = x[c0 + 3:c0 + 7]
-        s = e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]
-        El = np.empty((3, 4))
-        unit = np.zeros(4)
+        e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
+        s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
         for l in range(4):
-            unit[:] = 0.0
-            unit[l] = 1.0
-            euler_rate_matrix(unit, El)  # dE/de_l (E is linear in e)
+            u0, u1, u2, u3 = 1.0 * (l == 0), 1.0 * (l == 1), 1.0 * (l == 2), 1.0 * (l == 3)  # dE/de_l: E of the unit
+            el = x[c0 + 3 + l]
             for i in range(4):
                 for a in range(3):
-                    Hw[a, 3 + i, 3 + l] = 2.0 * El[a, i] / s - 4.0 * e[l] * E[a, i] / (s * s)
-        for i in range(4):
-            for a in range(3):
-                dr[a] = r[a] - x[c0 + a]
-            for l in range(4):
-                cross_into(Hw[:, 3 + i, 3 + l], dr, v)
-                for a in range(3):
-                    Hr[a, 3 + i, 3 + l] = v[a]
-                cross_into(Jw[:, 3 + i], Jr[:, 3 + l], v)
-                for a in range(3):
-                    Hr[a, 3 + i, 3 + l] += v[a]
+                    H[1, a, 3 + i, 3 + l] = (2.0 * _euler_rate_entry(u0, u1, u2, u3, a, i) / s
+                                             - 4.0 * el * _euler_rate_entry(e0, e1, e2, e3, a, i) / (s * s))
     else:  # ANCF_TIP: rotation columns r0' (3) and theta_1 (1)
-        out = np.empty(3)
-        y = np.zeros(3)
+        Fc = F[int(par[table.links[l0, PARAM], 0])]
         for i in range(3):  # d(A e_i)/du_b
-            y[:] = 0.0
-            y[i] = 1.0
             for b in range(3):
-                _ancf_rate_derivative(d, tau, slope_length, y, b, out)
-                for a in range(3):
-                    Hw[a, 3 + i, 3 + b] = out[a]
+                o0, o1, o2 = _ancf_rate_derivative(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length, i, b)
+                H[1, 0, 3 + i, 3 + b], H[1, 1, 3 + i, 3 + b], H[1, 2, 3 + i, 3 + b] = o0, o1, o2
+        tau = (tau0, tau1, tau2)
         for b in range(3):  # d tau / d u_b
             for a in range(3):
-                Hw[a, 6, 3 + b] = ((1.0 if a == b else 0.0) - tau[a] * tau[b]) / slope_length
-        for a in range(3):
-            dr[a] = r[a] - x[c0 + a]
-        for i in range(3, 7):
-            for l in range(3, 7):
-                cross_into(Hw[:, i, l], dr, v)
-                for a in range(3):
-                    Hr[a, i, l] = v[a]
-                cross_into(Jw[:, i], Jr[:, l], v)
-                for a in range(3):
-                    Hr[a, i, l] += v[a]
+                H[1, a, 6, 3 + b] = ((1.0 if a == b else 0.0) - tau[a] * tau[b]) / slope_length
+    # Hr of the first link's rotations: dHw x (r - r_root) + Jw_i x Jr_l
+    for i in range(3, 7):
+        for l in range(3, 7):
+            h0, h1, h2 = H[1, 0, i, l], H[1, 1, i, l], H[1, 2, i, l]
+            H[0, 0, i, l] = h1 * dr2 - h2 * dr1
+            H[0, 1, i, l] = h2 * dr0 - h0 * dr2
+            H[0, 2, i, l] = h0 * dr1 - h1 * dr0
+            _cross_columns(J, 1, i, 0, l, H, 0, i, l, True)
+
+
+@njit(cache=True, _nrt=False)
+def evaluate_chains(table, x, F):
+    """Every chain's kinematics at the coordinates x (charts F) into the table's pose, jac and
+    hess: once per evaluation of the system's functions, before its parts read them
+    (:func:`chain_state`). Compiled without numba's reference counting (it allocates nothing):
+    one call per evaluation, no count of the table's arrays per chain."""
+    for k in range(table.start.shape[0] - 1):
+        chain_kinematics_into(table, k, x, F, 2, table.pose[k], table.jac[k], table.hess[k], table.work)
+
+
+@njit(cache=True, inline="always")
+def chain_state(table, k):
+    """(columns, r, R, Jr, Jw, Hr, Hw) of chain k as :func:`evaluate_chains` left them (views of
+    the table's arrays: the chain's coordinate columns' x indices, its origin (m) and axes, the
+    Jacobians (3, nc) and their derivatives (3, nc, nc))."""
+    nc = table.column_start[k + 1] - table.column_start[k]
+    P = table.pose[k]
+    J = table.jac[k]
+    H = table.hess[k]
+    return (table.columns[table.column_start[k]:table.column_start[k + 1]], P[:, 0], P[:, 1:4], J[0, :, :nc],
+            J[1, :, :nc], H[0, :, :nc, :nc], H[1, :, :nc, :nc])
 
 
 def chain_pose(table: ChainTable, k: int, x, F=None, order: int = 1):
@@ -543,25 +617,28 @@ def gather(values, columns):
 
 
 @njit(cache=True)
-def frame_motion(Jr, Jw, Hr, Hw, cd, cdd, vel, w, acc, alpha):
+def frame_motion(Jr, Jw, Hr, Hw, cols, v, acc_x, vel, w, acc, alpha):
     """The frame's origin velocity vel = Jr c' and angular velocity w = Jw c' (global), and its
     accelerations acc = Jr c'' + sum_il Hr[:, i, l] c'_i c'_l and alpha likewise (the velocity
-    products of the chain, exact)."""
+    products of the chain, exact); c' = v[cols], c'' = acc_x[cols]."""
     nc = Jr.shape[1]
     for a in range(3):
         sv = sw = sa = sal = 0.0
         for i in range(nc):
-            sv += Jr[a, i] * cd[i]
-            sw += Jw[a, i] * cd[i]
-            sa += Jr[a, i] * cdd[i]
-            sal += Jw[a, i] * cdd[i]
-            if cd[i] != 0.0:
+            cd = v[cols[i]]
+            cdd = acc_x[cols[i]]
+            sv += Jr[a, i] * cd
+            sw += Jw[a, i] * cd
+            sa += Jr[a, i] * cdd
+            sal += Jw[a, i] * cdd
+            if cd != 0.0:
                 hr = hw = 0.0
                 for l in range(nc):
-                    hr += Hr[a, i, l] * cd[l]
-                    hw += Hw[a, i, l] * cd[l]
-                sa += hr * cd[i]
-                sal += hw * cd[i]
+                    cl = v[cols[l]]
+                    hr += Hr[a, i, l] * cl
+                    hw += Hw[a, i, l] * cl
+                sa += hr * cd
+                sal += hw * cd
         vel[a] = sv
         w[a] = sw
         acc[a] = sa
@@ -569,24 +646,15 @@ def frame_motion(Jr, Jw, Hr, Hw, cd, cdd, vel, w, acc, alpha):
 
 
 @njit(cache=True)
-def chain_origin_and_axes(table, k, x, F, r, R):
-    """The pose (r, R) of chain k at x, without Jacobians."""
-    nc = table.column_start[k + 1] - table.column_start[k]
-    Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
-    H = np.empty((3, 0, 0))
-    chain_kinematics(table, k, x, F, 1, r, R, Jr, Jw, H, H)
-
-
-@njit(cache=True)
 def displacement_in_reference(ctx, F, x, root_chain, reference_chain, length, tip, out):
     """out = R_ref^T (tip - r_root - length tau_root): a tip's displacement (m) from its
     undeformed place (the root frame's axis carried out to ``length``), along the axes of
-    the reference frame (the beam's hub frame: radial, along the hub axis, tangential)."""
-    r, R = np.empty(3), np.empty((3, 3))
-    chain_origin_and_axes(ctx.chains, root_chain, x, F, r, R)
-    d = np.empty(3)
-    for i in range(3):
-        d[i] = tip[i] - r[i] - length * R[i, 0]
-    chain_origin_and_axes(ctx.chains, reference_chain, x, F, r, R)
+    the reference frame (the beam's hub frame: radial, along the hub axis, tangential); the
+    frames as :func:`evaluate_chains` left them at x."""
+    P = ctx.chains.pose[root_chain]
+    d0 = tip[0] - P[0, 0] - length * P[0, 1]
+    d1 = tip[1] - P[1, 0] - length * P[1, 1]
+    d2 = tip[2] - P[2, 0] - length * P[2, 1]
+    Q = ctx.chains.pose[reference_chain]
     for j in range(3):
-        out[j] = R[0, j] * d[0] + R[1, j] * d[1] + R[2, j] * d[2]
+        out[j] = Q[0, 1 + j] * d0 + Q[1, 1 + j] * d1 + Q[2, 1 + j] * d2
