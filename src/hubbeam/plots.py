@@ -225,10 +225,14 @@ def plot_applicability(ds, path, title: str = "") -> None:
                                ("first-frequency error of FFR (%)", "tip-deflection error of FFR (%)")):
         z = ds[name].values
         level = float(np.nanmax(np.abs(z))) if np.any(np.isfinite(z)) else 1.0
-        cs = ax.contourf(x[order], y[order], z[order], levels=21, cmap="RdBu_r", vmin=-level, vmax=level)
-        lines = ax.contour(x[order], y[order], np.abs(z[order]), levels=[5, 20], colors="k", linewidths=0.8)
-        ax.clabel(lines, fmt="%g %%", fontsize=8)
-        ax.plot(x, y, "k.", ms=3)
+        if min(z.shape) >= 2:  # a grid: filled contours and the 5 % and 20 % lines
+            cs = ax.contourf(x[order], y[order], z[order], levels=21, cmap="RdBu_r", vmin=-level, vmax=level)
+            lines = ax.contour(x[order], y[order], np.abs(z[order]), levels=[5, 20], colors="k", linewidths=0.8)
+            ax.clabel(lines, fmt="%g %%", fontsize=8)
+            ax.plot(x, y, "k.", ms=3)
+        else:  # one thickness or one speed: no area to contour, the points coloured by their error
+            cs = ax.scatter(x.ravel(), y.ravel(), c=z.ravel(), cmap="RdBu_r", vmin=-level, vmax=level, s=60,
+                            edgecolors="k", linewidths=0.5)
         ax.axvline(0.38, color="C2", ls="--", lw=1.2, label="paper: w_m = 38 % of L")
         ax.axhline(0.33, color="C1", ls="--", lw=1.2, label="paper: omega = 33 % of omega_1")
         fig.colorbar(cs, ax=ax, label=label)
@@ -254,8 +258,9 @@ def plot_sweep(ds, path, variables: list[str] | None = None, title: str = "") ->
         for k in range(stacked.sizes["point"]):
             curve = stacked.isel(point=k)
             label = ", ".join(f"{key} = {curve[key].item():g}" for key in keys)
-            if "time" in da.dims:
-                ax.plot(ds["time"].values, curve.values, lw=1, label=label)
+            if "time" in da.dims:  # each point at its own output times (the others are NaN for it)
+                keep = np.isfinite(curve.values)
+                ax.plot(ds["time"].values[keep], curve.values[keep], lw=1, label=label)
             elif "mode" in da.dims:
                 ax.plot(ds["mode"].values, curve.values, "o-", lw=1, label=label)
         if "time" not in da.dims and "mode" not in da.dims:
