@@ -46,7 +46,6 @@ def cmd_animate(args) -> dict:
 
 
 def cmd_vtk(args) -> dict:
-    import re
     from pathlib import Path
 
     from hubbeam.io import vtk
@@ -60,23 +59,49 @@ def cmd_vtk(args) -> dict:
         say(f"hubbeam: note: {args.result} holds a partial run: {state.partial}")
     out = Path(args.output)
     pvd, vtus = vtk.file_names(state)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
+    try:  # the series is ours while it is held: the check of what is there and the writes are one
+        with vtk.series_lock(out, state):
+            _write_series(args, state, out, pvd, vtus)
+    except vtk.SeriesLocked as exc:  # another export of this series into this directory is under way
+        who = f" (process {exc.pid})" if exc.pid else ""
+        raise ScenarioError(f"-o {out}: another hubbeam vtk{who} is writing the series {vtk.series_name(state)!r} there "
+                            f"now ({vtk.lock_name(state)}); give another directory, or wait for it and use --force") \
+            from None
+    except OSError as exc:  # the lock file itself (the writes report their own failures)
+        raise OutputError(f"-o {out}: cannot create the lock file {vtk.lock_name(state)} ({exc.strerror})") from None
+    if not args.json:
+        print(f"{len(vtus)} time steps -> {out / pvd}")
+    return {"files": len(vtus), "pvd": str(out / pvd)}
+
+
+def _write_series(args, state, out, pvd: str, vtus: list[str]) -> None:
+    """The .vtu files and the .pvd of ``state`` into ``out`` (the caller holds the series' lock):
+    refused when a series of that name is there already (unless --force, which removes its
+    .pvd first and its extra .vtu files last)."""
+    import re
+    from pathlib import Path
+
+    from hubbeam import interrupt
+    from hubbeam.io import vtk
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import OutputError, Target, check_inside, write_all
+
     pattern = re.compile(re.escape(vtk.series_name(state)) + rf"_\d{{{vtk.INDEX_DIGITS}}}\.vtu")
-    old = sorted(p for p in out.iterdir() if p.name == pvd or pattern.fullmatch(p.name)) if out.is_dir() else []
+    old = sorted(p for p in out.iterdir() if p.name == pvd or pattern.fullmatch(p.name))
     if old and not args.force:
         raise ScenarioError(f"-o {out}: holds a series named {vtk.series_name(state)!r} already ({old[0].name}"
                             f"{f' and {len(old) - 1} more' if len(old) > 1 else ''}); give another directory or "
                             "--force to replace it")
-    from hubbeam.io.targets import check_inside
-
     check_inside("-o", out, [pvd, *vtus])
     try:
-        out.mkdir(parents=True, exist_ok=True)
         (out / pvd).unlink(missing_ok=True)  # --force: an old collection must not list the new files mixed with old ones
     except OSError as exc:
-        raise OutputError(f"-o {out}: cannot create the directory or remove the old {pvd} ({exc.strerror})") from None
+        raise OutputError(f"-o {out}: cannot remove the old {pvd} ({exc.strerror})") from None
     jobs = [(Target("-o", str(out / name)), lambda p, i=i: vtk.write_vtu(state, i, p)) for i, name in enumerate(vtus)]
-    from hubbeam import interrupt
-    from hubbeam.io.targets import write_all
 
     def left(n):
         return (f"{n} of {len(vtus)} time steps: {out} holds " +
@@ -99,9 +124,10 @@ def cmd_vtk(args) -> dict:
     write_jobs([(Target("-o", str(out / pvd)), lambda p: Path(p).write_text(vtk.pvd_text(state), encoding="utf-8"))])
     for stale in old:  # --force: files of an earlier, longer series
         if stale.name != pvd and stale.name not in vtus:
-            stale.unlink(missing_ok=True)
-    if not args.json:
-        print(f"{len(vtus)} time steps -> {out / pvd}")
-    return {"files": len(vtus), "pvd": str(out / pvd)}
+            try:
+                stale.unlink(missing_ok=True)
+            except OSError as exc:
+                raise OutputError(f"-o {out}: the series is written, but {stale.name} of the earlier, longer one cannot "
+                                  f"be removed ({exc.strerror})") from None
 
 
