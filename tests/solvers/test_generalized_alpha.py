@@ -138,9 +138,10 @@ def _modified_and_full(example, overrides):
 def test_the_newton_test_does_not_loosen_with_dt_rotor3(dt):
     """rotor3 (8 elements per blade, 3 s of the spin-up) at dt = 1 ms and 0.5 ms: modified and
     full Newton give one hub torque (1e-5 of its peak) and the three identical blades stay
-    identical (1e-13 m). With the multipliers tested as lengths (beta h^2 lambda / mass scale)
-    their tolerance grew as 1/h^2: a 211 Hz blade oscillation of 0.019 N m (1 ms) and 0.0075 N m
-    (0.5 ms) in hub_torque, 760 times the run's time-discretisation error, blades apart by 9e-10 m."""
+    identical (1e-13 m); measured 2.3e-6 and 8.7e-7 N m, 1e-15 m. With the drive's torque tested
+    as a length (beta h^2 lambda / mass scale) its tolerance grew as 1/h^2: a 211 Hz blade
+    oscillation of 0.019 N m (1 ms) and 0.0075 N m (0.5 ms) in hub_torque, 760 times the run's
+    time-discretisation error, blades apart by 9e-10 m."""
     modified, full = _modified_and_full("rotor3", ["beams[*].elements=8", f"analysis.dt={dt}", "analysis.t_end=3.0"])
     peak = float(np.abs(full["drive_torque"]).max())
     assert float(np.abs(modified["drive_torque"] - full["drive_torque"]).max()) < 1e-5 * peak
@@ -153,9 +154,10 @@ def test_the_newton_test_does_not_loosen_with_dt_rotor3(dt):
 def test_the_newton_test_does_not_loosen_with_dt_spacecraft(dt, t_end):
     """spacecraft (8 elements per panel) at dt = 1 ms (20 s) and 0.5 ms (10 s): modified and
     full Newton give one control torque (2e-5 of its peak) and the two identical panels stay
-    within 1e-8 m of each other (full Newton: 1e-14 m). Before: 1.2e-4 N m and 2.9e-8 m at 1 ms,
-    4.5e-5 N m at 0.5 ms (modified Newton's stop at 0.1 of the tolerance, its errors adding up
-    in the undamped panel modes)."""
+    within 1e-8 m of each other (full Newton: 1e-14 m); measured 1.1e-5 N m and 9e-10 m at 1 ms,
+    1.4e-8 N m and 6e-12 m at 0.5 ms. Before: 1.2e-4 N m and 2.9e-8 m at 1 ms, 4.5e-5 N m at
+    0.5 ms (modified Newton's stop at 0.1 of the tolerance, its errors adding up in the
+    undamped panel modes)."""
     modified, full = _modified_and_full("spacecraft", ["beams[*].elements=8", f"analysis.dt={dt}",
                                                        f"analysis.t_end={t_end}"])
     peak = float(np.abs(full["torque"]).max())

@@ -45,8 +45,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     The state arrays are updated in place after every converged step, so on any failure
     they hold the last good state. ``alpha`` = (alpha_m, alpha_f, beta, gamma); ``newton``
     = (tolerance on |dx| (m), max iterations, NewtonOptions.update_code, refresh rate,
-    refresh iterations, the multipliers' weight of
-    :func:`~hubbeam.solvers.generalized_alpha.multiplier_weight`, the factor kappa of the
+    refresh iterations, the multipliers' weights of
+    :func:`~hubbeam.solvers.generalized_alpha.multiplier_weights`, the factor kappa of the
     rate-based error estimate). ``matrix`` = (ab, ipiv,
     brow, bcol, bb, Y, schur): the bordered storage and its factors (:func:`hubbeam.system.assembly.bordered_factor`), and ``reuse``
     (the reuse state of :func:`hubbeam.solvers.generalized_alpha.reuse_state`; valid means

@@ -81,8 +81,8 @@ class NewtonOptions:
     ``tolerance``: on the increment of the coordinates, relative to the beam length (an
     increment-based test: the force residual of a stiff axial beam is floored by round-off
     at EA * 1e-16 * |r'|, far above any fixed force tolerance), and on the multipliers'
-    increments as forces, with a force scale that does not depend on the step
-    (:func:`multiplier_weight`). When the matrix is reused the increment is multiplied by
+    scaled increments (the clamps' as lengths, the drive's as a torque whose tolerance does
+    not depend on the step: :func:`multiplier_weights`). When the matrix is reused the increment is multiplied by
     rate / (1 - rate), the estimate of the remaining error from the observed contraction
     rate, and compared with :data:`KAPPA` times the tolerance (Hairer and Wanner, IV.8).
     ``update``: when the iteration matrix is rebuilt and factorised:
@@ -99,8 +99,8 @@ class NewtonOptions:
     """
 
     tolerance: float = 1e-9
-    #: 30 (25 before the test of the multipliers as forces and KAPPA = 0.01, with which the
-    #: hardest step of tests/solvers/test_compiled_alpha.py, dt = 5 ms, needs 26)
+    #: 30 (25 before the drive's torque was tested as a torque and KAPPA was 0.01; the hardest
+    #: step of tests/solvers/test_compiled_alpha.py, dt = 5 ms, then needs 26)
     max_iterations: int = 30
     update: str = "adaptive"
     refresh_rate: float = 0.25
@@ -176,7 +176,7 @@ def predict(x_n, v_n, xdd_n, a_n, h, am, af, beta, gamma, x, v, xdd):
         x[i] = x_n[i] + h * v_n[i] + h * h * (0.5 - beta) * a_n[i] + h * h * beta * a
 
 
-#: the reference time of the multipliers' test (s): their increments are tested as forces against
+#: the reference time of the drive multiplier's test (s): its increments are tested as a torque against
 #: tolerance * mass_scale * L / MULTIPLIER_TIME^2, whatever the step (:func:`multiplier_weight`)
 MULTIPLIER_TIME = 0.01
 #: the weight of the multipliers' increments is at most tolerance / (ROUND_OFF_MARGIN * machine epsilon):
@@ -185,22 +185,40 @@ ROUND_OFF_MARGIN = 16.0
 
 
 def multiplier_weight(h: float, beta: float, tolerance: float) -> float:
-    """The factor on |dmu| in the Newton test (:func:`apply_increment`), so that the test on the
-    multipliers does not loosen as the step h shrinks.
+    """The factor on the drive multiplier's |dmu| in the Newton test (:func:`apply_increment`,
+    :func:`multiplier_weights`), so that its test does not loosen as the step h shrinks.
 
-    mu = beta h^2 lambda / mass_scale is a length, and comparing |dmu| with tolerance * L (as
-    the coordinates) lets the multipliers lambda, which are forces, err by tolerance * L *
-    mass_scale / (beta h^2): a tolerance that grows as 1/h^2. Modified Newton's stop leaves
-    such an error every step, and it fed a lightly damped blade mode: rotor3 (8 or 16
-    elements) at dt = 1 ms carried a 211 Hz oscillation of +-0.02 N m in hub_torque, 760
-    times its time-discretisation error. Weighted by MULTIPLIER_TIME^2 / (beta h^2), the test
-    is |dlambda| <= tolerance * mass_scale * L / MULTIPLIER_TIME^2, the force that moves an
-    element's mass by tolerance * L in MULTIPLIER_TIME, for every h below MULTIPLIER_TIME *
-    sqrt(1 / beta) (above it the length test is the stricter and stays). The weight is capped
-    at tolerance / (ROUND_OFF_MARGIN eps) so that round-off in mu never fails the test (steps
-    below about 30 us at the default tolerance)."""
+    mu = beta h^2 lambda / mass_scale, and comparing |dmu| with tolerance * L (as the
+    coordinates) lets the drive's torque lambda err by tolerance * L * mass_scale / (beta h^2):
+    a tolerance that grows as 1/h^2. Modified Newton's stop leaves such an error every step,
+    and it fed a lightly damped blade mode: rotor3 (8 or 16 elements) at dt = 1 ms carried a
+    211 Hz oscillation of +-0.02 N m in hub_torque, 760 times its time-discretisation error.
+    Weighted by MULTIPLIER_TIME^2 / (beta h^2), the test is |dlambda| <= tolerance *
+    mass_scale * L / MULTIPLIER_TIME^2 (in the units the length test gave it), for every h
+    below MULTIPLIER_TIME * sqrt(1 / beta) (above it the length test is the stricter and
+    stays). The weight is capped at tolerance / (ROUND_OFF_MARGIN eps) so that round-off in mu
+    never fails the test (steps below about 30 us at the default tolerance)."""
     weight = MULTIPLIER_TIME**2 / (beta * h * h)
     return float(min(max(weight, 1.0), max(tolerance / (ROUND_OFF_MARGIN * np.finfo(float).eps), 1.0)))
+
+
+def multiplier_weights(layout, h: float, beta: float, tolerance: float) -> np.ndarray:
+    """The weight of each multiplier's increment in the Newton test (:func:`apply_increment`):
+    :func:`multiplier_weight` for the drive's multiplier of a held hub, 1 for the clamps'.
+
+    The drive's multiplier is a result: the torque that holds or drives the hub (the
+    ``hub_torque`` sensor) and, times the hub speed, the drive power of the energy balance;
+    it is tested as a force whatever the step. The clamps' multipliers are internal forces
+    that act on the motion only through the step's accelerations, so that their scaled
+    increment, a length, is what they move the beams by in the step: the length test bounds
+    it as it bounds the coordinates. Weighting them too cost FFR beams, whose iteration
+    matrix is otherwise kept for the whole run, 30 times the factorisations (exp1 with FFR:
+    0.18 per step against 0.006, 65 % more time) and changed neither rotor3's hub torque nor
+    spacecraft's panels measurably (docs/dynamics.md)."""
+    weights = np.ones(layout.n_lambda)
+    if layout.drive_lambda is not None:
+        weights[layout.drive_lambda] = multiplier_weight(h, beta, tolerance)
+    return weights
 
 
 @njit(cache=True)
@@ -220,7 +238,7 @@ def apply_increment(dz, z_of_x, z_of_lambda, gprime, bprime, lam_factor, mu_weig
     for i in range(lam.shape[0]):
         d = dz[z_of_lambda[i]]
         lam[i] += lam_factor * d
-        size = max(size, mu_weight * abs(d))
+        size = max(size, mu_weight[i] * abs(d))
     return size
 
 
@@ -230,8 +248,8 @@ def apply_increment(dz, z_of_x, z_of_lambda, gprime, bprime, lam_factor, mu_weig
 #: increment. Each step's leftover adds up over the steps in the lightly damped modes:
 #: spacecraft (8 elements per panel, 20 s at dt = 1 ms) ended 1.2e-4 N m from full Newton's
 #: torque and with its two identical panels 2.9e-8 m apart with kappa = 0.1; 0.01 takes that
-#: to 6e-6 N m and 1.5e-9 m, for 5 % more iterations on exp1 (0.03: 1.6e-5 N m and 2.6e-9 m;
-#: docs/dynamics.md has the measurements and the cost).
+#: to 1.1e-5 N m and 9e-10 m (at 0.5 ms: 1.4e-8 N m and 6e-12 m), for 7 % more iterations on
+#: exp1 (0.03: 1.7e-5 N m and 2e-8 m; docs/dynamics.md has the measurements and the cost).
 KAPPA = 0.01
 
 
@@ -373,7 +391,7 @@ def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
     ck = beta * h * h
     s = system.mass_scale
     tol = options.tolerance * max(system.length_scale, 1.0)
-    weight = multiplier_weight(h, beta, options.tolerance)
+    weight = multiplier_weights(system.layout, h, beta, options.tolerance)
     coefs = (ck * bprime, ck * gprime, ck, s)
     zx, zl = system.layout.z_of_x, system.layout.z_of_lambda
     update = options.update_code
