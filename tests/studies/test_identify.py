@@ -147,7 +147,7 @@ def test_an_interval_reaching_beyond_the_bound_is_not_given(monkeypatch):
 def test_the_95_percent_interval_covers_the_truth_in_95_percent_of_draws():
     """Synthetic records made at dt = 0.5 ms (3 elements, 1 s of exp1's P1 strain, 1 % noise)
     fitted at the scenario's 1 ms: the 95 % interval of damping.linear holds the true 1.73 in
-    about 95 % of seeded draws (measured: 190 of 200 seeds 0-199; here 40 seeds, expected 38).
+    about 95 % of seeded draws (measured: 190 of 200 seeds 0-199; here 25 seeds, expected 23.75).
     Before (the model interpolated from its 10 ms records): exp1 sampled at 1 ms gave
     1.72704 +- 0.000698, which excludes 1.73."""
     base = ["beam.elements=3", "analysis.t_end=1.0"]
@@ -157,8 +157,8 @@ def test_the_95_percent_interval_covers_the_truth_in_95_percent_of_draws():
     truth = model_signal(made_with, ["damping.linear"], [1.73], "strain_P1", times)
     sigma = 0.01 * np.abs(truth).max()
     hits = 0
-    for seed in range(40):
+    for seed in range(25):
         measured = truth + sigma * np.random.default_rng(seed).standard_normal(times.size)
         fit = identify(fit_with, times, measured, ["damping.linear"])
         hits += abs(fit.values[0] - 1.73) <= fit.ci95[0]
-    assert 34 <= hits <= 40, hits  # binomial(40, 0.95): 34 or more with probability 0.99
+    assert hits >= 21, hits  # binomial(25, 0.95): 21 or more with probability 0.993
