@@ -6,7 +6,7 @@ import pytest
 from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import L, RHO, plate
 
 BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382])  # clamped-free roots of cos cosh = -1

@@ -9,7 +9,7 @@ from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.mode_shapes import energy_fractions, mac_matrix, match_modes, mode_label, span_shapes
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import RHO, L, plate
 
 BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382, 10.9955407349, 14.1371683910, 17.2787595321,

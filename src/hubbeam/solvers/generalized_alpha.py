@@ -28,7 +28,7 @@ import enum
 
 from hubbeam.errors import ConvergenceError
 from hubbeam.system.assembly import Factorisation
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 
 @dataclass(frozen=True)
@@ -82,9 +82,10 @@ class NewtonOptions:
     increment-based test: the force residual of a stiff axial beam is floored by round-off
     at EA * 1e-16 * |r'|, far above any fixed force tolerance), and on the multipliers'
     scaled increments (the clamps' as lengths, the drive's as a torque whose tolerance does
-    not depend on the step: :func:`multiplier_weights`). When the matrix is reused the increment is multiplied by
-    rate / (1 - rate), the estimate of the remaining error from the observed contraction
-    rate, and compared with :data:`KAPPA` times the tolerance (Hairer and Wanner, IV.8).
+    not depend on the step: :func:`multiplier_weights`). When the matrix is reused the
+    increment is multiplied by rate / (1 - rate), the estimate of the remaining error from
+    the observed contraction rate, and compared with :data:`KAPPA` times the tolerance
+    (Hairer and Wanner, IV.8).
     ``update``: when the iteration matrix is rebuilt and factorised:
     "iteration" (full Newton), "step" (once per step at the predictor, reused by the step's
     further iterations: each step costs one factorisation and, as the matrix is that of the
@@ -139,7 +140,7 @@ def factorise(matrix, h: float, chart: np.ndarray) -> IterationMatrix:
         raise ConvergenceError(f"singular iteration matrix (a constraint lost rank or a mass vanished): {exc}") from exc
 
 
-def init(system: HubSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
+def init(system: MultibodySystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
          v0: np.ndarray | None = None) -> AlphaState:
     """Consistent accelerations and multipliers at (x0, v0): M xdd + Phi_x^T lam = Q - f,
     Phi_x xdd = -Phi_tt - (d/dt Phi_x) v (the drive's prescribed angular acceleration and the
@@ -225,9 +226,10 @@ def multiplier_weights(layout, h: float, beta: float, tolerance: float) -> np.nd
 def apply_increment(dz, z_of_x, z_of_lambda, gprime, bprime, lam_factor, mu_weight, x, v, xdd, lam):
     """Newton correction from dz (placed by the layout maps ``z_of_x``, ``z_of_lambda``):
     x += dx, v += gamma' dx, xdd += beta' dx, lambda += lam_factor dmu. Returns max(|dx|,
-    mu_weight |dmu|) (:func:`multiplier_weight`): the multipliers converge with the
-    coordinates (testing dx alone left the drive's reaction, and so the drive work, off by
-    1e-4 on an FFR beam on a driven hub), as forces whose tolerance does not depend on the step."""
+    mu_weight |dmu|) (``mu_weight`` per multiplier, :func:`multiplier_weights`): the
+    multipliers converge with the coordinates (testing dx alone left the drive's reaction, and
+    so the drive work, off by 1e-4 on an FFR beam on a driven hub), the drive's as a torque
+    whose tolerance does not depend on the step."""
     size = 0.0
     for i in range(x.shape[0]):
         d = dz[z_of_x[i]]
@@ -372,10 +374,10 @@ class KeptMatrix:
     reuse: np.ndarray = field(default_factory=reuse_state)
 
 
-def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
+def step(system: MultibodySystem, state: AlphaState, h: float, p: AlphaParameters,
          options: NewtonOptions = NewtonOptions(), kept: KeptMatrix | None = None
          ) -> tuple[AlphaState, int, KeptMatrix]:
-    """One step of length h in Python (any :class:`HubSystem`; systems that compile run the
+    """One step of length h in Python (any :class:`MultibodySystem`; systems that compile run the
     same controller in :func:`hubbeam.solvers.compiled_alpha.advance`).
 
     Returns the new state, the Newton iterations it took and the matrix kept for the next

@@ -26,7 +26,7 @@ from scipy.linalg import eig, eigh, null_space
 
 from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.solvers.static import StaticSolution
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 
 @dataclass
@@ -43,7 +43,7 @@ class Modes:
 
 
 def modal_analysis(
-    system: HubSystem, equilibrium: StaticSolution, count: int = 6, free_hub: bool | None = None,
+    system: MultibodySystem, equilibrium: StaticSolution, count: int = 6, free_hub: bool | None = None,
     rigid_tol_hz: float = 1e-3,
 ) -> Modes:
     """Lowest ``count`` elastic natural frequencies about ``equilibrium``.
@@ -69,7 +69,7 @@ def modal_analysis(
         w2, V = w2.real[order], V.real[:, order]
     f = np.sqrt(np.abs(w2)) * np.sign(w2) / (2.0 * np.pi)
     rigid = np.abs(f) < rigid_tol_hz
-    if free_hub and system.hub.torque(0.0, equilibrium.x[0], 0.0)[1] == 0.0:
+    if free_hub and system.hub.torque(0.0, equilibrium.x[system.theta_index], 0.0)[1] == 0.0:
         # the rigid rotation of hub and beams; a torque law with a stiffness (PD, kp > 0) makes
         # it the servo mode, an elastic mode like the others
         rigid[np.argmin(np.abs(f))] = True
@@ -77,7 +77,7 @@ def modal_analysis(
     return Modes(f[elastic], _normalised(N @ V[:, elastic], M), f[rigid])
 
 
-def rotating_matrices(system: HubSystem, x_s, lam, F, omega: float, held: bool = True):
+def rotating_matrices(system: MultibodySystem, x_s, lam, F, omega: float, held: bool = True):
     """(M, G, K, A) about the steadily rotating state x_s (multipliers ``lam`` of the layout with
     the hub ``held``, charts F, hub speed omega in rad/s), in the co-rotating coordinates of
     :func:`rotating_modal_analysis`: M the system's mass matrix (exact), G the gyroscopic,
@@ -104,7 +104,7 @@ def rotating_matrices(system: HubSystem, x_s, lam, F, omega: float, held: bool =
     return Mz[np.ix_(zx, zx)], G, K, system.constraint_jacobian(x_s, F, held=held)
 
 
-def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: float, count: int = 6,
+def rotating_modal_analysis(system: MultibodySystem, steady: StaticSolution, omega: float, count: int = 6,
                             include_damping: bool = False) -> Modes:
     """Lowest ``count`` natural frequencies (Hz) about the state that turns steadily with the
     hub at theta' = omega (rad/s), ``steady`` from ``solve_static(system, spin=omega)``.

@@ -3,10 +3,10 @@ modal assurance criterion that follows a mode from one hub speed to the next.
 
 **Split and label.** A mode shape u about the configuration x is a rate of the coordinates;
 the kinetic energy of the system moving at u is split into the hub's and, for every beam in
-its own directions, the ``flap`` (centre line along j0, out of the hub plane), ``lag`` (along
+its own directions, the ``flap`` (centre line along j_h, out of the hub plane), ``lag`` (along
 the beam's k_k, in the hub plane across the beam), ``axial`` (along the beam axis) and
 ``torsion`` (section rotation about the beam axis) parts
-(:meth:`hubbeam.system.hub_system.HubSystem.kinetic_energy_split`). The fractions add up to
+(:meth:`hubbeam.system.multibody.MultibodySystem.kinetic_energy_split`). The fractions add up to
 1. The label is the largest part's name; when that part is below :data:`DOMINANT` of the
 total, the two largest joined by "+" in the order of :data:`MOTIONS` (``"flap+lag"``).
 
@@ -22,8 +22,9 @@ import numpy as np
 
 from hubbeam.system.parts import BEAM_MOTIONS
 
-#: the parts of a mode's kinetic energy, in the order a label joins them
-MOTIONS = BEAM_MOTIONS + ("hub",)
+#: the parts of a mode's kinetic energy, in the order a label joins them (``base``: a moving
+#: base's own body)
+MOTIONS = BEAM_MOTIONS + ("hub", "base")
 #: a part at least this share of the kinetic energy names the mode alone
 DOMINANT = 0.6
 
@@ -34,7 +35,7 @@ def energy_fractions(system, x, F, shape) -> dict[str, float]:
     total = sum(split.values())
     if not total > 0.0:
         raise ValueError("a mode shape without kinetic energy has no energy split")
-    return {k: split[k] / total for k in MOTIONS}
+    return {k: split.get(k, 0.0) / total for k in MOTIONS}
 
 
 def mode_label(fractions: dict[str, float], dominant: float = DOMINANT) -> str:
@@ -79,7 +80,7 @@ def span_shapes(system, x, F, shapes, points_per_element: int = 8):
         xs = part.stations(points_per_element)
         disp, twist = [], []
         for u in np.asarray(shapes).T:
-            d, t = part.span_shape(q, chart, u[system.layout.beam_x(k)], x[0], xs)
+            d, t = system.span_shape(k, x, F, u, xs)
             disp.append(d)
             twist.append(t)
         out.append((xs, np.array(disp), np.array(twist)))
