@@ -142,8 +142,8 @@ def read_state(path, option: str = "input") -> RunState:
 def check_state(state: RunState, where: str) -> None:
     """ScenarioError naming ``where`` (the option and the file) and the variable when a stored
     state cannot be drawn as it is: no output time or no beam, arrays whose lengths disagree
-    (with the times, with a beam's stations), output times that do not increase strictly, a
-    hub radius or a value that is not a finite number. Everything that draws or exports a
+    (with the times, with a beam's stations; the hub's and the base's frames too), output times
+    that do not increase strictly, a hub radius or a value that is not a finite number. Everything that draws or exports a
     state relies on these, so they are checked before any output is written."""
     nt = state.times.size
     if nt == 0:
@@ -162,7 +162,9 @@ def check_state(state: RunState, where: str) -> None:
     if not (np.isfinite(state.hub_radius) and state.hub_radius >= 0):
         raise ScenarioError(f"{where}: the stored state is damaged: state_hub_radius is {state.hub_radius!r}, not a "
                             "finite radius >= 0 (m)")
-    shapes = [("state_hub_angle", state.hub_angle, (nt,))]
+    frames = [("state_hub_origin", state.hub_origin, (nt, 3)), ("state_hub_axes", state.hub_axes, (nt, 3, 3)),
+              ("state_base_origin", state.base_origin, (nt, 3)), ("state_base_axes", state.base_axes, (nt, 3, 3))]
+    shapes = [("state_hub_angle", state.hub_angle, (nt,))] + frames
     for b in state.beams:
         n = np.shape(b.stations)[0] if np.ndim(b.stations) == 1 else -1
         if n < 2:
@@ -177,7 +179,7 @@ def check_state(state: RunState, where: str) -> None:
         if np.shape(values) != expected:
             raise ScenarioError(f"{where}: the stored state is damaged: {name} has shape {np.shape(values)}, expected "
                                 f"{expected} (from {nt} output times and the beam's stations)")
-    arrays = [("time", state.times), ("state_hub_angle", state.hub_angle)] + [
+    arrays = [("time", state.times), ("state_hub_angle", state.hub_angle)] + [(n, v) for n, v, _ in frames] + [
         (f"state_{b.name}_{part.rstrip('s') if part == 'stations' else part}", getattr(b, part)) for b in state.beams
         for part in ("stations", "width", "thickness", "reference", "centre_line", "m", "n", "surface_strain")]
     for name, values in arrays:

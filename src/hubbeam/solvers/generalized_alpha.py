@@ -212,10 +212,10 @@ def multiplier_weights(layout, h: float, beta: float, tolerance: float) -> np.nd
     it is tested as a force whatever the step. The clamps' multipliers are internal forces
     that act on the motion only through the step's accelerations, so that their scaled
     increment, a length, is what they move the beams by in the step: the length test bounds
-    it as it bounds the coordinates. Weighting them too cost FFR beams, whose iteration
-    matrix is otherwise kept for the whole run, 30 times the factorisations (exp1 with FFR:
-    0.18 per step against 0.006, 65 % more time) and changed neither rotor3's hub torque nor
-    spacecraft's panels measurably (docs/dynamics.md)."""
+    it as it bounds the coordinates. Weighting them too changed neither rotor3's hub torque
+    nor spacecraft's panels measurably, and (while FFR beams were clamped by multipliers) cost
+    FFR 30 times the factorisations (exp1: 0.18 per step against 0.006; docs/dynamics.md).
+    The base's multipliers (its norm, a table-driven base's drives) keep the length test."""
     weights = np.ones(layout.n_lambda)
     if layout.drive_lambda is not None:
         weights[layout.drive_lambda] = multiplier_weight(h, beta, tolerance)
