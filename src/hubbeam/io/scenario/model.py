@@ -315,8 +315,8 @@ def _explain(err: dict) -> str:
         op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<", "less_than_equal": "<="}[kind]
         bound = next(iter(ctx.values()))
         return f"must be {op} {bound} (got {value})"
-    if kind == "literal_error":
-        return f"must be one of {ctx.get('expected')} (got {value!r})"
+    if kind == "literal_error":  # the input shortened: with the 17 sensor kinds a list made a line of 400 characters
+        return f"must be one of {ctx.get('expected')} (got {value!r:.30})"
     if kind in ("too_short", "too_long"):
         n = ctx.get("min_length") if kind == "too_short" else ctx.get("max_length")
         bound = "at least" if kind == "too_short" else "at most"
@@ -334,7 +334,7 @@ def _explain(err: dict) -> str:
         want = {"float_type": "a number", "int_type": "an integer", "string_type": "a string",
                 "bool_type": "true or false", "list_type": "a list", "model_type": "a table", "dict_type": "a table",
                 "model_attributes_type": "a table"}[kind]
-        return f"must be {want} (got {type(value).__name__} {value!r})"
+        return f"must be {want} (got {type(value).__name__} {value!r:.60})"
     msg = err["msg"]
     return msg.removeprefix("Value error, ")
 
