@@ -109,7 +109,7 @@ def test_a_chart_change_mid_run_does_not_change_the_motion():
     """Moving the state to another chart changes nothing when the chart is the same, and
     otherwise only by the cubic interpolation of the re-expressed twist inside curved elements
     (docs/ancf.md): a discretisation effect that vanishes fast under mesh refinement."""
-    assert _switch_difference(4, tilted=False) < 1e-13
+    assert _switch_difference(4, tilted=False) < 1e-12  # round-off, through Newton's stop (1.6e-14 at KAPPA 0.1, 1.1e-13 at 0.01)
     coarse, fine = _switch_difference(8, tilted=True), _switch_difference(16, tilted=True)
     assert coarse < 1e-4
     assert fine < coarse / 16

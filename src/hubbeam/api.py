@@ -117,6 +117,41 @@ def torque_law(law) -> TorqueLaw:
     return TorqueLaw.pd(law.kp, law.kd, drive_profile(law.reference, "hub.torque.reference"))
 
 
+def torque_argument(torque, scenario: Scenario) -> TorqueLaw | None:
+    """The ``torque`` argument of :func:`run` and :func:`build_system` as a TorqueLaw: None
+    (the scenario's law), a TorqueLaw, a number (N m, a constant law) or a Python function
+    torque(t, theta, omega) (wrapped in ``TorqueLaw.callable``). TypeError naming ``torque``
+    for anything else; ScenarioError when the scenario's hub is not free (a fixed or
+    prescribed hub takes no torque law, as a scenario file's hub.torque is refused there)."""
+    import numbers
+
+    if torque is None:
+        return None
+    if isinstance(torque, TorqueLaw):
+        law = torque
+    elif isinstance(torque, numbers.Real) and not isinstance(torque, bool):
+        if not np.isfinite(float(torque)):
+            raise ValueError(f"torque: must be a finite number of N m (got {float(torque)!r})")
+        law = TorqueLaw.constant(float(torque))
+    elif callable(torque):
+        law = TorqueLaw.callable(torque)
+    else:
+        raise TypeError(f"torque: expected a TorqueLaw, a number (N m) or a function torque(t, theta, omega) "
+                        f"(got {type(torque).__name__} {torque!r:.60})")
+    if law.function is not None:  # a Python function: called once here, so that a wrong one is named now
+        try:
+            value = float(law.function(0.0, 0.0, 0.0))
+        except Exception as exc:
+            raise TypeError(f"torque: the function must take (t, theta, omega) and return a number of N m (at t = 0: "
+                            f"{exc.__class__.__name__}: {exc})") from None
+        if not np.isfinite(value):
+            raise ValueError(f"torque: the function returns {value!r} N m at t = 0, theta = 0, omega = 0")
+    if scenario.hub.motion != "free":
+        raise ScenarioError(f"torque: a torque law acts on a free hub only (hub.motion is {scenario.hub.motion!r}, "
+                            "as a scenario file's hub.torque is refused there)")
+    return law
+
+
 def base_of(scenario: Scenario) -> Base:
     """The :class:`~hubbeam.system.base.Base` of a scenario's ``[base]`` (SI units, radians)."""
     b = scenario.base
@@ -140,9 +175,11 @@ def base_of(scenario: Scenario) -> Base:
 def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> MultibodySystem:
     """The system a scenario describes: its base, its hub and its beams. ``torque``: a torque law
     that replaces the scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function
-    torque(t, theta, omega), which integrates step by step in Python). ``scenario``: a Scenario
-    or a scenario file's path."""
+    torque(t, theta, omega), which integrates step by step in Python; a number or a bare function
+    is taken as :func:`torque_argument` says; a free hub only). ``scenario``: a Scenario or a
+    scenario file's path."""
     scenario = as_scenario(scenario)
+    torque = torque_argument(torque, scenario)
     hub = scenario.hub
     drive = drive_profile(hub.drive, "hub.drive") if hub.drive is not None else DriveProfile("rest")
     law = torque if torque is not None else torque_law(hub.torque_law)
@@ -371,6 +408,18 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
                              or not np.isfinite(fmax) or fmax <= 0):
         raise ScenarioError(f"fmax: a frequency > 0 in Hz (got {fmax!r})")
     scenario = as_scenario(scenario)
+    if isinstance(inputs, str):  # one input, not a sequence of one-letter inputs
+        inputs = [inputs]
+    elif inputs is not None:
+        try:
+            inputs = list(inputs)
+        except TypeError:
+            raise TypeError(f"inputs: expected a list of input names such as 'hub_torque' or 'tip_force:BEAM' (got "
+                            f"{type(inputs).__name__} {inputs!r:.60})") from None
+        bad = [i for i in inputs if not isinstance(i, str)]
+        if bad:
+            raise TypeError(f"inputs: every input is a name such as 'hub_torque' or 'tip_force:BEAM' (got "
+                            f"{type(bad[0]).__name__} {bad[0]!r:.60})")
     notes: list[str] = []
     system = equilibrium_system(scenario, notes)
     if open_loop:
@@ -421,8 +470,10 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
 def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None, state: bool = False):
     """Time integration of a scenario's dynamic analysis with all its settings (step,
     spectral radius, output step, Newton options). ``torque`` replaces the scenario's torque
-    law (e.g. ``TorqueLaw.callable(f)``: the slower Python step path); ``sensors`` its
-    sensors; ``state=True`` also records the hub angle and every beam's geometry at the
+    law on a free hub (a TorqueLaw, a number of N m or a function torque(t, theta, omega),
+    :func:`torque_argument`; a function takes the slower Python step path); ``sensors`` its
+    sensors (Sensor objects, tables or names of the scenario's sensors, :func:`with_sensors`);
+    ``state=True`` also records the hub angle and every beam's geometry at the
     output times (:class:`hubbeam.snapshots.StateRecorder`; ``hubbeam run --state``). Returns (trajectory, failure): on a ComputationError, failure is that error and
     the trajectory holds the results up to it. A run too large to do (steps, records' memory)
     is a ScenarioError before anything is built; an interruption (KeyboardInterrupt,
@@ -433,8 +484,11 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     from hubbeam.solvers.generalized_alpha import NewtonOptions
 
     scenario = as_scenario(scenario)
+    torque = torque_argument(torque, scenario)
+    if sensors is not None:
+        scenario = with_sensors(scenario, sensors)
     check_run(scenario, state=state)
-    for i, sensor in enumerate(scenario.sensors if (state and sensors is None) else ()):
+    for i, sensor in enumerate(scenario.sensors if state else ()):
         if sensor.name.startswith("state_"):
             raise ScenarioError(f"sensors[{i}].name: {sensor.name!r}: with a recorded state (--state) the names "
                                 "state_... belong to the state's variables; rename the sensor")
@@ -453,7 +507,45 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
 
             recorder = StateRecorder(system)
         start = initial_state(system, a.load_steps, a.start)
-        return simulate(system, scenario.sensors if sensors is None else sensors, a.t_end, a.dt, a.spectral_radius,
-                        min(scenario.output_dt, a.t_end), progress, newton, start, recorder), None
+        traj = simulate(system, scenario.sensors, a.t_end, a.dt, a.spectral_radius, min(scenario.output_dt, a.t_end),
+                        progress, newton, start, recorder)
+        traj.scenario = scenario
+        return traj, None
     except ComputationError as exc:
+        if exc.partial is not None:
+            exc.partial.scenario = scenario
         return exc.partial, exc
+
+
+def with_sensors(scenario: Scenario, sensors) -> Scenario:
+    """``scenario`` with the sensors of :func:`run`'s ``sensors`` argument, validated like a
+    scenario file's: Sensor objects or tables (dicts), or names of the scenario's own sensors
+    (a single one or a list). TypeError naming ``sensors`` for anything else; ScenarioError
+    for a name the scenario has not or a sensor the scenario refuses (a duplicate name, a
+    beam it does not have)."""
+    from hubbeam.io.scenario import Sensor, validate
+
+    own = {s.name: s for s in scenario.sensors}
+    if isinstance(sensors, (str, Sensor, dict)):
+        sensors = [sensors]
+    try:
+        items = list(sensors)
+    except TypeError:
+        raise TypeError(f"sensors: expected a list of Sensor objects or of the scenario's sensor names (got "
+                        f"{type(sensors).__name__} {sensors!r:.60})") from None
+    tables = []
+    for i, item in enumerate(items):
+        if isinstance(item, str):
+            if item not in own:
+                raise ScenarioError(f"sensors[{i}]: the scenario has no sensor named {item!r} (its sensors: "
+                                    f"{', '.join(own) or 'none'})")
+            item = own[item]
+        if isinstance(item, Sensor):
+            item = item.model_dump(exclude_none=True)
+        if not isinstance(item, dict):
+            raise TypeError(f"sensors[{i}]: expected a Sensor, a sensor table (dict) or a sensor name (got "
+                            f"{type(item).__name__} {item!r:.60})")
+        tables.append(item)
+    data = scenario.to_dict()
+    data["sensors"] = tables
+    return validate(data)

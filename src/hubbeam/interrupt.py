@@ -86,12 +86,33 @@ def _resend_later(signum: int) -> None:
     timer.start()
 
 
+def _final_handler(signum, frame):
+    """After the last command of a process (:func:`handling` with ``final``): one line, and the
+    process ends with 128 + N at once (not the default action, which ends it without a word)."""
+    import os
+    import sys
+
+    try:
+        name = signal.Signals(signum).name
+    except ValueError:
+        name = f"signal {signum}"
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(Exception):
+            stream.flush()
+    with contextlib.suppress(OSError):
+        os.write(2, f"hubbeam: interrupted by {name} after the command had finished (its results are complete)\n"
+                 .encode())
+    os._exit(128 + signum)
+
+
 @contextlib.contextmanager
-def handling():
+def handling(final: bool = False):
     """Within the block SIGINT, SIGTERM and SIGHUP raise :class:`Interrupted`; the previous
-    handlers come back after it. A signal that was ignored when the program started stays
-    ignored (``nohup`` ignores SIGHUP, a shell's background job SIGINT). Does nothing
-    outside the main thread."""
+    handlers come back after it, or, with ``final`` (the command line, whose process ends after
+    the block), a handler that says one line and ends the process with 128 + N, so that a
+    signal in its last moments is not the default action's silent end. A signal that was
+    ignored when the program started stays ignored (``nohup`` ignores SIGHUP, a shell's
+    background job SIGINT). Does nothing outside the main thread."""
     previous = {}
     try:
         for s in SIGNALS:
@@ -110,7 +131,7 @@ def handling():
         yield
     finally:
         _state["active"] = False
-        _restore(previous)
+        _restore({s: _final_handler for s in previous} if final else previous)
         _state["pending"] = _state["received"] = None
 
 

@@ -35,6 +35,8 @@ class Trajectory:
     chart_switches: int = 0
     factorisations: int | None = None  # LU factorisations of the iteration matrix (counted by compiled steps)
     wall_time_s: float = 0.0
+    #: the scenario the run was made with (set by :func:`hubbeam.api.run`; results check it)
+    scenario: object = None
 
     def extend(self, times, values, snapshots=None):
         """Add the records at ``times``: ``values`` {sensor name: its values, one per time},
@@ -224,7 +226,8 @@ class CompiledSteps(PythonSteps):
         self.work_done = np.zeros(2)
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
         tol = newton.tolerance * max(system.length_scale, 1.0)
-        self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations)
+        self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations,
+                        ga.multiplier_weights(system.layout, dt, params.beta, newton.tolerance), ga.KAPPA)
         self.loop = compiled_alpha.loop_for(system)
         self.advance(state, 0, 0, 1, 1)  # compile or load the loop now, not inside the timed run
 

@@ -116,3 +116,51 @@ def test_modified_newton_gives_the_full_newton_answer():
         tips.append(list(traj.records["tip"][-1].values()))
     tips = np.array(tips)
     assert np.max(np.abs(tips - tips[0])) < 1e-7
+
+
+def _modified_and_full(example, overrides):
+    """The example's results with newton = "modified" (the default) and "full"."""
+    from hubbeam import api
+    from hubbeam.io.results import to_dataset
+    from hubbeam.io.scenario import load_example
+
+    out = {}
+    for newton in ("modified", "full"):
+        sc = load_example(example, overrides + [f'analysis.newton="{newton}"'])
+        traj, failure = api.run(sc)
+        assert failure is None
+        out[newton] = to_dataset(traj, sc)
+    return out["modified"], out["full"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("dt", ["0.001", "0.0005"])
+def test_the_newton_test_does_not_loosen_with_dt_rotor3(dt):
+    """rotor3 (8 elements per blade, 3 s of the spin-up) at dt = 1 ms and 0.5 ms: modified and
+    full Newton give one hub torque (1e-5 of its peak) and the three identical blades stay
+    identical (1e-13 m); measured 2.3e-6 and 8.7e-7 N m, 1e-15 m. With the drive's torque tested
+    as a length (beta h^2 lambda / mass scale) its tolerance grew as 1/h^2: a 211 Hz blade
+    oscillation of 0.019 N m (1 ms) and 0.0075 N m (0.5 ms) in hub_torque, 760 times the run's
+    time-discretisation error, blades apart by 9e-10 m."""
+    modified, full = _modified_and_full("rotor3", ["beams[*].elements=8", f"analysis.dt={dt}", "analysis.t_end=3.0"])
+    peak = float(np.abs(full["drive_torque"]).max())
+    assert float(np.abs(modified["drive_torque"] - full["drive_torque"]).max()) < 1e-5 * peak
+    for ds in (modified, full):
+        assert float(np.abs(ds["tip1_vertical"] - ds["tip2_vertical"]).max()) < 1e-13
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("dt,t_end,torque,pair", [("0.001", "20.0", 5e-5, 1e-8), ("0.0005", "10.0", 1e-6, 1e-10)])
+def test_the_newton_test_does_not_loosen_with_dt_spacecraft(dt, t_end, torque, pair):
+    """spacecraft (8 elements per panel) at dt = 1 ms (20 s) and 0.5 ms (10 s): modified and
+    full Newton give one control torque (5e-5 and 1e-6 of its peak) and keep the two identical
+    panels together (1e-8 and 1e-10 m; full Newton: 1e-14 m); measured 2.3e-5 N m and 3.2e-9 m
+    at 1 ms, 2.3e-8 N m and 6e-12 m at 0.5 ms. Before (KAPPA = 0.1): 3.3e-5 N m and 4.0e-8 m
+    at 1 ms, 1.4e-5 N m and 1.2e-8 m at 0.5 ms: modified Newton's stop at 0.1 of the
+    tolerance, its errors adding up in the undamped panel modes, more of them as dt shrinks."""
+    modified, full = _modified_and_full("spacecraft", ["beams[*].elements=8", f"analysis.dt={dt}",
+                                                       f"analysis.t_end={t_end}"])
+    peak = float(np.abs(full["torque"]).max())
+    assert float(np.abs(modified["torque"] - full["torque"]).max()) < torque * peak
+    assert float(np.abs(modified["tip_a_tangential"] - modified["tip_b_tangential"]).max()) < pair
+    assert float(np.abs(full["tip_a_tangential"] - full["tip_b_tangential"]).max()) < 1e-12

@@ -295,10 +295,13 @@ def test_validation(make, match):
 
 
 def test_a_callable_torque_law_takes_the_python_step_only_on_a_free_hub():
-    """A held hub ignores its torque law, so a Python function there keeps the compiled loop."""
+    """A held hub ignores its torque law, so a Python function there keeps the compiled loop
+    (the API refuses a torque law on a held hub, as a scenario file does: issue 29)."""
     from hubbeam import api
-    from hubbeam.io.scenario import load_example
+    from hubbeam.io.scenario import ScenarioError, load_example
 
     law = TorqueLaw.callable(lambda t, theta, omega: 0.0)
-    assert api.build_system(load_example("exp2"), law).compiled  # prescribed spin-up: held
+    assert api.build_system(load_example("exp2")).with_hub(torque=law).compiled  # prescribed spin-up: held
     assert not api.build_system(load_example("exp1"), law).compiled  # free hub
+    with pytest.raises(ScenarioError, match="^torque: a torque law acts on a free hub only"):
+        api.build_system(load_example("exp2"), law)

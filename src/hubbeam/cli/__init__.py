@@ -16,7 +16,7 @@ import os
 import sys
 
 from hubbeam.cli.analysis import cmd_linearize, cmd_modes, cmd_static
-from hubbeam.cli.common import compile_note, load, print_json, raised_in, say
+from hubbeam.cli.common import compile_note, guarded_stdout, load, print_json, raised_in, say
 from hubbeam.cli.parser import build_parser
 from hubbeam.cli.run import cmd_run
 from hubbeam.cli.studies import cmd_applicability, cmd_campbell, cmd_identify, cmd_reproduce, cmd_sweep
@@ -57,7 +57,7 @@ def main(argv: list[str] | None = None) -> int:
     if program:
         gc.disable()  # until _settled
     try:
-        with interrupt.handling():
+        with interrupt.handling(final=program):
             return _main(argv, program)
     except interrupt.Interrupted as exc:  # during start-up (imports), before _main could catch it
         say(f"hubbeam: interrupted by {exc.name}{exc.detail or '; nothing written'}")
@@ -97,15 +97,22 @@ def _command(argv, program: bool = False) -> int:
     from hubbeam.interrupt import Interrupted, raise_pending
 
     args = build_parser().parse_args(argv)
+    if sys.stdout is None:  # started with stdout closed (`hubbeam ... >&-`): what it prints would be lost
+        say("hubbeam: cannot write results: stdout is closed, and the command prints its result or summary there; "
+            "redirect it to a file (or to /dev/null to drop it)")
+        return 1
     if args.command in ("example", "animate", "vtk"):
         _settled(program)  # these load their modules as they go (matplotlib, h5py)
     from hubbeam.errors import ComputationError, ScenarioError
     from hubbeam.io.examples import example_text
     from hubbeam.io.targets import OutputError
 
+    stdout = sys.stdout
+    sys.stdout = guarded_stdout(stdout)  # a failed write there (a full disk) is a failed write, named
     try:
         if args.command == "example":
             sys.stdout.write(example_text(args.name))
+            sys.stdout.flush()
             return 0
         if args.command == "reproduce":
             compile_note()
@@ -128,6 +135,7 @@ def _command(argv, program: bool = False) -> int:
         raise_pending()
         if args.json:
             print_json(result)
+        sys.stdout.flush()  # here, where a failure is reported, not at exit
         return 0
     except ScenarioError as exc:
         say(f"hubbeam: error: {exc}")
@@ -163,6 +171,8 @@ def _command(argv, program: bool = False) -> int:
             raise
         say(f"hubbeam: internal error: {exc.__class__.__name__}: {exc} (set HUBBEAM_DEBUG=1 for a traceback)")
         return 1
+    finally:
+        sys.stdout = stdout
 
 
 if __name__ == "__main__":

@@ -22,6 +22,38 @@ def say(text: str) -> None:
         pass
 
 
+class _GuardedStream:
+    """A text stream whose failed writes (a full disk, an I/O error) raise OutputError naming
+    ``name``; a reader that went away (BrokenPipeError) stays what it is."""
+
+    def __init__(self, stream, name: str):
+        self._stream, self._name = stream, name
+
+    def _guard(self, method, *args):
+        try:
+            return method(*args)
+        except BrokenPipeError:
+            raise
+        except OSError as exc:
+            from hubbeam.io.targets import OutputError
+
+            raise OutputError(f"{self._name}: cannot write ({exc.strerror or exc.__class__.__name__})") from None
+
+    def write(self, text):
+        return self._guard(self._stream.write, text)
+
+    def flush(self):
+        return self._guard(self._stream.flush)
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def guarded_stdout(stream):
+    """``stream`` (sys.stdout) with its failed writes reported as failed writes of "stdout"."""
+    return _GuardedStream(stream, "stdout")
+
+
 def load(args):
     """The scenario of a command: the file checked (a regular text file of sane size), then
     read, overridden and validated."""

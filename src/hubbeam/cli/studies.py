@@ -124,6 +124,7 @@ def cmd_sweep(args, scenario) -> dict:
                 check_run(point)
         except ScenarioError as exc:
             raise ScenarioError(f"--vary: at {', '.join(overrides)} (a corner of the ranges): {exc}") from None
+    merged_size(scenario, varied, total)
     targets = check_targets([Target("-o", args.output), Target("--plot", args.plot, "figure")], args)
     progress, finish = progress_bar(total, label="sweep", unit="points")
     partial = None
@@ -172,6 +173,41 @@ def cmd_sweep(args, scenario) -> dict:
     return {"points": total, "failed": failed, "output": args.output, "dims": dict(ds.sizes)}
 
 
+#: the analysis keys that set a point's output times
+TIME_KEYS = ("analysis.t_end", "analysis.dt", "analysis.output_dt")
+
+
+def merged_size(scenario, varied: dict, total: int) -> None:
+    """ScenarioError naming --vary when the merged result would not fit in memory: every
+    point's series on the union of the points' output times (points that vary analysis.dt,
+    output_dt or t_end have times of their own), 8 B per value, at most
+    :data:`hubbeam.limits.MAX_RECORD_BYTES`."""
+    import itertools
+
+    import numpy as np
+
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.limits import MAX_RECORD_BYTES, columns, run_size
+
+    if scenario.analysis.kind != "dynamic":
+        return
+    a = scenario.analysis
+    base = {"analysis.t_end": a.t_end, "analysis.dt": a.dt, "analysis.output_dt": a.output_dt}
+    timed = [k for k in varied if k in TIME_KEYS]
+    records = 0
+    for values in itertools.product(*[np.unique(varied[k][0]) for k in timed]):
+        point = {**base, **dict(zip(timed, map(float, values)))}
+        records += run_size(point["analysis.t_end"], point["analysis.dt"], point["analysis.output_dt"], 1).records
+        if records * total * 8 > MAX_RECORD_BYTES:
+            break
+    need = records * total * (columns(scenario.sensors) - 1) * 8
+    if need > MAX_RECORD_BYTES:
+        how = f" (the union of the points' times: {', '.join(timed)} vary)" if timed else ""
+        raise ScenarioError(f"--vary: {total} points' series on at least {records} output times{how} would need at "
+                            f"least {need / 2**30:.3g} GiB of memory (at most {MAX_RECORD_BYTES / 2**30:g} GiB); vary "
+                            "fewer values" + (" or give the points a common analysis.output_dt" if timed else ""))
+
+
 def read_measured(path: str, signal: str):
     """(times, values) of the measured file's 'time' and ``signal`` columns; ScenarioError
     naming the file, column and row for anything that is not a clean, increasing series."""
@@ -187,6 +223,15 @@ def read_measured(path: str, signal: str):
     except Exception as exc:
         reason = (str(exc).splitlines() or [exc.__class__.__name__])[0][:160]
         raise ScenarioError(f"{path}: cannot read as CSV ({reason})") from None
+    try:  # the header as written: pandas renames a repeated name (strain_P1, strain_P1.1) without a word
+        header = [str(c).strip() for c in pd.read_csv(path, header=None, nrows=1).iloc[0]]
+    except Exception:
+        header = [str(c) for c in table.columns]
+    for column in ("time", signal):
+        where = [i + 1 for i, c in enumerate(header) if c == column]
+        if len(where) > 1:
+            raise ScenarioError(f"{path}: column {column!r} appears {len(where)} times in the header (columns "
+                                f"{', '.join(map(str, where))}); keep one")
     for column in ("time", signal):
         if column not in table.columns:
             raise ScenarioError(f"{path}: no column {column!r} (columns: {', '.join(map(str, table.columns))})")
@@ -197,7 +242,9 @@ def read_measured(path: str, signal: str):
         bad = values.isna().to_numpy()
         if bad.any():
             i = int(bad.argmax())
-            raise ScenarioError(f"{path}: column {column!r}, row {i + 2}: not a number ({raw.iloc[i]!r})")
+            cell = raw.iloc[i]
+            shown = repr(float(cell)) if isinstance(cell, (int, float)) else repr(str(cell))  # no numpy reprs
+            raise ScenarioError(f"{path}: column {column!r}, row {i + 2}: not a number ({shown})")
         arrays.append(values.to_numpy(float))
     return check_measured(arrays[0], arrays[1], what=path, labels=("time", signal), first_row=2)
 

@@ -53,10 +53,10 @@ def cmd_animate(args) -> dict:
 
 
 def cmd_vtk(args) -> dict:
-    import re
     from pathlib import Path
 
     from hubbeam.io import vtk
+    from hubbeam.io.bodies import rigid_bodies
     from hubbeam.io.scenario import ScenarioError
     from hubbeam.io.state import read_state
     from hubbeam.io.targets import OutputError, Target
@@ -67,29 +67,54 @@ def cmd_vtk(args) -> dict:
         say(f"hubbeam: note: {args.result} holds a partial run: {state.partial}")
     out = Path(args.output)
     pvd, vtus = vtk.file_names(state)
+    bodies = rigid_bodies(state)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"-o {out}: cannot create the directory ({exc.strerror})") from None
+    try:  # the series is ours while it is held: the check of what is there and the writes are one
+        with vtk.series_lock(out, state):
+            _write_series(args, state, bodies, out, pvd, vtus)
+    except vtk.SeriesLocked as exc:  # another export of this series into this directory is under way
+        who = f" (process {exc.pid})" if exc.pid else ""
+        raise ScenarioError(f"-o {out}: another hubbeam vtk{who} is writing the series {vtk.series_name(state)!r} there "
+                            f"now ({vtk.lock_name(state)}); give another directory, or wait for it and use --force") \
+            from None
+    except OSError as exc:  # the lock file itself (the writes report their own failures)
+        raise OutputError(f"-o {out}: cannot create the lock file {vtk.lock_name(state)} ({exc.strerror})") from None
+    if not args.json:
+        print(f"{len(vtus)} time steps, the beams and {len(bodies)} rigid bod{'y' if len(bodies) == 1 else 'ies'} "
+              f"-> {out / pvd}")
+    return {"files": len(vtus), "bodies": [b.name for b in bodies], "pvd": str(out / pvd)}
+
+
+def _write_series(args, state, bodies, out, pvd: str, vtus: list[str]) -> None:
+    """The beams' and the rigid bodies' .vtu files and the .pvd of ``state`` into ``out`` (the
+    caller holds the series' lock): refused when a series of that name is there already
+    (unless --force, which removes its .pvd first and its extra .vtu files last)."""
+    import re
+    from pathlib import Path
+
+    from hubbeam import interrupt
+    from hubbeam.io import vtk
+    from hubbeam.io.scenario import ScenarioError
+    from hubbeam.io.targets import OutputError, Target, check_inside, write_all
+
     body_vtus = vtk.body_file_names(state)
     pattern = re.compile(re.escape(vtk.series_name(state)) + rf"(_bodies)?_\d{{{vtk.INDEX_DIGITS}}}\.vtu")
-    old = sorted(p for p in out.iterdir() if p.name == pvd or pattern.fullmatch(p.name)) if out.is_dir() else []
+    old = sorted(p for p in out.iterdir() if p.name == pvd or pattern.fullmatch(p.name))
     if old and not args.force:
         raise ScenarioError(f"-o {out}: holds a series named {vtk.series_name(state)!r} already ({old[0].name}"
                             f"{f' and {len(old) - 1} more' if len(old) > 1 else ''}); give another directory or "
                             "--force to replace it")
-    from hubbeam.io.targets import check_inside
-
     check_inside("-o", out, [pvd, *vtus, *body_vtus])
     try:
-        out.mkdir(parents=True, exist_ok=True)
         (out / pvd).unlink(missing_ok=True)  # --force: an old collection must not list the new files mixed with old ones
     except OSError as exc:
-        raise OutputError(f"-o {out}: cannot create the directory or remove the old {pvd} ({exc.strerror})") from None
-    from hubbeam.io.bodies import rigid_bodies
-
-    bodies = rigid_bodies(state)
+        raise OutputError(f"-o {out}: cannot remove the old {pvd} ({exc.strerror})") from None
     jobs = [job for i, (name, body_name) in enumerate(zip(vtus, body_vtus)) for job in (
         (Target("-o", str(out / name)), lambda p, i=i: vtk.write_vtu(state, i, p)),
         (Target("-o", str(out / body_name)), lambda p, i=i: vtk.write_bodies_vtu(state, bodies, i, p)))]
-    from hubbeam import interrupt
-    from hubbeam.io.targets import write_all
 
     def left(n):  # n files written: beams and bodies alternate
         return (f"{n // 2} of {len(vtus)} time steps: {out} holds " +
@@ -112,10 +137,8 @@ def cmd_vtk(args) -> dict:
     write_jobs([(Target("-o", str(out / pvd)), lambda p: Path(p).write_text(vtk.pvd_text(state), encoding="utf-8"))])
     for stale in old:  # --force: files of an earlier, longer series
         if stale.name != pvd and stale.name not in vtus and stale.name not in body_vtus:
-            stale.unlink(missing_ok=True)
-    if not args.json:
-        print(f"{len(vtus)} time steps, the beams and {len(bodies)} rigid bod{'y' if len(bodies) == 1 else 'ies'} "
-              f"-> {out / pvd}")
-    return {"files": len(vtus), "bodies": [b.name for b in bodies], "pvd": str(out / pvd)}
-
-
+            try:
+                stale.unlink(missing_ok=True)
+            except OSError as exc:
+                raise OutputError(f"-o {out}: the series is written, but {stale.name} of the earlier, longer one cannot "
+                                  f"be removed ({exc.strerror})") from None

@@ -114,10 +114,38 @@ def state_table(trajectory):
     return dims, out, attrs
 
 
+def check_pair(trajectory, scenario) -> None:
+    """TypeError or ValueError naming the argument when ``trajectory`` (of :func:`hubbeam.api.run`)
+    and ``scenario`` do not belong together: not a trajectory or not a Scenario, a scenario
+    other than the one the run was made with (its sensors aside), or sensors the scenario does
+    not have (of other kinds)."""
+    from hubbeam.io.scenario import Scenario
+
+    if not (hasattr(trajectory, "times") and isinstance(getattr(trajectory, "records", None), dict)):
+        raise TypeError(f"trajectory: expected the trajectory of hubbeam.api.run (got {type(trajectory).__name__})")
+    if not isinstance(scenario, Scenario):
+        raise TypeError(f"scenario: expected the Scenario the trajectory was run with (got {type(scenario).__name__})")
+    ran = getattr(trajectory, "scenario", None)
+    if isinstance(ran, Scenario):
+        mine, theirs = scenario.to_dict(), ran.to_dict()
+        differ = [k for k in sorted(set(mine) | set(theirs)) if k != "sensors" and mine.get(k) != theirs.get(k)]
+        if differ:
+            raise ValueError(f"scenario: not the scenario this trajectory was run with (they differ in "
+                             f"{', '.join(differ)}); pass that one")
+    own = {s.name: s for s in scenario.sensors}
+    for name, values in trajectory.records.items():
+        sensor = own.get(name)
+        parts = None if not values or not isinstance(values[0], dict) else tuple(values[0])
+        if sensor is None or (values and parts != sensor.parts):
+            raise ValueError(f"scenario: the trajectory's sensor {name!r} is not one of this scenario's "
+                             f"({', '.join(own) or 'none'}); pass the scenario the trajectory was run with")
+
+
 def trajectory_table(trajectory, scenario, status: dict | None = None):
     """(times, {variable: (values, attrs)}, file attrs) of a run; ``status``: the attributes of
     :func:`completion` (default: a complete run). A record that an interruption left half
     made (its time but not all its sensors) is left out."""
+    check_pair(trajectory, scenario)
     kinds = {s.name: s.kind for s in scenario.sensors}
     n = complete_records(trajectory)
     variables = {}
@@ -208,5 +236,10 @@ def time_series(ds) -> list[str]:
 
 
 def write_csv(ds, path) -> None:
-    """CSV with a header row: time, then one column per time series (:func:`time_series`)."""
-    ds[time_series(ds)].to_dataframe().to_csv(path)
+    """CSV with a header row: time, then one column per time series (:func:`time_series`); a
+    run without sensors gives the time column alone (its output times)."""
+    import pandas as pd
+
+    names = time_series(ds)
+    table = ds[names].to_dataframe() if names else pd.DataFrame(index=pd.Index(ds["time"].values, name="time"))
+    table.to_csv(path)

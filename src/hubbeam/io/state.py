@@ -153,16 +153,57 @@ def read_state(path, option: str = "input") -> RunState:
         except (KeyError, ValueError, TypeError) as exc:
             raise ScenarioError(f"{option} {p}: the stored state is incomplete ({exc.__class__.__name__}: {exc})") \
                 from None
-    if state.times.size == 0:
-        raise ScenarioError(f"{option} {p}: the stored state has no output time")
-    arrays = [("time", state.times), ("state_hub_angle", state.hub_angle)] + [
+    check_state(state, f"{option} {p}")
+    return state
+
+
+def check_state(state: RunState, where: str) -> None:
+    """ScenarioError naming ``where`` (the option and the file) and the variable when a stored
+    state cannot be drawn as it is: no output time or no beam, arrays whose lengths disagree
+    (with the times, with a beam's stations; the hub's and the base's frames too), output times
+    that do not increase strictly, a hub radius or a value that is not a finite number. Everything that draws or exports a
+    state relies on these, so they are checked before any output is written."""
+    nt = state.times.size
+    if nt == 0:
+        raise ScenarioError(f"{where}: the stored state has no output time")
+    if not state.beams:
+        raise ScenarioError(f"{where}: the stored state holds no beam (state_beams is empty)")
+    times = np.asarray(state.times, dtype=float)
+    if times.ndim != 1:
+        raise ScenarioError(f"{where}: the stored state is damaged: time has shape {times.shape}, not one axis")
+    steps = np.diff(times)
+    bad = np.flatnonzero(~(steps > 0))
+    if bad.size and np.all(np.isfinite(times)):
+        i = int(bad[0]) + 1
+        raise ScenarioError(f"{where}: the stored state is damaged: time {'repeats' if steps[bad[0]] == 0 else 'goes back'}"
+                            f" at output {i} ({times[i]:g} s after {times[i - 1]:g} s); output times increase strictly")
+    if not (np.isfinite(state.hub_radius) and state.hub_radius >= 0):
+        raise ScenarioError(f"{where}: the stored state is damaged: state_hub_radius is {state.hub_radius!r}, not a "
+                            "finite radius >= 0 (m)")
+    frames = [("state_hub_origin", state.hub_origin, (nt, 3)), ("state_hub_axes", state.hub_axes, (nt, 3, 3)),
+              ("state_base_origin", state.base_origin, (nt, 3)), ("state_base_axes", state.base_axes, (nt, 3, 3))]
+    shapes = [("state_hub_angle", state.hub_angle, (nt,))] + frames
+    for b in state.beams:
+        n = np.shape(b.stations)[0] if np.ndim(b.stations) == 1 else -1
+        if n < 2:
+            raise ScenarioError(f"{where}: the stored state is damaged: state_{b.name}_station has shape "
+                                f"{np.shape(b.stations)}, expected two stations or more along one axis")
+        shapes += [(f"state_{b.name}_width", b.width, (n,)), (f"state_{b.name}_thickness", b.thickness, (n,)),
+                   (f"state_{b.name}_reference", b.reference, (n, 3)),
+                   (f"state_{b.name}_centre_line", b.centre_line, (nt, n, 3)),
+                   (f"state_{b.name}_m", b.m, (nt, n, 3)), (f"state_{b.name}_n", b.n, (nt, n, 3)),
+                   (f"state_{b.name}_surface_strain", b.surface_strain, (nt, n))]
+    for name, values, expected in shapes:
+        if np.shape(values) != expected:
+            raise ScenarioError(f"{where}: the stored state is damaged: {name} has shape {np.shape(values)}, expected "
+                                f"{expected} (from {nt} output times and the beam's stations)")
+    arrays = [("time", state.times), ("state_hub_angle", state.hub_angle)] + [(n, v) for n, v, _ in frames] + [
         (f"state_{b.name}_{part.rstrip('s') if part == 'stations' else part}", getattr(b, part)) for b in state.beams
         for part in ("stations", "width", "thickness", "reference", "centre_line", "m", "n", "surface_strain")]
     for name, values in arrays:
         bad = ~np.isfinite(np.asarray(values, dtype=float))
         if bad.any():
-            where = ""
-            if bad.ndim and bad.shape[0] == state.times.size and name != "time":
-                where = f" at t = {float(state.times[np.argmax(bad.reshape(bad.shape[0], -1).any(axis=1))]):g} s"
-            raise ScenarioError(f"{option} {p}: the stored state is damaged: {name} is not a finite number{where}")
-    return state
+            when = ""
+            if bad.ndim and bad.shape[0] == nt and name != "time":
+                when = f" at t = {float(times[np.argmax(bad.reshape(bad.shape[0], -1).any(axis=1))]):g} s"
+            raise ScenarioError(f"{where}: the stored state is damaged: {name} is not a finite number{when}")

@@ -25,6 +25,10 @@ __all__ = ["MAX_TABLE_BYTES", "read_series", "read_drive_table", "read_torque_ta
 
 #: largest table file read (bytes)
 MAX_TABLE_BYTES = 50 * 1024 * 1024
+#: a cell's magnitude must stay below this (:data:`hubbeam.limits.MAGNITUDE_RANGE`, as every number of a scenario)
+MAX_CELL = 1e150
+#: consecutive times must be at least this far apart (s): the shortest step a run takes (:data:`hubbeam.limits.MIN_DT`)
+MIN_TIME_STEP = 1e-9
 
 _UNIT = re.compile(r"\s*[\(\[].*[\)\]]\s*$")
 
@@ -56,7 +60,8 @@ def read_series(
     for a drive table or ``("torque",)`` for a torque table; the dict holds that one. A relative
     ``path`` is taken relative to ``base_dir`` when given. Checks: the file exists and is at most
     ``max_bytes``; it is text with a header; the ``time`` column and one alternative are present;
-    every cell of those columns is a finite number; times strictly increase; at least
+    every cell of those columns is a finite number of magnitude below :data:`MAX_CELL`; times
+    strictly increase, at least :data:`MIN_TIME_STEP` apart; at least
     ``min_rows`` rows; with ``start_at_zero`` the first time is 0. Rows are numbered from 1 (the
     first data row) and the file line is given too. Arrays are float64, 1-D.
     """
@@ -142,15 +147,21 @@ def read_series(
                 raise fail(f"{where}, column {col!r}: {cell!r} is not a number") from None
             if not math.isfinite(x):
                 raise fail(f"{where}, column {col!r}: {cell!r} is not finite")
+            if not abs(x) < MAX_CELL:
+                raise fail(f"{where}, column {col!r}: {cell!r} is outside the range hubbeam computes with (magnitudes "
+                           f"below {MAX_CELL:g}); check the value and its unit (SI)")
             out[r] = x
     if len(data) < min_rows:
         raise fail(f"the table needs at least {min_rows} rows, found {len(data)}")
     for r in range(1, len(data)):
         if t[r] <= t[r - 1]:
             what = "a duplicate time" if t[r] == t[r - 1] else "times are not increasing"
-            raise fail(f"row {r + 1} (line {numbered[r + 1][0]}): {what} ({t[r]!r} after {t[r - 1]!r})")
+            raise fail(f"row {r + 1} (line {numbered[r + 1][0]}): {what} ({float(t[r])!r} after {float(t[r - 1])!r})")
+        if not t[r] - t[r - 1] >= MIN_TIME_STEP:
+            raise fail(f"row {r + 1} (line {numbered[r + 1][0]}): {float(t[r])!r} s is {t[r] - t[r - 1]:.3g} s after the row "
+                       f"before, closer than {MIN_TIME_STEP:g} s, the shortest step a run takes: no run resolves it")
     if start_at_zero and t[0] != 0.0:
-        raise fail(f"the first time must be 0 s (found {t[0]!r})")
+        raise fail(f"the first time must be 0 s (found {float(t[0])!r})")
     return t, {name: v}
 
 
@@ -161,7 +172,7 @@ def read_drive_table(path: str | Path, key: str, *, base_dir: str | Path | None 
     (quantity, values), = cols.items()
     p = _resolve(path, base_dir)
     if quantity == "theta" and values[0] != 0.0:
-        raise ScenarioError(f"{key}: {p}: the first theta must be 0 rad, the initial configuration (found {values[0]!r})")
+        raise ScenarioError(f"{key}: {p}: the first theta must be 0 rad, the initial configuration (found {float(values[0])!r})")
     try:
         return DriveProfile.table(t, values, quantity)
     except ValueError as exc:  # pragma: no cover - read_series checks everything DriveProfile does

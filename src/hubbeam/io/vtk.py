@@ -21,6 +21,8 @@ the lines along the body's first, second, third axis).
 
 from __future__ import annotations
 
+import contextlib
+import os
 import re
 from xml.sax.saxutils import quoteattr
 
@@ -147,3 +149,61 @@ def pvd_text(state: RunState) -> str:
     comment = f"  <!-- part 0: the beams; part 1: the rigid bodies (cell data body: {names}) -->\n"
     return ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
             f"{comment}  <Collection>\n{rows}\n  </Collection>\n</VTKFile>\n")
+
+
+class SeriesLocked(Exception):
+    """Another live process holds the series' lock (:func:`series_lock`); ``pid`` is its
+    process id (0 when it cannot be read)."""
+
+    def __init__(self, path: str, pid: int):
+        super().__init__(path)
+        self.path, self.pid = path, pid
+
+
+def lock_name(state: RunState) -> str:
+    """The lock file that marks a series as being written (:func:`series_lock`)."""
+    return f".{series_name(state)}.hubbeam-lock"
+
+
+@contextlib.contextmanager
+def series_lock(directory, state: RunState):
+    """Hold the series of ``state`` in ``directory`` for one writer: a lock file created with
+    O_EXCL (atomic: of two exports of one series name into one directory, exactly one gets
+    it), holding the writer's process id and removed at the end. A lock whose process is gone
+    (a writer killed with SIGKILL) is taken over. :class:`SeriesLocked` when another live
+    process holds it; OSError when the lock file cannot be made."""
+    path = os.path.join(os.fspath(directory), lock_name(state))
+    for _ in range(2):
+        try:
+            fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+            break
+        except FileExistsError:
+            try:
+                with open(path, encoding="ascii") as f:
+                    pid = int(f.read().strip() or 0)
+            except (OSError, ValueError):
+                pid = 0  # being written this very moment, or not ours: treat as held
+            if pid > 0 and not _alive(pid):
+                with contextlib.suppress(FileNotFoundError):
+                    os.unlink(path)  # the writer is gone: take the lock over
+                continue
+            raise SeriesLocked(path, pid) from None
+    else:  # another process took the stale lock over first
+        raise SeriesLocked(path, 0)
+    try:
+        os.write(fd, str(os.getpid()).encode())
+        os.close(fd)
+        yield path
+    finally:
+        with contextlib.suppress(OSError):
+            os.unlink(path)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # exists, owned by someone else
+        return True
+    return True

@@ -59,10 +59,15 @@ def plot_applicability(ds, path, title: str = "", subtitle: str = "") -> None:
                                    ("first-frequency error of FFR (%)", "tip-deflection error of FFR (%)")):
             z = ds[name].values
             level = float(np.nanmax(np.abs(z))) if np.any(np.isfinite(z)) else 1.0
-            cs = ax.contourf(x[order], y[order], z[order], levels=21, cmap="RdBu_r", vmin=-level, vmax=level)
-            lines = ax.contour(x[order], y[order], np.abs(z[order]), levels=[5, 20], colors="k", linewidths=0.7)
-            ax.clabel(lines, fmt="%g %%", fontsize=7)
-            ax.plot(x, y, "k.", ms=2)
+            if min(z.shape) >= 2:  # a grid: filled contours and the 5 % and 20 % lines
+                cs = ax.contourf(x[order], y[order], z[order], levels=21, cmap="RdBu_r", vmin=-level, vmax=level)
+                lines = ax.contour(x[order], y[order], np.abs(z[order]), levels=[5, 20], colors="k",
+                                   linewidths=0.7)
+                ax.clabel(lines, fmt="%g %%", fontsize=7)
+                ax.plot(x, y, "k.", ms=2)
+            else:  # one thickness or one speed: no area to contour, the points coloured by their error
+                cs = ax.scatter(x.ravel(), y.ravel(), c=z.ravel(), cmap="RdBu_r", vmin=-level, vmax=level, s=40,
+                                edgecolors="k", linewidths=0.5)
             ax.axvline(0.38, color="C2", ls="--", lw=1.1, label="paper: $w_m$ = 38 % of $L$")
             ax.axhline(0.33, color="C1", ls="--", lw=1.1, label="paper: $\\Omega$ = 33 % of $\\omega_1$")
             fig.colorbar(cs, ax=ax, label=label)
@@ -90,8 +95,9 @@ def plot_sweep(ds, path, variables: list[str] | None = None, title: str = "", su
                 for k in range(stacked.sizes["point"]):
                     curve = stacked.isel(point=k)
                     legend = ", ".join(f"{key} = {curve[key].item():g}" for key in keys)
-                    ax.plot(ds[axis].values, factor * curve.values, marker="o" if axis == "mode" else None,
-                            ms=3, label=legend, **style.styled(k))
+                    keep = np.isfinite(curve.values)  # each point at its own output times (NaN elsewhere)
+                    ax.plot(ds[axis].values[keep], factor * curve.values[keep],
+                            marker="o" if axis == "mode" else None, ms=3, label=legend, **style.styled(k))
                 ax.set_xlabel("time (s)" if axis == "time" else "mode")
             else:
                 first = keys[0]

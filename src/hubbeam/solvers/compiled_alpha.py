@@ -45,8 +45,10 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     The state arrays are updated in place after every converged step, so on any failure
     they hold the last good state. ``alpha`` = (alpha_m, alpha_f, beta, gamma); ``newton``
     = (tolerance on |dx| (m), max iterations, NewtonOptions.update_code, refresh rate,
-    refresh iterations). ``matrix`` = (ab, ipiv, brow, bcol, bb, Y, schur): the bordered
-    storage and its factors (:func:`hubbeam.system.assembly.bordered_factor`), and ``reuse``
+    refresh iterations, the multipliers' weights of
+    :func:`~hubbeam.solvers.generalized_alpha.multiplier_weights`, the factor kappa of the
+    rate-based error estimate). ``matrix`` = (ab, ipiv,
+    brow, bcol, bb, Y, schur): the bordered storage and its factors (:func:`hubbeam.system.assembly.bordered_factor`), and ``reuse``
     (the reuse state of :func:`hubbeam.solvers.generalized_alpha.reuse_state`; valid means
     the factors are for this h and these charts) carry the factorisation between calls.
     ``work`` (2) accumulates the dissipated and the drive work (J) by the trapezoidal rule
@@ -62,7 +64,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     changes the chart), or a failure.
     """
     am, af, beta, gamma = alpha
-    tol, max_iterations, update, refresh_rate, refresh_iterations = newton
+    tol, max_iterations, update, refresh_rate, refresh_iterations, mu_weight, kappa = newton
     ab, ipiv, brow, bcol, bb, Y, schur = matrix
     step0, every, total = schedule
     zx, zl = model.context.z_of_x, model.context.z_of_lambda
@@ -106,8 +108,9 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             if not _all_finite(res):
                 reuse[REUSE_VALID] = 0
                 return Outcome.NOT_FINITE, size, t
-            size = apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, x1, v1, xdd1, lam1)
-            action = newton_decide(size, previous, it, stale, update, refresh_rate, refresh_iterations, tol, reuse)
+            size = apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, mu_weight, x1, v1, xdd1, lam1)
+            action = newton_decide(size, previous, it, stale, update, refresh_rate, refresh_iterations, tol, reuse,
+                                   kappa)
             if action == NewtonAction.CONVERGED:
                 converged = True
                 break
@@ -117,7 +120,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             elif action == NewtonAction.TAKE_BACK:
                 for i in range(n):
                     res[i] = -res[i]
-                apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, x1, v1, xdd1, lam1)
+                apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, mu_weight, x1, v1, xdd1, lam1)
             fresh = action != NewtonAction.KEEP
             if fresh:
                 stale = False

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.linalg import LinAlgError
 
 from hubbeam.errors import ChartSingularityError, ConvergenceError
-from hubbeam.solvers.generalized_alpha import MatrixUpdate, NewtonAction, newton_decide, reuse_state
+from hubbeam.solvers.generalized_alpha import KAPPA, MatrixUpdate, NewtonAction, newton_decide, reuse_state
 from hubbeam.system.multibody import MultibodySystem
 
 #: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
@@ -67,7 +67,8 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
         x = x + dx
         mu = mu + dmu
         step = np.max(np.abs(dx[layout.beams_x])) / scale_x
-        action = newton_decide(step, np.inf, it, False, int(MatrixUpdate.ITERATION), 1.0, max_iter, tol_step, reuse)
+        action = newton_decide(step, np.inf, it, False, int(MatrixUpdate.ITERATION), 1.0, max_iter, tol_step, reuse,
+                               KAPPA)
         if norm <= tol_force or action == NewtonAction.CONVERGED:
             return x, mu, it, norm
     raise ConvergenceError(f"residual {norm:.3e} N after {max_iter} iterations")

@@ -64,33 +64,44 @@ def evaluate(scenario_data: dict, overrides: list[str]) -> dict:
         return {"kind": kind, "values": {}, "failure": str(exc)}
 
 
+def merged_times(results) -> np.ndarray | None:
+    """The sweep's time coordinate: every output time of every point, sorted (None without a
+    time series). Output times are exact (the double nearest the decimal k * output_dt), so a
+    time two points share is one value here, and each point keeps its own times: points with
+    different ``analysis.dt``, ``output_dt`` or ``t_end`` are not copied onto one another's axis."""
+    axes = [val[0] for res in results.values() for val in res["values"].values() if isinstance(val, tuple)]
+    if not axes:
+        return None
+    return np.unique(np.concatenate([np.asarray(t, dtype=float) for t in axes]))
+
+
 def _merge(varied, points, results) -> xr.Dataset:
     keys = list(varied)
     shape = tuple(len(varied[k][0]) for k in keys)
     coords = {k: varied[k][0].round().astype(int) if varied[k][1] else varied[k][0] for k in keys}
     failed = np.zeros(shape, dtype=bool)
     message = np.full(shape, "", dtype=object)
-    time = None
-    for res in results.values():
-        for val in res["values"].values():
-            if isinstance(val, tuple) and (time is None or val[0].size > time.size):
-                time = val[0]
+    time = merged_times(results)
+    # modes: as many as the point with the most (analysis.count may vary, up to its limit)
+    modes = max([np.size(val) for res in results.values() for name, val in res["values"].items()
+                 if name == "frequency_hz"], default=0)
     data: dict[str, np.ndarray] = {}
     for idx, _ in points:
         res = results[idx]
         failed[idx] = res["failure"] is not None
         message[idx] = res["failure"] or ""
         for name, val in res["values"].items():
-            if isinstance(val, tuple):
+            if isinstance(val, tuple):  # (times, values): each value at its own time (NaN at the others')
                 arr = data.setdefault(name, np.full(shape + (time.size,), np.nan))
-                arr[idx][: val[1].size] = val[1]
-            else:
+                at = np.searchsorted(time, np.asarray(val[0], dtype=float))
+                arr[idx][at] = val[1]
+            elif name == "frequency_hz":
                 val = np.atleast_1d(np.asarray(val, dtype=float))
-                arr = data.setdefault(name, np.full(shape + (50,), np.nan) if name == "frequency_hz" else np.full(shape, np.nan))
-                if name == "frequency_hz":
-                    arr[idx][: val.size] = val
-                else:
-                    arr[idx] = val[0]
+                arr = data.setdefault(name, np.full(shape + (modes,), np.nan))
+                arr[idx][: val.size] = val
+            else:
+                arr = data.setdefault(name, np.full(shape, np.nan))
+                arr[idx] = np.atleast_1d(np.asarray(val, dtype=float))[0]
     units = {}
     for res in results.values():
         units.update(res.get("units", {}))
@@ -107,7 +118,8 @@ def _merge(varied, points, results) -> xr.Dataset:
     for name in data:
         ds[name].attrs["units"] = units.get(name, "Hz" if name == "frequency_hz" else "m" if name.startswith("tip_") else "")
     if time is not None:
-        ds = ds.assign_coords(time=("time", time, {"units": "s"}))
+        ds = ds.assign_coords(time=("time", time, {"units": "s", "note": "every point's output times; a point's "
+                                                   "values are NaN at the times of other points that it has not"}))
     ds["failed"] = (keys, failed)
     ds["message"] = (keys, message.astype(str))
     return ds

@@ -35,7 +35,9 @@ class Analysis(StrictTable):
     load_steps: Annotated[int, Field(gt=0, le=100000)] = 20
     count: Annotated[int, Field(gt=0, le=500)] = 6
     newton: Literal["full", "step", "modified"] = "modified"
-    tolerance: Annotated[float, Field(gt=0.0, lt=1e-3)] = 1e-9
+    #: Newton's tolerance on the increments relative to the beam length: from 1e-12 (4500 times the double
+    #: precision; below it the increments are round-off and Newton cannot stop) to below 1e-3
+    tolerance: Annotated[float, Field(ge=1e-12, lt=1e-3)] = 1e-9
     #: where a dynamic run starts: "rest" (straight, undeformed, at rest: the paper's release) or
     #: "equilibrium" (at rest in the static equilibrium under gravity and loads, hub at theta = 0).
     #: A constant drive starts in the steadily rotating state either way.

@@ -78,10 +78,16 @@ class SectionStation(StrictTable):
         return self
 
 
-class BeamDamping(StrictTable):
-    """``[beams.damping]``: ``stiffness_proportional`` c (s), Kelvin-Voigt structural damping."""
+#: the largest Kelvin-Voigt constant c (s): every mode down to 1 mHz is then overdamped (zeta = c omega / 2 > 3);
+#: a larger c describes no structure, and drowns the beam's mass in round-off against c K / dt in the Newton matrix
+MAX_STRUCTURAL_DAMPING = 1.0e3
 
-    stiffness_proportional: NonNegative = 0.0
+
+class BeamDamping(StrictTable):
+    """``[beams.damping]``: ``stiffness_proportional`` c (s), Kelvin-Voigt structural damping,
+    at most :data:`MAX_STRUCTURAL_DAMPING`."""
+
+    stiffness_proportional: Annotated[float, Field(ge=0.0, le=MAX_STRUCTURAL_DAMPING)] = 0.0
 
 
 class Beam(StrictTable):

@@ -28,10 +28,15 @@ def parse_override(text: str) -> tuple[list[str], object]:
     key = key.strip()
     if not key or any(not part for part in key.split(".")):
         raise ScenarioError(f"--set {text}: malformed key {key!r}")
+    raw = raw.strip()
     try:
-        value = tomllib.loads(f"v = {raw.strip()}")["v"]
-    except tomllib.TOMLDecodeError:
-        value = raw.strip()
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError as exc:
+        if raw[:1] in ('"', "'", "[", "{"):  # meant as a TOML string, array or table, and malformed
+            reason = str(exc).split(" (at ")[0]
+            hint = "; a string is KEY=\"text\" or a bare word" if raw[0] in "\"'" else ""
+            raise ScenarioError(f"--set {text}: not a valid TOML value ({reason}{hint})") from None
+        value = raw  # a bare word is a string: hub.motion=fixed
     return key.split("."), value
 
 
@@ -179,6 +184,7 @@ def _prune(data: dict, switch: tuple, set_paths: set) -> list[str]:
     elif key == "motion" and switch[:-1] == ("hub",):
         if value != "free":
             drop("torque")
+            dropped += _drop_sensors(data, "applied_torque", set_paths)
         if value != "prescribed":
             drop("drive")
     elif key == "profile" and value in DRIVE_KEYS:
@@ -186,6 +192,24 @@ def _prune(data: dict, switch: tuple, set_paths: set) -> list[str]:
     elif key == "law" and value in TORQUE_KEYS:
         drop(*(k for k in ("value", "file", "kp", "kd", "reference") if k not in TORQUE_KEYS[value][0]))
     return dropped
+
+
+def _drop_sensors(data: dict, kind: str, set_paths: set) -> list[str]:
+    """Drop the sensors of ``kind`` (a --set that switched hub.motion away from 'free' drops
+    the applied_torque sensors with the torque law), unless a --set names them. Returns
+    their descriptions, "sensors[i] (NAME, KIND)", for the note."""
+    sensors = data.get("sensors")
+    if not isinstance(sensors, list):
+        return []
+    keep, out = [], []
+    for i, sensor in enumerate(sensors):
+        named = any(p[:2] == ("sensors", i) or p == ("sensors",) for p in set_paths)
+        if isinstance(sensor, dict) and sensor.get("kind") == kind and not named:
+            out.append(f"sensors[{i}] ({sensor.get('name')!r}, {kind})")
+        else:
+            keep.append(sensor)
+    data["sensors"] = keep
+    return out
 
 
 def apply_overrides(data: dict, overrides: list[str], dropped: list[str] | None = None) -> dict:
@@ -227,7 +251,8 @@ def apply_overrides(data: dict, overrides: list[str], dropped: list[str] | None 
             text = set_paths[_canonical(address)].strip()
             table = _format_loc(address[:-1])  # the table switched (beams[*] names each beam)
             choice = f"{address[-1]} {_get(data, address)!r}"
-            dropped.append(f"--set {text}: {', '.join(f'{table}.{n}' for n in names)} dropped ({choice} does not "
+            keys = [n if n.startswith("sensors[") else f"{table}.{n}" for n in names]
+            dropped.append(f"--set {text}: {', '.join(keys)} dropped ({choice} does not "
                            f"take {'it' if len(names) == 1 else 'them'})")
     return data
 
