@@ -148,9 +148,9 @@ def read_series(
     for r in range(1, len(data)):
         if t[r] <= t[r - 1]:
             what = "a duplicate time" if t[r] == t[r - 1] else "times are not increasing"
-            raise fail(f"row {r + 1} (line {numbered[r + 1][0]}): {what} ({t[r]!r} after {t[r - 1]!r})")
+            raise fail(f"row {r + 1} (line {numbered[r + 1][0]}): {what} ({t[r]:.12g} after {t[r - 1]:.12g})")
     if start_at_zero and t[0] != 0.0:
-        raise fail(f"the first time must be 0 s (found {t[0]!r})")
+        raise fail(f"the first time must be 0 s (found {t[0]:.12g})")
     return t, {name: v}
 
 
@@ -161,7 +161,7 @@ def read_drive_table(path: str | Path, key: str, *, base_dir: str | Path | None 
     (quantity, values), = cols.items()
     p = _resolve(path, base_dir)
     if quantity == "theta" and values[0] != 0.0:
-        raise ScenarioError(f"{key}: {p}: the first theta must be 0 rad, the initial configuration (found {values[0]!r})")
+        raise ScenarioError(f"{key}: {p}: the first theta must be 0 rad, the initial configuration (found {values[0]:.12g})")
     try:
         return DriveProfile.table(t, values, quantity)
     except ValueError as exc:  # pragma: no cover - read_series checks everything DriveProfile does
