@@ -9,6 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from hubbeam.cli import EXAMPLES, example_text
+from hubbeam.io.examples import examples_folder
 from hubbeam.io.scenario import (
     ResolvedBeam,
     ScenarioError,
@@ -50,7 +51,7 @@ def error_of(data, overrides=(), base_dir=None) -> str:
 # ----------------------------------------------------------------------------- bundled examples
 @pytest.mark.parametrize("name", EXAMPLES)
 def test_bundled_examples_are_valid_and_round_trip(name):
-    sc = validate(tomllib.loads(example_text(name)))
+    sc = validate(tomllib.loads(example_text(name)), base_dir=examples_folder())  # its tables: next to it
     assert validate(sc.to_dict()) == sc
     beams = sc.resolved_beams()
     assert beams and all(isinstance(b, ResolvedBeam) for b in beams)
