@@ -30,24 +30,31 @@ class BeamTrack:
     stations: np.ndarray  # (n,) m from the root along the undeformed beam
     width: np.ndarray  # (n,) m
     thickness: np.ndarray  # (n,) m
-    reference: np.ndarray  # (n, 3) m: undeformed centre line, hub at theta = 0
+    reference: np.ndarray  # (n, 3) m: undeformed centre line in the hub's frame at theta = 0
     centre_line: np.ndarray  # (nt, n, 3) m
     m: np.ndarray  # (nt, n, 3) unit vectors along the width
     n: np.ndarray  # (nt, n, 3) unit vectors along the thickness
     surface_strain: np.ndarray  # (nt, n) axial strain on the upper surface
+    #: the tip body ({"mass", "inertia", "offset"}: kg, kg m^2 about the tip section axes, m in
+    #: them) or None (also for a file written before tip bodies were recorded)
+    tip_body: dict | None = None
 
-    def displacement(self, hub_angle: np.ndarray, times=slice(None)) -> np.ndarray:
-        """(nt, n, 3) m at the output ``times`` (a slice or index array; default all) of the
-        ``hub_angle`` series (rad): the centre line's displacement from the undeformed beam
-        turned with the hub (by theta about -j0, Eq. 74), the beam's deflection."""
-        turned = np.einsum("tij,nj->tni", hub_rotation(np.asarray(hub_angle)[times]), self.reference)
-        return self.centre_line[times] - turned
+    def displacement(self, hub_origin: np.ndarray, hub_axes: np.ndarray, times=slice(None)) -> np.ndarray:
+        """(nt, n, 3) m at the output ``times`` (a slice or index array; default all) of the hub
+        frame's series (origin (nt, 3) m and axes (nt, 3, 3)): the centre line's displacement from
+        the undeformed beam carried by the hub's frame (the base and the hub angle), the beam's
+        deflection."""
+        carried = np.asarray(hub_origin)[times][:, None, :] + np.einsum(
+            "tij,nj->tni", np.asarray(hub_axes)[times], self.reference)
+        return self.centre_line[times] - carried
 
 
 @dataclass(frozen=True)
 class RunState:
     """A run's recorded state: ``name`` (the scenario's), ``times`` (nt, s), ``hub_angle`` (nt,
-    rad), ``hub_radius`` (m) and every beam's :class:`BeamTrack`."""
+    rad), ``hub_radius`` (m), every beam's :class:`BeamTrack`, and the hub's and the base's
+    frames over time: ``hub_origin``, ``base_origin`` (nt, 3) m and ``hub_axes``, ``base_axes``
+    (nt, 3, 3) (columns, global; the hub's at theta)."""
 
     name: str
     times: np.ndarray
@@ -56,6 +63,25 @@ class RunState:
     beams: tuple[BeamTrack, ...]
     #: for the state of a run that stopped early: how far it got and why (from the file's attributes)
     partial: str | None = None
+    hub_origin: np.ndarray = None
+    hub_axes: np.ndarray = None
+    base_origin: np.ndarray = None
+    base_axes: np.ndarray = None
+
+    def __post_init__(self) -> None:
+        nt = np.asarray(self.times).size
+        if self.hub_axes is None:  # a file of a hub on a fixed upright axis: A_h(theta) at the origin
+            object.__setattr__(self, "hub_axes", hub_rotation(self.hub_angle))
+        for name in ("hub_origin", "base_origin"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros((nt, 3)))
+        if self.base_axes is None:
+            object.__setattr__(self, "base_axes", np.tile(np.eye(3), (nt, 1, 1)))
+
+    def displacement(self, k: int, times=slice(None)) -> np.ndarray:
+        """Beam k's deflection (nt, n, 3) m at the output ``times``: :meth:`BeamTrack.displacement`
+        from the undeformed beam the hub's frame carries."""
+        return self.beams[k].displacement(self.hub_origin, self.hub_axes, times)
 
 
 def hub_rotation(theta) -> np.ndarray:
@@ -67,6 +93,19 @@ def hub_rotation(theta) -> np.ndarray:
 
 def _text(value) -> str:
     return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def _tip_body(value) -> dict | None:
+    """A recorded tip body as a dict of finite numbers (mass, 3 inertias, 3 offsets), or
+    None; ValueError for anything else."""
+    if value is None:
+        return None
+    body = {"mass": float(value["mass"]), "inertia": [float(x) for x in value["inertia"]],
+            "offset": [float(x) for x in value["offset"]]}
+    if len(body["inertia"]) != 3 or len(body["offset"]) != 3 or not np.all(np.isfinite(
+            [body["mass"], *body["inertia"], *body["offset"]])):
+        raise ValueError(f"a tip body is not three inertias and three offsets of finite numbers ({value!r:.80})")
+    return body
 
 
 def read_state(path, option: str = "input") -> RunState:
@@ -94,19 +133,23 @@ def read_state(path, option: str = "input") -> RunState:
             names = json.loads(_text(f.attrs["state_beams"]))
             formulations = json.loads(_text(f.attrs["state_formulations"]))
             v = f.variables
+            tips = json.loads(_text(f.attrs["state_tip_bodies"])) if "state_tip_bodies" in f.attrs else []
+            tips = [_tip_body(t) for t in tips] if len(tips) == len(names) else [None] * len(names)
             beams = tuple(BeamTrack(
                 name, form, v[f"state_{name}_station"][...], v[f"state_{name}_width"][...],
                 v[f"state_{name}_thickness"][...], v[f"state_{name}_reference"][...],
                 v[f"state_{name}_centre_line"][...], v[f"state_{name}_m"][...], v[f"state_{name}_n"][...],
-                v[f"state_{name}_surface_strain"][...]) for name, form in zip(names, formulations))
+                v[f"state_{name}_surface_strain"][...], tip) for name, form, tip in zip(names, formulations, tips))
             partial = None
             if int(f.attrs.get("partial", 0)):
                 reached, t_end = f.attrs.get("time_reached"), f.attrs.get("t_end")
                 partial = (f"the run stopped at t = {float(reached):g} s" + (f" of {float(t_end):g} s" if t_end is not None
                                                                              else "") +
                            f" ({_text(f.attrs.get('partial_reason', 'partial'))})")
+            frames = {name: v[f"state_{name}"][...] for name in ("hub_origin", "hub_axes", "base_origin", "base_axes")
+                      if f"state_{name}" in v}
             state = RunState(_text(f.attrs.get("name", p.stem)), v["time"][...], v["state_hub_angle"][...],
-                             float(f.attrs["state_hub_radius"]), beams, partial)
+                             float(f.attrs["state_hub_radius"]), beams, partial, **frames)
         except (KeyError, ValueError, TypeError) as exc:
             raise ScenarioError(f"{option} {p}: the stored state is incomplete ({exc.__class__.__name__}: {exc})") \
                 from None

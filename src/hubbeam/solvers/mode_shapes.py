@@ -3,7 +3,7 @@ modal assurance criterion that follows a mode from one hub speed to the next.
 
 **Split and label.** A mode shape u about the configuration x is a rate of the coordinates;
 the kinetic energy of the system moving at u is split into the hub's and, for every beam in
-its own directions, the ``flap`` (centre line along j0, out of the hub plane), ``lag`` (along
+its own directions, the ``flap`` (centre line along j_h, out of the hub plane), ``lag`` (along
 the beam's k_k, in the hub plane across the beam), ``axial`` (along the beam axis) and
 ``torsion`` (section rotation about the beam axis) parts
 (:meth:`hubbeam.system.multibody.MultibodySystem.kinetic_energy_split`). The fractions add up to
@@ -22,28 +22,31 @@ import numpy as np
 
 from hubbeam.system.parts import BEAM_MOTIONS
 
-#: the parts of a mode's kinetic energy, in the order a label joins them
-MOTIONS = BEAM_MOTIONS + ("hub",)
+#: the parts of a mode's kinetic energy, in the order a label joins them (``base``: a moving
+#: base's own body)
+MOTIONS = BEAM_MOTIONS + ("hub", "base")
 #: a part at least this share of the kinetic energy names the mode alone
 DOMINANT = 0.6
 
 
 def energy_fractions(system, x, F, shape) -> dict[str, float]:
-    """The shares (summing to 1) of a mode's kinetic energy in each of :data:`MOTIONS`."""
+    """The shares (summing to 1) of a mode's kinetic energy in each of :data:`MOTIONS` the
+    system has (``base`` only with a moving base)."""
     split = system.kinetic_energy_split(x, F, shape)
     total = sum(split.values())
     if not total > 0.0:
         raise ValueError("a mode shape without kinetic energy has no energy split")
-    return {k: split[k] / total for k in MOTIONS}
+    return {k: split[k] / total for k in MOTIONS if k in split}
 
 
 def mode_label(fractions: dict[str, float], dominant: float = DOMINANT) -> str:
     """The largest part's name, or the two largest joined by "+" (in the order of
     :data:`MOTIONS`) when the largest is below ``dominant``."""
-    ranked = sorted(MOTIONS, key=lambda k: -fractions[k])
+    present = [k for k in MOTIONS if k in fractions]
+    ranked = sorted(present, key=lambda k: -fractions[k])
     if fractions[ranked[0]] >= dominant:
         return ranked[0]
-    return "+".join(k for k in MOTIONS if k in ranked[:2])
+    return "+".join(k for k in present if k in ranked[:2])
 
 
 def mac_matrix(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -630,11 +630,18 @@ class MultibodySystem:
         """Kinetic (rigid bodies and beams, rotary inertia and tip bodies included), strain and
         gravity energy (J); of one beam when ``beam`` is its index (compiled:
         :func:`~hubbeam.system.equations.beam_energies`)."""
+        return energy_sums(*self.energy_table(x, v, F), beam)
+
+    def energy_table(self, x, v, F) -> tuple[np.ndarray, np.ndarray]:
+        """(others (3,), beams (beams, 3)): the (kinetic, strain, gravity) energy (J) of the parts
+        that belong to no beam (the hub's rotor, the base) and of each beam (tip bodies in their
+        beam's row), as :func:`energy_sums` adds them (compiled:
+        :func:`~hubbeam.system.equations.beam_energies`)."""
         hub, beams = np.zeros(3), np.zeros((len(self.beams), 3))
         self.functions.beam_energies(self.model(), np.ascontiguousarray(F, dtype=float),
                                      np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float), beams,
                                      hub)
-        return energy_sums(hub, beams, beam)
+        return hub, beams
 
     def momenta(self, x, v, F) -> dict[str, np.ndarray | float]:
         """The whole system's mass (kg), centre of mass (m), linear momentum (N s) and angular
@@ -694,6 +701,8 @@ class MultibodySystem:
                 e += 0.5 * body.mass * float(v_c @ v_c) + 0.5 * float(w @ R @ body.inertia_matrix() @ R.T @ w)
             total[body.name] = total.get(body.name, 0.0) + e
         total.setdefault("hub", 0.0)
+        if self.base.moves:
+            total.setdefault("base", 0.0)
         for k, part, q, chart in self.parts(x, F):
             axes = self.root_axes(k, x, F)
             frame, rate = self._frame_and_rate(k, x, u, F)
@@ -745,6 +754,16 @@ class MultibodySystem:
         _, R, _, w = self.base_motion(x, v)
         e = np.ascontiguousarray(x[self.layout.base_x][3:], dtype=float)
         return np.array(attitude_torque(laws[0], float(t), e, R.T @ w))
+
+    def base_torque_column(self, x, axis: int) -> np.ndarray:
+        """The generalized force (on x) of a unit torque on a moving base about its base axis
+        ``axis`` (0, 1, 2): Jw^T R e_axis on the base's coordinates (N m per N m)."""
+        from hubbeam.system.frames import chain_pose
+
+        _, R, _, Jw, _, _ = chain_pose(self.frames.table, self.frames.base, x)
+        out = np.zeros(self.nx)
+        out[self.layout.base_x] = Jw.T @ R[:, axis]
+        return out
 
     def angular_momentum(self, x, v, F) -> float:
         """The whole system's absolute angular momentum about the hub axis (the line through O
