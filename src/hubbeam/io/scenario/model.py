@@ -199,7 +199,11 @@ def _cross_checks(s: Scenario) -> None:
                                 f"{a.dt:.12g} s (nearest valid: {_nearest_multiples(a.t_end, a.dt)})")
 
     columns: dict[str, int] = {}
+    sensor_names: dict[str, int] = {}
     for i, sen in enumerate(s.sensors):
+        if sen.name in sensor_names:  # the records are kept by name: a second sensor would replace the first
+            raise ScenarioError(f"sensors[{i}].name: duplicate sensor name {sen.name!r} (also sensors[{sensor_names[sen.name]}])")
+        sensor_names[sen.name] = i
         if sen.kind == "base_torque" and s.base.torque is None:
             raise ScenarioError(f"sensors[{i}].kind: base_torque needs an attitude law ([base.torque] of a free base)")
         if sen.kind == "applied_torque" and hub.motion != "free":
