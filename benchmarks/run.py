@@ -1,6 +1,6 @@
 """Speed benchmark: hubbeam against Exudyn on the same models (issue 6), run side by side.
 
-    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R] [--quick]
+    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R,S] [--quick]
 
 Every run is a fresh process (benchmarks/engines.py; ``hubbeam run`` for case P), the
 engines of a case alternate within each repetition, and the tables show medians: the
@@ -26,6 +26,12 @@ Case R: case A with modal reduction to 4 clamped modes: hubbeam's FFR beam (8 el
 against Exudyn's ObjectFFRFreducedOrder on a 32 x 1 x 2 Hex20 solid mesh of the plate
 (benchmarks/solid_plate.py), with the mesh's mass and first two frequencies against
 Euler-Bernoulli.
+Case S (benchmarks/case_s.toml, issue 24): a spacecraft tumbling freely: a free 400 kg bus
+with products of inertia and two 4 m x 1 m x 4 mm panels with 1 kg tip bodies, released
+straight while turning at (0.1, 0.3, 0.2) rad/s, no gravity; 8 elements per panel, 10 s at
+dt = 2 ms. Peer: Exudyn's ObjectBeamGeometricallyExact panels on an ObjectRigidBody bus. The
+same time series side by side: the bus's angular velocity (bus axes) and panel a's tip
+deflection, with their differences.
 """
 
 from __future__ import annotations
@@ -147,18 +153,57 @@ def reduced_order(reps: int, t_end: float, dt: float) -> None:
           f"{100 * (mesh['f2_hz'] / mesh['f2_eb_hz'] - 1):+.2f} %)")
 
 
+def spacecraft(reps: int, t_end: float, dt: float, elements: int = 8) -> None:
+    """Case S: the tumbling spacecraft, hubbeam against Exudyn, alternating, medians; the two
+    engines' series side by side (every 1 s) with their differences."""
+    engines = ["hubbeam-spacecraft", "exudyn-spacecraft"]
+    one_run(engines[0], elements, 2 * dt, dt)  # warm the numba cache of the free base's code
+    runs = {e: [] for e in engines}
+    for _ in range(reps):
+        for e in engines:
+            runs[e].append(one_run(e, elements, t_end, dt))
+    print(f"\nCase S (a spacecraft tumbling freely): {elements} elements per panel, {t_end:g} s at dt = {dt:g} s; "
+          f"median of {reps}, {os.cpu_count()} cores")
+    print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'steps':>6s} {'Newton/step':>11s} {'LU/step':>8s}")
+    for e in engines:
+        first = runs[e][0]
+        print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {median(runs[e], 'process_s'):10.3f} "
+              f"{int(first['steps']):6d} {first['newton_per_step']:11.2f} {first['factorisations_per_step']:8.2f}")
+    ours, peer = runs[engines[0]], runs[engines[1]]
+    print(f"hubbeam / exudyn: integration {median(ours, 'integration_s') / median(peer, 'integration_s'):.3f}, "
+          f"process {median(ours, 'process_s') / median(peer, 'process_s'):.3f}")
+    h, x = ours[0], peer[0]
+    t = h["time"]
+    step = max(1, round(1.0 / (t[1] - t[0])))
+    print(f"{'t (s)':>6s} | {'bus w_x, w_y, w_z (rad/s): hubbeam':>36s} | {'exudyn':>29s} | "
+          f"{'tip a tangential (mm): hubbeam':>30s} {'exudyn':>9s}")
+    for k in range(0, len(t), step):
+        print(f"{t[k]:6.1f} | {h['rate'][k][0]:11.6f} {h['rate'][k][1]:11.6f} {h['rate'][k][2]:11.6f} | "
+              f"{x['rate'][k][0]:9.6f} {x['rate'][k][1]:9.6f} {x['rate'][k][2]:9.6f} | "
+              f"{1e3 * h['tip_a'][k][2]:30.4f} {1e3 * x['tip_a'][k][2]:9.4f}")
+    for name, index, unit, scale in (("bus angular velocity", None, "rad/s", 1.0), ("tip a tangential", 2, "mm", 1e3),
+                                     ("tip b tangential", 2, "mm", 1e3)):
+        key = "rate" if index is None else name.split()[0] + "_" + name.split()[1]
+        a = [v if index is None else [v[index]] for v in h[key]]
+        b = [v if index is None else [v[index]] for v in x[key]]
+        diff = max(abs(p - q) for u, w in zip(a, b) for p, q in zip(u, w))
+        size = max(abs(p) for u in a for p in u)
+        print(f"{name}: largest difference {scale * diff:.4g} {unit} ({100 * diff / size:.2f} % of the largest value, "
+              f"{scale * size:.4g} {unit})")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--t-end", type=float, default=10.0)
     p.add_argument("--dt", type=float, default=1e-3)
-    p.add_argument("--cases", default="A,B,C,P,F,R", help="comma-separated subset of A, B, C, P, F, R")
+    p.add_argument("--cases", default="A,B,C,P,F,R,S", help="comma-separated subset of A, B, C, P, F, R, S")
     p.add_argument("--quick", action="store_true", help="1 s simulated, one repetition")
     a = p.parse_args()
     if a.quick:
         a.reps, a.t_end = 1, 1.0
     cases = {c.strip().upper() for c in a.cases.split(",")}
-    if cases & {"A", "B", "R"} and importlib.util.find_spec("exudyn") is None:
+    if cases & {"A", "B", "R", "S"} and importlib.util.find_spec("exudyn") is None:
         sys.exit("benchmarks/run.py: the peer is missing; install it with: pip install \".[peer]\"")
     one_run("hubbeam", 8, 2 * a.dt, a.dt)  # warm the numba cache
     if "A" in cases:
@@ -179,6 +224,8 @@ def main() -> None:
         formulations(a.reps, 20.0 if not a.quick else 1.0, a.dt)
     if "R" in cases:
         reduced_order(a.reps, a.t_end, a.dt)
+    if "S" in cases:
+        spacecraft(a.reps, 10.0 if not a.quick else 1.0, 2e-3)
     if "P" in cases:
         times = [cli_run(a.t_end) for _ in range(a.reps)]
         print(f"\nCase P: `hubbeam run benchmarks/case_a.toml -o OUT.nc` ({a.t_end:g} s simulated), whole process: "

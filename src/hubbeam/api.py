@@ -184,8 +184,9 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> Multibo
     drive = drive_profile(hub.drive, "hub.drive") if hub.drive is not None else DriveProfile("rest")
     law = torque if torque is not None else torque_law(hub.torque_law)
     base = base_of(scenario)
-    # a hub fixed to a free base is part of the base body: no rotor of its own
-    inertia = 0.0 if (base.motion == BaseMotion.FREE and hub.motion == "fixed") else hub.inertia
+    # a hub fixed to a base that moves is part of it: no rotor of its own (a free base's body holds
+    # its inertia; on a table base hub.inertia of a fixed hub is unused, as on a fixed base)
+    inertia = 0.0 if (base.moves and hub.motion == "fixed") else hub.inertia
     return MultibodySystem([beam_part(spec) for spec in scenario.resolved_beams()],
                            Hub(hub.motion, inertia, law, drive),
                            gravity=np.array(scenario.environment.gravity),

@@ -6,6 +6,7 @@ import json
 import pytest
 
 from hubbeam.cli import main
+from hubbeam.io.examples import DATA_FILES
 from hubbeam.io.scenario import EXAMPLES, load_example
 
 
@@ -14,6 +15,9 @@ def test_each_bundled_example_runs(name, tmp_path, capsys, monkeypatch):
     import xarray as xr
 
     monkeypatch.chdir(tmp_path)
+    for data in DATA_FILES:  # the tables a scenario reads, next to it (as its comments say)
+        assert main(["example", data]) == 0
+        (tmp_path / data).write_text(capsys.readouterr().out)
     assert main(["example", name]) == 0
     (tmp_path / f"{name}.toml").write_text(capsys.readouterr().out)
     if load_example(name).analysis.kind != "dynamic":  # a static or modal example: its JSON result

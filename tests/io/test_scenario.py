@@ -9,6 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from hubbeam.cli import EXAMPLES, example_text
+from hubbeam.io.examples import examples_folder
 from hubbeam.io.scenario import (
     ResolvedBeam,
     ScenarioError,
@@ -50,7 +51,7 @@ def error_of(data, overrides=(), base_dir=None) -> str:
 # ----------------------------------------------------------------------------- bundled examples
 @pytest.mark.parametrize("name", EXAMPLES)
 def test_bundled_examples_are_valid_and_round_trip(name):
-    sc = validate(tomllib.loads(example_text(name)))
+    sc = validate(tomllib.loads(example_text(name)), base_dir=examples_folder())  # its tables: next to it
     assert validate(sc.to_dict()) == sc
     beams = sc.resolved_beams()
     assert beams and all(isinstance(b, ResolvedBeam) for b in beams)
@@ -234,6 +235,9 @@ def test_bad_values_name_their_key(override, key):
         ("sensors[3].beam='blade2'", None, None),
         ("sensors[4].kind='applied_torque'", "sensors[4].kind", "free"),
         ("sensors[0].name='tip2'", "sensors[1].name", "duplicate sensor name 'tip2'"),
+        # the same name on kinds whose columns differ (tip1 and tip1_radial, ...): the records are kept by
+        # name, so the second replaced the first and the hub's speed was lost without a word
+        ("sensors[4].name='tip1'", "sensors[4].name", "duplicate sensor name 'tip1' (also sensors[0])"),
         ("sensors[4].name='energy_kinetic'", "sensors[6].name", "'energy_kinetic'"),
         ("analysis.output_dt=0.015", "analysis.output_dt", "nearest valid: 0.014 or 0.016"),
         ("analysis.t_end=12.003", "analysis.t_end", "nearest valid: 12.002 or 12.004"),

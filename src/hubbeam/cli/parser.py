@@ -15,7 +15,7 @@ class Parser(argparse.ArgumentParser):
 def build_parser() -> argparse.ArgumentParser:
     from importlib.metadata import PackageNotFoundError, version
 
-    from hubbeam.io.examples import EXAMPLES
+    from hubbeam.io.examples import DATA_FILES, EXAMPLES
 
     try:
         installed = version("hubbeam")
@@ -110,8 +110,8 @@ def build_parser() -> argparse.ArgumentParser:
     vt.add_argument("-o", "--output", required=True, help="directory for NAME.pvd and NAME_NNNNN.vtu")
     vt.add_argument("--force", action="store_true", help="replace a series of the same name already in the directory")
     vt.add_argument("--json", action="store_true", help="print one JSON object on stdout")
-    ex = sub.add_parser("example", help="print a bundled scenario")
-    ex.add_argument("name", help=f"one of: {', '.join(EXAMPLES)}")
+    ex = sub.add_parser("example", help="print a bundled scenario (or a bundled data file)")
+    ex.add_argument("name", help=f"one of: {', '.join(EXAMPLES)}; or a data file: {', '.join(DATA_FILES)}")
     return p
 
 

@@ -49,8 +49,8 @@ def check_inertia(inertia: np.ndarray, what: str = "inertia") -> np.ndarray:
     if not moments[0] > 0.0:
         raise ValueError(f"{what}: not positive definite (principal moments {', '.join(f'{m:.6g}' for m in moments)})")
     if moments[2] > (moments[0] + moments[1]) * (1.0 + 1e-9):
-        raise ValueError(f"{what}: not a rigid body's: the principal moment {moments[2]:.6g} exceeds the sum of the "
-                         f"other two ({moments[0]:.6g} + {moments[1]:.6g})")
+        raise ValueError(f"{what}: not a rigid body's (the principal moment {moments[2]:.6g} exceeds the sum of the "
+                         f"other two, {moments[0]:.6g} + {moments[1]:.6g})")
     return 0.5 * (J + J.T)
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from hubbeam.errors import ScenarioError
-from hubbeam.io.examples import example_text
+from hubbeam.io.examples import example_text, examples_folder
 from hubbeam.io.scenario.hub import DRIVE_KEYS, TORQUE_KEYS
 from hubbeam.io.scenario.model import Scenario, _format_loc, validate
 
@@ -266,8 +266,10 @@ def value_at(data: dict, key: str):
 
 
 def load_example(name: str, overrides: list[str] | None = None, dropped: list[str] | None = None) -> Scenario:
-    """A bundled scenario, overridden and validated (``dropped``: see :func:`apply_overrides`)."""
-    return validate(apply_overrides(tomllib.loads(example_text(name)), overrides or [], dropped))
+    """A bundled scenario, overridden and validated (``dropped``: see :func:`apply_overrides`); its
+    tables are the bundled ones next to it."""
+    return validate(apply_overrides(tomllib.loads(example_text(name)), overrides or [], dropped),
+                    base_dir=examples_folder())
 
 
 def load_scenario(source: str | Path, overrides: list[str] | None = None,
