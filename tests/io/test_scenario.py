@@ -20,7 +20,9 @@ from hubbeam.io.scenario import (
 )
 
 BASE = tomllib.loads(example_text("exp1"))
-ROTOR = tomllib.loads(example_text("rotor3"))
+ROTOR_COPIES = tomllib.loads(example_text("rotor3"))  # one [[beams]] table with copies = 3
+#: the same rotor with its three blades in three tables: a --set on each copy alone writes each out
+ROTOR = apply_overrides(ROTOR_COPIES, [f"beams[{k}].azimuth={120 * k}" for k in range(3)])
 SPACECRAFT = tomllib.loads(example_text("spacecraft"))
 
 BEAM = {"formulation": "ancf", "elements": 3, "length": 1.0, "width": 0.05, "thickness": 0.004, "density": 2700.0,
