@@ -151,16 +151,21 @@ def _finish_single(fig, ax, path, xlabel: str, ylabel: str, title: str) -> None:
     plt.close(fig)
 
 
-def plot_campbell(ds, path, title: str = "", frange: tuple[float, float] | None = None) -> None:
+def plot_campbell(ds, path, title: str = "", frange: tuple[float, float] | None = None, frame: str = "rotating") -> None:
     """Campbell diagram of a :func:`hubbeam.studies.campbell.campbell` dataset: each
     formulation's tracked branches against hub speed (colour: the branch, with its label in the
-    legend; line style: the formulation), with the 1x and 2x speed lines. ``frange`` (Hz, low,
-    high): one panel on that range. Without it, when the highest branch is far above the
-    lowest, a second panel zooms on the lowest branches so they are not squashed."""
+    legend; line style: the formulation), with the nP lines (``np_line_hz``). ``frame``
+    "fixed": the branches' fixed-frame frequencies and labels (a symmetric rotor's dataset), a
+    whirl that turns backward said in the legend. ``frange`` (Hz, low, high): one panel on that
+    range. Without it, when the highest branch is far above the lowest, a second panel zooms on
+    the lowest branches so they are not squashed."""
     omega = ds["omega"].values
-    f_all = ds["tracked_frequency_hz"].values
-    top = float(np.nanmax(f_all)) if np.any(np.isfinite(f_all)) else 1.0
-    low_top = float(np.nanmax(f_all[:, :, : max(1, f_all.shape[2] // 3)])) if np.any(np.isfinite(f_all)) else 1.0
+    fixed = frame == "fixed"
+    name, label_name = ("fixed_frequency_hz", "fixed_label") if fixed else ("tracked_frequency_hz", "tracked_label")
+    f_all = ds[name].values
+    finite = np.any(np.isfinite(f_all))
+    top = float(np.nanmax(f_all)) if finite else 1.0
+    low_top = float(np.nanmax(f_all[:, :, : max(1, f_all.shape[2] // 3)])) if finite else 1.0
     if frange is not None:
         ranges = [tuple(frange)]
     elif top > 4.0 * low_top:
@@ -169,24 +174,32 @@ def plot_campbell(ds, path, title: str = "", frange: tuple[float, float] | None 
         ranges = [(0.0, 1.05 * top)]
     fig, axes = plt.subplots(1, len(ranges), figsize=(8 if len(ranges) == 1 else 13, 5.5), squeeze=False)
     styles = {"ancf": "-", "ffr": "--", "ffr+": ":"}
-    names = {"ancf": "ANCF", "ffr": "FFR (paper, linear)", "ffr+": "FFR + geometric stiffening"}
+    names = {"ancf": "ANCF", "ffr": "FFR (paper, linear)", "ffr+": "FFR + geometric stiffening",
+             "scenario": "the scenario's formulations"}
     forms = [str(f) for f in ds["formulation"].values]
+    orders = ds["order"].values
+    lines = ds["np_line_hz"].values
     for ax, (lo, hi) in zip(axes[0], ranges):
         for k, form in enumerate(forms):
-            f = ds["tracked_frequency_hz"].sel(formulation=form).values
+            f = ds[name].sel(formulation=form).values
             for b in range(f.shape[1]):
-                label = f"{b + 1}: {ds['branch_label'].values[k, b]}" if k == 0 else None
+                label = None
+                if k == 0:
+                    label = f"{b + 1}: {_most_common_label(ds[label_name].values[k, :, b])}"
+                    if fixed:
+                        senses = [str(w) for w in ds["whirl"].values[k, :, b] if w]
+                        if "backward" in senses:
+                            label += " (backward whirl" + (", forward below)" if "forward" in senses else ")")
                 ax.plot(omega, f[:, b], styles.get(form, "-"), color=f"C{b % 10}", lw=1.4, label=label)
         for form in forms if len(forms) > 1 else []:
             ax.plot([], [], styles.get(form, "-"), color="k", lw=1.2, label=names.get(form, form))
-        for mult in (1, 2):
-            ax.plot(omega, mult * omega / (2 * np.pi), color="0.5", lw=0.8)
-            y_end = mult * omega[-1] / (2 * np.pi)
-            if lo <= y_end <= hi:
-                ax.annotate(f"{mult}x", (omega[-1], y_end), fontsize=8, color="0.4")
+        for n, line in zip(orders, lines):
+            ax.plot(omega, line, color="0.5", lw=0.8)
+            if lo <= line[-1] <= hi:
+                ax.annotate(f"{n}P", (omega[-1], line[-1]), fontsize=8, color="0.4")
         ax.set_ylim(lo, hi)
         ax.set_xlabel("hub speed (rad/s)")
-        ax.set_ylabel("natural frequency (Hz)")
+        ax.set_ylabel(f"natural frequency, {frame} frame (Hz)")
         ax.grid(alpha=0.3)
         ax.set_title(title if ax is axes[0, 0] else f"zoom: {lo:g} to {hi:.3g} Hz", fontsize=10)
     axes[0, -1].legend(loc="best", fontsize=7, title="branch: label" + (" (first formulation)" if len(forms) > 1 else ""),
@@ -194,6 +207,11 @@ def plot_campbell(ds, path, title: str = "", frange: tuple[float, float] | None 
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def _most_common_label(values) -> str:
+    names, counts = np.unique([str(v) for v in values if v], return_counts=True)
+    return str(names[np.argmax(counts)]) if names.size else ""
 
 
 def plot_fit(times, measured, fitted, path, signal: str, title: str = "") -> None:

@@ -384,6 +384,10 @@ def _check_tables(s: Scenario) -> None:
     from hubbeam.io.tables import read_drive_table, read_torque_table
 
     for what, key, path in tables:
-        (read_drive_table if what == "drive" else read_torque_table)(path, key)
+        if what == "drive":
+            drive = s.hub.drive if key == "hub.drive.file" else s.hub.torque.reference
+            read_drive_table(path, key, interpolation=drive.interpolation, smoothing=drive.smoothing)
+        else:
+            read_torque_table(path, key)
 
 

@@ -222,7 +222,8 @@ def _prune(data: dict, switch: tuple, set_paths: set) -> list[str]:
         if value != "prescribed":
             drop("drive")
     elif key == "profile" and value in DRIVE_KEYS:
-        drop(*(k for k in ("omega_s", "T", "t1", "angle", "file") if k not in DRIVE_KEYS[value][0]))
+        drop(*(k for k in ("omega_s", "T", "t1", "angle", "file", "interpolation", "smoothing")
+               if k not in DRIVE_KEYS[value][0]))
     elif key == "law" and value in TORQUE_KEYS:
         drop(*(k for k in ("value", "file", "kp", "kd", "reference") if k not in TORQUE_KEYS[value][0]))
     return dropped
