@@ -151,15 +151,16 @@ def rotating_matrices(system: HubSystem, x_s, lam, F, omega: float, held: bool =
             near = (np.abs(zx - zx[i]) <= band) | (zx[i] < border)
             return np.flatnonzero(near & (zx >= border))
 
-        def rates(y):  # the steady rates in one call of the parts (the velocity is omega times the generator's)
-            return system.steady_rotation_rates(y, F, omega)
-
-        K = grouped_central_differences(lambda y: forces(y, *rates(y)), x_s, relative_steps(x_s), groups, rows_of)
-        # the generator's Jacobian once (each beam's rates depend on its own coordinates only)
-        d_generator = grouped_central_differences(generator, x_s, relative_steps(x_s), groups,
-                                                  rows_of)
-        G = grouped_central_differences(lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * (d_generator @ e)),
-                                        zero, unit, groups, rows_of)
+        # the steady rates' Jacobians once (each beam's rates depend on its own coordinates only);
+        # K needs only the first derivative of the rates at x_s, so the rates linearised there give
+        # the same K, and the Coriolis term 2 omega (dXi/dy) e is 2 (dv/dy) e
+        n = x_s.shape[0]
+        d_rates = grouped_central_differences(lambda y: np.concatenate(system.steady_rotation_rates(y, F, omega)), x_s,
+                                              relative_steps(x_s), groups, lambda i: np.concatenate([rows_of(i), n + rows_of(i)]))
+        d_v, d_a = d_rates[:n], d_rates[n:]
+        K = grouped_central_differences(lambda y: forces(y, v_s + d_v @ (y - x_s), a_s + d_a @ (y - x_s)), x_s,
+                                        relative_steps(x_s), groups, rows_of)
+        G = grouped_central_differences(lambda e: forces(x_s, v_s + e, a_s + 2.0 * (d_v @ e)), zero, unit, groups, rows_of)
     Mz = system.equations(x_s, v_s, a_s, lam, F, 0.0, 1.0, 0.0, 0.0, 1.0, held=held)[1].to_dense()
     return Mz[np.ix_(zx, zx)], G, K, system.constraint_jacobian(x_s, F, held=held)
 

@@ -41,6 +41,16 @@ DOMINANT = 0.6
 SAME_FREQUENCY = 1e-6
 #: a match whose (subspace) MAC is below this is reported as uncertain
 CONFIDENT_MAC = 0.8
+#: a branch's frequency may change by this share between two speeds (or by the speed step's
+#: plausible change, whichever is larger) before its match is penalised and called uncertain
+PLAUSIBLE_CHANGE = 0.1
+
+
+def plausible_change(frequency_hz, step_hz: float):
+    """The largest change (Hz) of a branch at ``frequency_hz`` between two speeds that is not
+    suspect: the speed step's plausible change ``step_hz`` or :data:`PLAUSIBLE_CHANGE` of the
+    frequency, whichever is larger."""
+    return np.maximum(step_hz, PLAUSIBLE_CHANGE * np.abs(np.asarray(frequency_hz, dtype=float)))
 
 
 def energy_fractions(system, x, F, shape) -> dict[str, float]:
@@ -116,9 +126,9 @@ def follow(previous: np.ndarray, previous_hz: np.ndarray, spaces, step_hz: float
     """Continue the branches ``previous`` (n x m shapes at frequencies ``previous_hz``) into
     ``spaces``, a list of (basis (n x d), frequencies (d,)) of the next speed: each space offers d
     places. The assignment minimises the summed 1 - subspace MAC (:func:`subspace_mac`) plus a
-    penalty of up to 0.5 for a frequency change beyond what the speed step can explain
-    (``step_hz``, Hz: the largest plausible change), so that a branch never jumps to a far
-    frequency for a slightly better shape. Within a space, its basis is turned onto the branches
+    penalty 0.5 (1 - exp(-(change / allowed)^2 / 4)), up to 0.5, for a frequency change beyond
+    the plausible one (:func:`plausible_change` of ``step_hz``, Hz), so that a branch never jumps
+    to a far frequency for a slightly better shape. Within a space, its basis is turned onto the branches
     it takes (orthogonal Procrustes), so a branch continues as the member nearest to its previous
     shape. Returns (shapes (n x m), frequencies (m,), MAC of each branch with its previous shape,
     space of each branch (-1: none left)); a branch without a place keeps NaN."""
@@ -131,7 +141,7 @@ def follow(previous: np.ndarray, previous_hz: np.ndarray, spaces, step_hz: float
     owner = np.concatenate([np.full(q.shape[1], i) for i, q in enumerate(bases)]).astype(int) if bases else np.zeros(0, int)
     share = np.array([subspace_mac(previous, q) for q in bases]).reshape(len(bases), m).T  # m x spaces
     change = np.abs(centre[None, :] - np.asarray(previous_hz, dtype=float)[:, None])
-    allowed = np.maximum(step_hz, 0.02 * np.abs(np.asarray(previous_hz, dtype=float)))[:, None]
+    allowed = plausible_change(previous_hz, step_hz)[:, None]
     cost = 1.0 - share + 0.5 * (1.0 - np.exp(-np.nan_to_num(change / allowed, nan=0.0) ** 2 / 4.0))
     cost = np.nan_to_num(cost, nan=2.0)  # a branch that ended (no shape) takes what is left
     rows, cols = linear_sum_assignment(cost[:, owner]) if owner.size else (np.zeros(0, int), np.zeros(0, int))

@@ -19,7 +19,7 @@ from hubbeam.errors import ComputationError
 from hubbeam.io.scenario import Scenario
 from hubbeam.solvers.modal import rotating_modal_analysis
 from hubbeam.solvers.mode_shapes import (CONFIDENT_MAC, MOTIONS, SAME_FREQUENCY, blade_vectors, eigenspaces,
-                                         energy_fractions, follow, mode_label)
+                                         energy_fractions, follow, mode_label, plausible_change)
 from hubbeam.solvers.multiblade import fixed_frame, harmonic_directions, harmonic_label
 from hubbeam.solvers.static import solve_static
 from hubbeam.studies.variants import FORMULATIONS, variant
@@ -224,7 +224,7 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=None, harm
                                                                                                  spaces], step_hz)
                     for b in np.flatnonzero(where >= 0):
                         jump = abs(now[b] - tracked[i].frequency[j - 1, b])
-                        if match[b] < CONFIDENT_MAC or jump > max(step_hz, 0.02 * tracked[i].frequency[j - 1, b]):
+                        if match[b] < CONFIDENT_MAC or jump > plausible_change(tracked[i].frequency[j - 1, b], step_hz):
                             uncertain.append(f"{form} branch {b + 1} at omega = {omega:g} rad/s: uncertain match "
                                              f"(MAC {match[b]:.3f} with the previous speed, frequency "
                                              f"{tracked[i].frequency[j - 1, b]:.5g} -> {now[b]:.5g} Hz)")

@@ -470,7 +470,10 @@ class HubSystem:
         total = dict.fromkeys(BEAM_MOTIONS, 0.0)
         total["hub"] = 0.5 * self.hub.inertia * float(np.abs(u[0]) ** 2)
         for k, part, q, chart in self.parts(x, F):
-            for key, value in part.kinetic_energy_split(q, chart, u[self.layout.beam_x(k)], x[0]).items():
+            u_k = u[self.layout.beam_x(k)]
+            if not np.any(u_k):  # a beam the rate does not move (a mode of another beam) has none
+                continue
+            for key, value in part.kinetic_energy_split(q, chart, u_k, x[0]).items():
                 total[key] += value
         return total
 
