@@ -172,13 +172,25 @@ def plot_campbell(ds, path, title: str = "", frange: tuple[float, float] | None 
         ranges = [(0.0, 1.05 * top), (0.0, 1.25 * low_top)]
     else:
         ranges = [(0.0, 1.05 * top)]
-    fig, axes = plt.subplots(1, len(ranges), figsize=(8 if len(ranges) == 1 else 13, 5.5), squeeze=False)
+    fig, axes = plt.subplots(1, len(ranges), figsize=(10 if len(ranges) == 1 else 15, 5.5), squeeze=False)
     styles = {"ancf": "-", "ffr": "--", "ffr+": ":"}
     names = {"ancf": "ANCF", "ffr": "FFR (paper, linear)", "ffr+": "FFR + geometric stiffening",
              "scenario": "the scenario's formulations"}
     forms = [str(f) for f in ds["formulation"].values]
     orders = ds["order"].values
     lines = ds["np_line_hz"].values
+    count = ds.sizes["branch"]
+    colours = plt.get_cmap("tab10" if count <= 10 else "tab20").colors
+    # one formulation on a symmetric rotor: the line style tells the harmonic (the formulation's otherwise)
+    by_harmonic = len(forms) == 1 and "harmonic" in ds
+
+    def style(k, b, form):
+        if not by_harmonic:
+            return styles.get(form, "-")
+        p = ds["harmonic"].values[k, -1, b]
+        blades = int(ds.attrs.get("blades", 0))
+        return "-" if p == 0 else ("-." if 2 * p == blades else ("--" if p > 0 else ":"))
+
     for ax, (lo, hi) in zip(axes[0], ranges):
         for k, form in enumerate(forms):
             f = ds[name].sel(formulation=form).values
@@ -190,7 +202,7 @@ def plot_campbell(ds, path, title: str = "", frange: tuple[float, float] | None 
                         senses = [str(w) for w in ds["whirl"].values[k, :, b] if w]
                         if "backward" in senses:
                             label += " (backward whirl" + (", forward below)" if "forward" in senses else ")")
-                ax.plot(omega, f[:, b], styles.get(form, "-"), color=f"C{b % 10}", lw=1.4, label=label)
+                ax.plot(omega, f[:, b], style(k, b, form), color=colours[b % len(colours)], lw=1.4, label=label)
         for form in forms if len(forms) > 1 else []:
             ax.plot([], [], styles.get(form, "-"), color="k", lw=1.2, label=names.get(form, form))
         for n, line in zip(orders, lines):
@@ -202,8 +214,8 @@ def plot_campbell(ds, path, title: str = "", frange: tuple[float, float] | None 
         ax.set_ylabel(f"natural frequency, {frame} frame (Hz)")
         ax.grid(alpha=0.3)
         ax.set_title(title if ax is axes[0, 0] else f"zoom: {lo:g} to {hi:.3g} Hz", fontsize=10)
-    axes[0, -1].legend(loc="best", fontsize=7, title="branch: label" + (" (first formulation)" if len(forms) > 1 else ""),
-                       title_fontsize=7)
+    axes[0, -1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7, borderaxespad=0.0,
+                       title="branch: label" + (" (first formulation)" if len(forms) > 1 else ""), title_fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
