@@ -95,8 +95,9 @@ def speed_log_figure():
     fig.tight_layout()
     fig.savefig(OUT / "rotor_speed_log.png", dpi=110)
     plt.close(fig)
+    return runs
 
 
 if __name__ == "__main__":
-    campbell_figures()
-    speed_log_figure()
+    for make in (campbell_figures, speed_log_figure):
+        make()

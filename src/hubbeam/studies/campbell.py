@@ -61,7 +61,7 @@ def rotor_symmetry(scenario: Scenario) -> tuple[np.ndarray | None, str]:
     for b in beams[1:]:
         other = _signature(b)
         for key, value in first.items():
-            if not _same(value, other[key]):
+            if value != other[key]:
                 return None, (f"the rotor is not symmetric: {b.name} differs from {beams[0].name} in {key} "
                               f"({_shown(other[key])} against {_shown(value)})")
     for b in beams:
@@ -84,10 +84,6 @@ def _signature(beam) -> dict:
     s = beam.sections
     out["sections"] = None if s is None else (s.form, s.x.tolist(), s.values.tolist(), s.pretwist.tolist(), s.material)
     return out
-
-
-def _same(a, b) -> bool:
-    return a == b
 
 
 def _shown(value) -> str:
