@@ -12,7 +12,7 @@ from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import L, plate
 
 TIP = Sensor(name="tip", kind="tip_deflection")
@@ -161,13 +161,13 @@ def test_strain_gauges_read_over_a_chunk_are_the_gauges_read_state_by_state():
     from hubbeam.simulation import CompiledSteps
     from hubbeam.system.ancf_part import AncfPart
     from hubbeam.system.ffr_part import FfrPart
-    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.multibody import Hub, MultibodySystem
     from hubbeam.system.mount import Mount
 
     parts = [AncfPart(AncfBeam(L, 3, plate()), Mount(0.3, 0.2, 0.0, 0.0), name="a"),
              FfrPart(FfrBeam(L, 3, plate(), geometric_stiffening=True), Mount(0.3, 0.4, 2.0, 0.0), name="b"),
              FfrPart(FfrBeam(L, 4, plate(), modes=3), Mount(0.3, -0.3, 4.0, 0.1), name="c")]
-    system = HubSystem(parts, Hub("prescribed", 1.0, drive=DriveProfile("spin_up", 3.0, 0.2)),
+    system = MultibodySystem(parts, Hub("prescribed", 1.0, drive=DriveProfile("spin_up", 3.0, 0.2)),
                        gravity=(0.0, -9.81, 0.0))
     gauges = [(0, 0.2, 0.01, 0.00125), (1, 0.3, -0.02, 0.00125), (1, 1.0, 0.0, -0.00125), (2, 0.5, 0.01, 0.00125)]
     state = initial_state(system)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -14,7 +14,9 @@ from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.beam import DEFAULT_GAUSS_POINTS, AncfBeam
 from hubbeam.elements.section import Section
 from hubbeam.system.ffr_part import FfrPart
-from hubbeam.system.hub_system import Hub, HubSystem
+from hubbeam.system.base import Base, BaseMotion, HubPlacement
+from hubbeam.system.base_laws import AttitudeLaw
+from hubbeam.system.multibody import Hub, MultibodySystem
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
@@ -116,21 +118,63 @@ def torque_law(law) -> TorqueLaw:
     return TorqueLaw.pd(law.kp, law.kd, drive_profile(law.reference, "hub.torque.reference"))
 
 
-def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> HubSystem:
-    """The hub system a scenario describes. ``torque``: a torque law that replaces the
-    scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function torque(t, theta, omega),
-    which integrates step by step in Python). ``scenario``: a Scenario or a scenario file's path."""
+def base_of(scenario: Scenario) -> Base:
+    """The :class:`~hubbeam.system.base.Base` of a scenario's ``[base]`` (SI units, radians)."""
+    b = scenario.base
+    init = b.initial
+    law = None
+    if b.torque is not None:
+        t = b.torque
+        law = AttitudeLaw(t.kp, t.kd, t.target or (0.0, 0.0, 0.0),
+                          None if t.slew is None else t.slew.axis, 0.0 if t.slew is None else t.slew.angle,
+                          1.0 if t.slew is None else t.slew.T)
+    table = None
+    if b.motion == "table":
+        from hubbeam.io.tables import read_pose_table
+
+        table = read_pose_table(b.file, "base.file")
+    inertia = b.inertia_matrix if b.inertia_matrix is not None else np.zeros((3, 3))
+    return Base(b.motion, init.position, init.rotation, init.velocity, init.angular_velocity, b.mass or 0.0,
+                inertia, b.centre_of_mass, table, law)
+
+
+def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> MultibodySystem:
+    """The system a scenario describes: its base, its hub and its beams. ``torque``: a torque law
+    that replaces the scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function
+    torque(t, theta, omega), which integrates step by step in Python). ``scenario``: a Scenario
+    or a scenario file's path."""
     scenario = as_scenario(scenario)
     hub = scenario.hub
     drive = drive_profile(hub.drive, "hub.drive") if hub.drive is not None else DriveProfile("rest")
     law = torque if torque is not None else torque_law(hub.torque_law)
-    return HubSystem([beam_part(spec) for spec in scenario.resolved_beams()],
-                     Hub(hub.motion, hub.inertia, law, drive),
-                     gravity=np.array(scenario.environment.gravity), damping=(scenario.damping.linear,
-                                                                              scenario.damping.quadratic))
+    base = base_of(scenario)
+    # a hub fixed to a free base is part of the base body: no rotor of its own
+    inertia = 0.0 if (base.motion == BaseMotion.FREE and hub.motion == "fixed") else hub.inertia
+    return MultibodySystem([beam_part(spec) for spec in scenario.resolved_beams()],
+                           Hub(hub.motion, inertia, law, drive),
+                           gravity=np.array(scenario.environment.gravity),
+                           damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
+                           placement=HubPlacement(hub.position, np.radians(hub.orientation)))
 
 
-def reduction_warnings(scenario: Scenario, system: HubSystem | None = None) -> list[str]:
+#: what statics, modes and linearize say when they leave a free base's gravity out
+FREE_FALL_NOTE = ("the base is free: its uniform gravity field is left out of the equilibrium and the linear model "
+                  "(a free body in free fall is not deformed by it)")
+
+
+def equilibrium_system(scenario: Scenario, notes: list | None = None) -> MultibodySystem:
+    """The system of a scenario for statics, modes and linearize: a free base's uniform gravity
+    is removed (the equivalence principle: a body in free fall is not deformed by it), with a
+    note in ``notes``."""
+    system = build_system(scenario)
+    if system.base.motion == BaseMotion.FREE and np.any(system.gravity):
+        system = system.with_gravity((0.0, 0.0, 0.0))
+        if notes is not None:
+            notes.append(FREE_FALL_NOTE)
+    return system
+
+
+def reduction_warnings(scenario: Scenario, system: MultibodySystem | None = None) -> list[str]:
     """One line for each thing the kept modes of a modally reduced FFR beam (``modes = N``)
     may miss in the scenario: a share of the static deflection under gravity above 1 %, or a
     drive or PD reference (spin_up, slew, exponential over T s: up to about 2 / T Hz) that
@@ -145,29 +189,32 @@ def reduction_warnings(scenario: Scenario, system: HubSystem | None = None) -> l
     drive = hub.drive if hub.drive is not None else (law.reference if law is not None and law.law == "pd" else None)
     excitation = 2.0 / drive.T if drive is not None and drive.profile in ("spin_up", "slew", "exponential") else None
     out = []
-    for part in system.beams:
+    x0, F0 = system.initial_state()
+    for k, part in enumerate(system.beams):
         if isinstance(part, FfrPart):
-            out += coverage_warnings(part.beam, part.mount.frame(0.0).T @ system.gravity, excitation, name=part.name)
+            out += coverage_warnings(part.beam, system.root_pose(k, x0, F0)[1].T @ system.gravity, excitation,
+                                     name=part.name)
     return out
 
 
-def tip_displacement(system: HubSystem, x: np.ndarray, beam: int = 0) -> dict[str, float]:
+def tip_displacement(system: MultibodySystem, x: np.ndarray, beam: int = 0, F=None) -> dict[str, float]:
     """Tip centroid displacement of a beam from its undeformed place, in its hub frame (m)."""
-    return system.tip_displacement(x, beam)
+    return system.tip_displacement(x, beam, F)
 
 
 @dataclass
 class StaticResult:
     """Static equilibrium of a scenario and its summary."""
 
-    system: HubSystem
+    system: MultibodySystem
     solution: StaticSolution
+    notes: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         sol = self.solution
         lam = sol.multipliers
         system = self.system
-        layout = system.layout_for(True)
+        layout = system.layout_for(True, static=True)
         out = {
             "tip_displacement": tip_displacement(system, sol.x),
             "tip_position": [float(v) for v in system.tip_position(sol.x)],
@@ -260,10 +307,12 @@ class ModalResult:
 
 
 def static(scenario: Scenario) -> StaticResult:
-    """Static equilibrium under gravity and loads, hub held at theta = 0 (load stepping)."""
+    """Static equilibrium under gravity and loads, hub held at theta = 0 and a free base at its
+    initial pose (load stepping; a free base's gravity left out: :func:`equilibrium_system`)."""
     scenario = as_scenario(scenario)
-    system = build_system(scenario)
-    return StaticResult(system, solve_static(system, load_steps=scenario.analysis.load_steps))
+    notes: list[str] = []
+    system = equilibrium_system(scenario, notes)
+    return StaticResult(system, solve_static(system, load_steps=scenario.analysis.load_steps), notes)
 
 
 def modes(scenario: Scenario) -> ModalResult:
@@ -274,16 +323,17 @@ def modes(scenario: Scenario) -> ModalResult:
     from hubbeam.solvers.modal import modal_analysis, rotating_modal_analysis
 
     scenario = as_scenario(scenario)
-    system = build_system(scenario)
+    notes: list[str] = []
+    system = equilibrium_system(scenario, notes)
     count = scenario.analysis.count
     load_steps = scenario.analysis.load_steps
     if scenario.hub.motion == "prescribed" and system.drive.kind == "constant":
         omega = system.drive(0.0)[1]
         steady = solve_static(system, load_steps=load_steps, spin=omega)
-        return ModalResult(StaticResult(system, steady), rotating_modal_analysis(system, steady, omega, count=count),
+        return ModalResult(StaticResult(system, steady, notes), rotating_modal_analysis(system, steady, omega, count=count),
                            about=f"steadily rotating state at omega = {omega:g} rad/s (centrifugal and gyroscopic "
                                  "terms; drag left out)")
-    st = StaticResult(system, solve_static(system, load_steps=load_steps))
+    st = StaticResult(system, solve_static(system, load_steps=load_steps), notes)
     about = "static equilibrium under the scenario's gravity and loads"
     if scenario.hub.motion == "prescribed":
         about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
@@ -302,12 +352,19 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
     from hubbeam.analysis.state_space import linearise
 
     scenario = as_scenario(scenario)
-    system = build_system(scenario)
+    notes: list[str] = []
+    system = equilibrium_system(scenario, notes)
     if open_loop:
         system = system.with_hub(torque=TorqueLaw())
     load_steps = scenario.analysis.load_steps
     if inputs is None:
-        inputs = ["hub_torque"] if not system.hub.held else [f"tip_force:{system.beams[0].name}"]
+        from hubbeam.analysis.state_space import BASE_TORQUE_INPUTS
+
+        inputs = ["hub_torque"] if not system.hub.held else []
+        if system.base.motion == BaseMotion.FREE:
+            inputs += list(BASE_TORQUE_INPUTS)
+        if not inputs:
+            inputs = [f"tip_force:{system.beams[0].name}"]
     omega = 0.0
     if scenario.hub.motion == "prescribed" and system.drive.kind == "constant":
         omega = float(system.drive(0.0)[1])
@@ -319,8 +376,9 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
             about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
         equilibrium = solve_static(system, load_steps=load_steps)
     model = linearise(system, equilibrium, omega, inputs, scenario.sensors, about)
+    model.notes.extend(notes)
     if not system.hub.held:
-        needed = -float(equilibrium.multipliers[system.layout_for(True).drive_lambda])  # the torque that holds it
+        needed = -float(equilibrium.multipliers[system.layout_for(True, static=True).drive_lambda])  # the torque that holds it
         missing = needed - system.applied_torque(0.0, equilibrium.x, np.zeros(system.nx))
         scale = system.static_force_scale(equilibrium.x, equilibrium.chart) * system.length_scale  # N m
         if abs(missing) > 1e-4 * max(scale, abs(needed)):  # above the discretisation's own small torque

@@ -1,4 +1,4 @@
-"""Measured quantities of a hub-beam state (the sensors of a scenario).
+"""Measured quantities of a system's state (the sensors of a scenario).
 
 Sensors that belong to a beam (``surface_strain``, ``tip_deflection``, and ``energy`` when
 it names one) measure the beam their ``beam`` key names (default: the first).
@@ -6,17 +6,24 @@ it names one) measure the beam their ``beam`` key names (default: the first).
 
 from __future__ import annotations
 
-from hubbeam.system.hub_system import HubSystem, energy_sums
+from hubbeam.system.multibody import MultibodySystem, energy_sums
 
 UNITS = {
     "surface_strain": "1", "hub_angle": "rad", "hub_angular_velocity": "rad/s", "hub_torque": "N m",
     "applied_torque": "N m", "tip_deflection": "m", "energy": "J", "angular_momentum": "N m s",
-    "constraint_violation": "m",
+    "constraint_violation": "m", "base_position": "m", "base_rotation": "rad", "base_velocity": "m/s",
+    "base_angular_velocity": "rad/s", "centre_of_mass": "m", "linear_momentum": "N s",
+    "system_angular_momentum": "N m s", "base_torque": "N m",
 }
+
+#: the sensors of a base and of the whole system in space: three components each
+VECTOR_SENSORS = ("base_position", "base_rotation", "base_velocity", "base_angular_velocity", "centre_of_mass",
+                  "linear_momentum", "system_angular_momentum", "base_torque")
 
 #: the parts of a sensor that gives several values (its columns are NAME_PART)
 PARTS = {"tip_deflection": ("radial", "vertical", "tangential"),
-         "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive")}
+         "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive"),
+         **{kind: ("x", "y", "z") for kind in VECTOR_SENSORS}}
 
 
 def columns(sensor) -> list[str]:
@@ -30,11 +37,11 @@ def columns(sensor) -> list[str]:
     return [f"{sensor.name}_{part}" for part in parts]
 
 
-def _beam(sensor, system: HubSystem) -> int:
+def _beam(sensor, system: MultibodySystem) -> int:
     return system.beam_index(getattr(sensor, "beam", None))
 
 
-def section_point(sensor, system: HubSystem) -> tuple[float, float]:
+def section_point(sensor, system: MultibodySystem) -> tuple[float, float]:
     """(y, z) of a strain gauge on the section axes of its station: 'upper' is z = +h/2 (the face
     whose normal is +n), h the thickness at the station."""
     h = system.beams[_beam(sensor, system)].section_size(sensor.x)[1]
@@ -59,13 +66,13 @@ def _energy(sensor, system):
     return energy
 
 
-def gauge(sensor, system: HubSystem) -> tuple[int, float, float, float]:
+def gauge(sensor, system: MultibodySystem) -> tuple[int, float, float, float]:
     """(beam index, station (m), y, z (m)) of a surface_strain sensor."""
     return (_beam(sensor, system), float(sensor.x)) + section_point(sensor, system)
 
 
-def record_needs(sensors, system: HubSystem) -> tuple[bool, bool, list]:
-    """What the sensors read from the records' compiled measures (:meth:`HubSystem.record_measures`):
+def record_needs(sensors, system: MultibodySystem) -> tuple[bool, bool, list]:
+    """What the sensors read from the records' compiled measures (:meth:`MultibodySystem.record_measures`):
     (energies, tip displacements, the strain gauges (:func:`gauge`))."""
     kinds = {s.kind for s in sensors}
     return ("energy" in kinds, "tip_deflection" in kinds,
@@ -79,15 +86,42 @@ def _surface_strain(sensor, system):
 
 def _tip_deflection(sensor, system):
     beam = _beam(sensor, system)
-    return lambda state, work: system.tip_displacement(state.x, beam)
+    return lambda state, work: system.tip_displacement(state.x, beam, state.chart)
+
+
+def _vector(measure):
+    """A three-component sensor: the function(system, state) of a 3-vector as {x, y, z}."""
+    def factory(sensor, system):
+        def value(state, work):
+            v = measure(system, state)
+            return {"x": float(v[0]), "y": float(v[1]), "z": float(v[2])}
+        return value
+    return factory
+
+
+def _system_angular_momentum(system, state):
+    """About the system's centre of mass (N m s, global)."""
+    mom = system.momenta(state.x, state.v, state.chart)
+    import numpy as np
+
+    return mom["angular"] - np.cross(mom["centre_of_mass"], mom["linear"])
 
 
 #: sensor kind -> factory(sensor, system) of its measurement function(state, work), which
 #: gives a float or a dict of parts; what depends on the sensor alone is found once
 MEASURES = {
+    "base_position": _vector(lambda system, st: system.base_motion(st.x, st.v)[0]),
+    "base_rotation": _vector(lambda system, st: system.base_rotation_vector(st.x)),
+    "base_velocity": _vector(lambda system, st: system.base_motion(st.x, st.v)[2]),
+    "base_angular_velocity": _vector(lambda system, st: system.base_motion(st.x, st.v)[1].T
+                                     @ system.base_motion(st.x, st.v)[3]),
+    "centre_of_mass": _vector(lambda system, st: system.momenta(st.x, st.v, st.chart)["centre_of_mass"]),
+    "linear_momentum": _vector(lambda system, st: system.momenta(st.x, st.v, st.chart)["linear"]),
+    "system_angular_momentum": _vector(_system_angular_momentum),
+    "base_torque": _vector(lambda system, st: system.base_torque(st.t, st.x, st.v)),
     "surface_strain": _surface_strain,
-    "hub_angle": lambda sensor, system: lambda state, work: float(state.x[0]),
-    "hub_angular_velocity": lambda sensor, system: lambda state, work: float(state.v[0]),
+    "hub_angle": lambda sensor, system: lambda state, work: float(state.x[system.theta_index]),
+    "hub_angular_velocity": lambda sensor, system: lambda state, work: float(state.v[system.theta_index]),
     "hub_torque": lambda sensor, system: lambda state, work: system.drive_torque(state.lam),
     "applied_torque": lambda sensor, system: lambda state, work: system.applied_torque(state.t, state.x, state.v),
     "tip_deflection": _tip_deflection,
@@ -147,14 +181,14 @@ def _chunk_tip_deflection(sensor, system):
 #: kinds that read arrays computed for the whole chunk (the others read the records one by one)
 CHUNK_MEASURES = {
     "surface_strain": _chunk_surface_strain,
-    "hub_angle": lambda sensor, system: lambda chunk: chunk.states.x[:, 0].tolist(),
-    "hub_angular_velocity": lambda sensor, system: lambda chunk: chunk.states.v[:, 0].tolist(),
+    "hub_angle": lambda sensor, system: lambda chunk: chunk.states.x[:, system.theta_index].tolist(),
+    "hub_angular_velocity": lambda sensor, system: lambda chunk: chunk.states.v[:, system.theta_index].tolist(),
     "tip_deflection": _chunk_tip_deflection,
     "energy": _chunk_energy,
 }
 
 
-def prepare_chunk(sensor, system: HubSystem):
+def prepare_chunk(sensor, system: MultibodySystem):
     """The measurement function(chunk) of one sensor on ``system``: its values (floats, or dicts
     of parts, as :func:`prepare` gives them) at each record of a chunk, a list. A chunk
     (:class:`hubbeam.simulation.RecordChunk`) holds the records' states and work as
@@ -168,13 +202,13 @@ def prepare_chunk(sensor, system: HubSystem):
     return _per_state(prepare(sensor, system))
 
 
-def prepare(sensor, system: HubSystem):
+def prepare(sensor, system: MultibodySystem):
     """The measurement function(state, work) of one sensor on ``system``: the value (float, or
     dict of parts) at an integrator state; ``work`` holds the dissipated and drive work (J) up
     to it."""
     return MEASURES[sensor.kind](sensor, system)
 
 
-def measure(sensor, system: HubSystem, state, work: dict[str, float]):
+def measure(sensor, system: MultibodySystem, state, work: dict[str, float]):
     """The value (float, or dict of parts) of one sensor at an integrator state."""
     return prepare(sensor, system)(state, work)

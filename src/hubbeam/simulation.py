@@ -15,7 +15,7 @@ from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.errors import ChartSingularityError, ComputationError, ConvergenceError
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.assembly import BorderedBandMatrix
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 #: below this chart margin (1 + d.tau) the chart is replaced: a tangent within 60 deg of its singular direction
 CHART_LIMIT = 0.5
@@ -52,7 +52,7 @@ class RecordChunk:
     states stacked (an :class:`~hubbeam.solvers.generalized_alpha.AlphaState` whose t is (n,)
     (s) and x, v, xdd, a, lambda are (n, ...), in the one chart of the chunk), the dissipated
     and drive work up to each record (J), and what the compiled steps computed for the whole
-    chunk (:meth:`HubSystem.record_measures`): ``energies`` = (hub (n, 3), beams (n, beams, 3))
+    chunk (:meth:`MultibodySystem.record_measures`): ``energies`` = (hub (n, 3), beams (n, beams, 3))
     (J), ``tips`` (n, beams, 3) (m), ``strains`` {gauge: (n,)}. Sensors read it through
     :func:`hubbeam.sensors.prepare_chunk`."""
 
@@ -96,7 +96,7 @@ def decimal_units(*values: float) -> tuple[int, ...]:
     return (*(int(d.scaleb(digits)) for d in decimals), 10**digits)
 
 
-def change_chart(system: HubSystem, state: ga.AlphaState, F_new: np.ndarray, eps: float = 1e-4) -> ga.AlphaState:
+def change_chart(system: MultibodySystem, state: ga.AlphaState, F_new: np.ndarray, eps: float = 1e-4) -> ga.AlphaState:
     """The integrator state re-expressed in chart F_new.
 
     The remap x -> g(x) changes only theta_1 and theta_1' (by functions of the tangent),
@@ -123,12 +123,12 @@ def change_chart(system: HubSystem, state: ga.AlphaState, F_new: np.ndarray, eps
     return replace(state, x=g0, v=v_new, xdd=along(state.xdd) + curvature, a=along(state.a) + curvature, chart=F_new)
 
 
-def initial_state(system: HubSystem, load_steps: int = 20, start: str = "rest") -> ga.AlphaState:
+def initial_state(system: MultibodySystem, load_steps: int = 20, start: str = "rest") -> ga.AlphaState:
     """Where a run starts: at rest in the straight clamped state at theta = 0 (``start`` =
     "rest") or at rest in the static equilibrium under gravity and loads with the hub at
     theta = 0 ("equilibrium"); for a drive that already turns at t = 0 (profile 'constant'),
     in the steadily rotating equilibrium (static analysis with the centrifugal load) with its
-    rigid-rotation velocities. A turning hub gets the axis charts (see HubSystem.axis_chart)."""
+    rigid-rotation velocities. A turning hub gets the axis charts (see MultibodySystem.axis_chart)."""
     omega0 = system.drive(0.0)[1] if system.motion == "prescribed" else 0.0
     if omega0:
         try:
@@ -150,7 +150,7 @@ def initial_state(system: HubSystem, load_steps: int = 20, start: str = "rest") 
         x0, F0 = system.initial_state(0.0)
     if system.motion != "fixed":
         x0, F0 = system.axis_chart(x0, F0)
-    return ga.init(system, x0, F0)
+    return ga.init(system, x0, F0, v0=system.initial_rates(x0, F0))
 
 
 class PythonSteps:
@@ -160,7 +160,7 @@ class PythonSteps:
     :meth:`advance` takes a chunk of steps and returns the states at the output steps in
     it, each with the work done up to then."""
 
-    def __init__(self, system: HubSystem, params, newton, dt, state: ga.AlphaState,
+    def __init__(self, system: MultibodySystem, params, newton, dt, state: ga.AlphaState,
                  measures: tuple[bool, bool, list] = (False, False, [])) -> None:
         self.system, self.params, self.newton, self.dt = system, params, newton, dt
         # (energies, tip displacements, strain gauges) (:func:`hubbeam.sensors.record_needs`):
@@ -277,7 +277,7 @@ PROGRESS_UPDATES = 100
 CHUNK_SECONDS = 0.25
 
 
-def simulate(system: HubSystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
+def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
              output_dt: float | None = None, progress=None, newton: ga.NewtonOptions = ga.NewtonOptions(),
              state: ga.AlphaState | None = None, recorder=None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.

@@ -1,21 +1,19 @@
-"""Compiled FFR kernels (hubbeam.elements.ffr.kernels) against the Python FfrPart.
+"""Compiled FFR kernels (hubbeam.elements.ffr.kernels) against the Python FfrPart, in v-space.
 
-The Python part is the oracle: the kernels must give its forces and matrices to round-off,
-and its central-difference stiffness (at rest and in steady rotation) to the differences'
-accuracy. The Cardan derivative matrices are checked by differences of cardan.py."""
-
-import time
+The Python part is the oracle: the kernels must give its v-space forces and matrices (on
+v = [r_C', omega^b, p']) to round-off. The projection on the frame's coordinates is the
+system's (tests/system/test_ffr_system.py)."""
 
 import numpy as np
 import pytest
 
 from hubbeam.elements.ffr import kernels as fk
 from hubbeam.elements.ffr.body import FfrBeam
-from hubbeam.elements.ffr.cardan import angular_velocity_matrix, angular_velocity_matrix_rate, rotation_matrix
+from hubbeam.system.frames import rotation_vector_matrix
 from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
-from tests.conftest import L, central_difference, plate, tapered_sections
+from tests.conftest import L, plate, tapered_sections
 
 BODY = TipBody(0.2, (1.0e-4, 2.0e-4, 2.5e-4), (0.01, 0.005, -0.003))
 GRAVITY = np.array([0.3, -9.81, 0.7])
@@ -31,16 +29,15 @@ def make_part(stiffening=False, tip_loads=False, tip_body=None, elements=3, sect
 
 
 def random_state(part, rng, deform=2e-3, rate=3.0):
-    n = part.ndof
-    q = np.zeros(n)
-    q[0:3] = rng.normal(size=3) * 0.3
-    q[3:6] = rng.uniform(-1.2, 1.2, size=3)
-    q[6:] = deform * rng.normal(size=n - 6)
-    q[6::6] *= 0.05  # axial node displacements are much smaller than deflections
-    v = rate * rng.normal(size=n)
-    v[6:] *= 0.1
-    acc = 10.0 * rng.normal(size=n)
-    return q, v, acc
+    """(A, p, vb, vdot): a body frame, elastic coordinates, v-space rates and accelerations."""
+    nf = part.ndof
+    A = rotation_vector_matrix(rng.uniform(-1.2, 1.2, size=3))
+    p = deform * rng.normal(size=nf)
+    p[::6] *= 0.05  # axial node displacements are much smaller than deflections
+    vb = rate * rng.normal(size=6 + nf)
+    vb[6:] *= 0.1
+    vdot = 10.0 * rng.normal(size=6 + nf)
+    return A, p, vb, vdot
 
 
 def close(a, b, tol):
@@ -48,34 +45,14 @@ def close(a, b, tol):
     return np.max(np.abs(a - b)) <= tol * scale
 
 
-# ---------------------------------------------------------------------------- Cardan angles
-@pytest.mark.parametrize("theta", [(0.3, -0.4, 1.1), (-2.0, 0.9, -0.6), (0.0, 0.0, 0.0), (1.3, 1.2, 2.9)])
-def test_cardan_matrices_and_their_derivatives(theta):
-    theta = np.array(theta)
-    A, D = np.empty((3, 3)), np.empty((3, 3))
-    fk.cardan(*theta, A, D)
-    assert np.allclose(A, rotation_matrix(theta), rtol=0, atol=1e-15)
-    assert np.allclose(D, angular_velocity_matrix(theta), rtol=0, atol=1e-15)
-    dA, dD = np.empty((3, 3, 3)), np.empty((3, 3, 3))
-    fk.cardan_derivatives(*theta, dA, dD)
-    hstep = 1e-6
-    for i in range(3):
-        e = np.zeros(3)
-        e[i] = hstep
-        dA_fd = (rotation_matrix(theta + e) - rotation_matrix(theta - e)) / (2 * hstep)
-        dD_fd = (angular_velocity_matrix(theta + e) - angular_velocity_matrix(theta - e)) / (2 * hstep)
-        assert np.max(np.abs(dA[i] - dA_fd)) < 1e-9
-        assert np.max(np.abs(dD[i] - dD_fd)) < 1e-9
-    # the body angular velocity: A0^T dA0/dTheta_i = [D_i]x
-    for i in range(3):
-        Wi = A.T @ dA[i]
-        assert np.allclose(Wi, -Wi.T, atol=1e-14)
-        assert np.allclose([Wi[2, 1], Wi[0, 2], Wi[1, 0]], D[:, i], atol=1e-14)
-    rates = np.array([0.7, -1.3, 2.1])
-    t2, t3 = theta[1], theta[2]
-    h = np.array(fk.cardan_rate(np.cos(t2), np.sin(t2), np.cos(t3), np.sin(t3), *rates))
-    assert np.allclose(h, angular_velocity_matrix_rate(theta, rates), rtol=0, atol=1e-14)
-    assert np.allclose(h, sum(dD[i] * rates[i] for i in range(3)) @ rates, rtol=0, atol=1e-14)
+def kernel(arrays, A, p, vb, vdot, gravity, damping=(0.0, 0.0), factor=1.0, want_matrix=True):
+    """(fv, Mv, Cv, K_el, power) of the kernel."""
+    n, nf = vb.size, p.size
+    fv, Mv = np.empty(n), np.empty((n, n))
+    Cv, K_el = (np.empty((n, n)), np.empty((nf, nf))) if want_matrix else (np.empty((0, 0)), np.empty((nf, nf)))
+    power = fk.ffr_vspace_terms(arrays.inv, A, p, vb, vdot, np.asarray(gravity, dtype=float), arrays.tip,
+                                arrays.drag(damping), float(factor), want_matrix, fv, Mv, Cv, K_el)
+    return fv, Mv, Cv, K_el, power
 
 
 # ---------------------------------------------------------------------------- forces and matrices
@@ -99,29 +76,27 @@ def test_kernel_is_the_python_forces(case):
     part = make_part(**opts)
     arrays = fk.pack(part)
     rng = np.random.default_rng(list(CASES).index(case))
+    nf = part.ndof
     for factor in (1.0, 0.6):
-        q, v, acc = random_state(part, rng)
-        f_py, (M_py, C_py, K_py) = part.forces(q, v, acc, GRAVITY, damping, tangent=True, factor=factor)
-        f_k, (M_k, C_k, K_k), power = fk.forces(arrays, q, v, acc, GRAVITY, damping, tangent=True, factor=factor)
+        A, p, vb, vdot = random_state(part, rng)
+        f_py, (M_py, C_py, K_py) = part.vspace_forces(A, p, vb, vdot, GRAVITY, damping, tangent=True, factor=factor)
+        f_k, M_k, C_k, K_k, power = kernel(arrays, A, p, vb, vdot, GRAVITY, damping, factor)
         # row blocks separately: the elastic force dwarfs the rest on p
         for rows in (slice(0, 3), slice(3, 6), slice(6, None)):
             assert close(f_k[rows], f_py[rows], 1e-12), rows
         assert close(M_k, M_py, 1e-12)
-        assert close(K_k, K_py, 1e-12)
+        assert close(K_k, K_py[6:, 6:], 1e-12)
+        C_k[6:, 6:] += part.beam.damping_matrix  # the system adds the structural damping on p
         if damping == (0.0, 0.0) and not part.beam.structural_damping:
             assert np.all(C_k == 0.0) and np.all(C_py == 0.0) and power == 0.0
         else:
             assert close(C_k, C_py, 1e-12)
-            assert power == pytest.approx(part.dissipated_power(q, v, damping), rel=1e-12)
+            assert power == pytest.approx(part.dissipated_power(A, p, vb, damping), rel=1e-12)
             assert power > 0.0
-        # without the matrix, and the combined iteration matrix in one call
-        f2, none, _ = fk.forces(arrays, q, v, acc, GRAVITY, damping, tangent=False, factor=factor)
-        assert none is None and np.array_equal(f2, f_k)
-        n = q.size
-        block = np.full((n, n), np.nan)
-        fk.ffr_body_terms(arrays.inv, q, v, acc, GRAVITY, arrays.tip, arrays.drag(damping), 2.0, 0.5, 0.25,
-                          factor, True, np.empty(n), block)
-        assert close(block, 2.0 * M_py + 0.5 * C_py + 0.25 * K_py, 1e-12)
+        # without the matrix: the same force
+        f2, *_ = kernel(arrays, A, p, vb, vdot, GRAVITY, damping, factor, want_matrix=False)
+        assert np.array_equal(f2, f_k)
+        assert nf == p.size
 
 
 def test_inertia_part_of_the_force_alone():
@@ -132,14 +107,13 @@ def test_inertia_part_of_the_force_alone():
     part = FfrPart(beam, Mount(0.1))
     arrays = fk.pack(part)
     rng = np.random.default_rng(5)
-    q, v, acc = random_state(part, rng, deform=0.05, rate=8.0)
-    v[6:] *= 10.0
-    f_py, _ = part.forces(q, v, acc, np.zeros(3), (0.0, 0.0), tangent=False)
-    f_k, _, _ = fk.forces(arrays, q, v, acc, np.zeros(3), tangent=False)
+    A, p, vb, vdot = random_state(part, rng, deform=0.05, rate=8.0)
+    vb[6:] *= 10.0
+    f_py, _ = part.vspace_forces(A, p, vb, vdot, np.zeros(3), (0.0, 0.0), tangent=False)
+    f_k, *_ = kernel(arrays, A, p, vb, vdot, np.zeros(3), want_matrix=False)
     assert close(f_k, f_py, 1e-12)
 
 
-@pytest.mark.skipif("modes" not in FfrBeam.__dataclass_fields__, reason="no modal reduction")
 @pytest.mark.parametrize("stiffening, real_blade", [(False, False), (True, False), (True, True)])
 def test_modally_reduced_beam(stiffening, real_blade):
     """A modally reduced beam (dense invariants over eta): the same numbers as FfrPart; also
@@ -149,15 +123,13 @@ def test_modally_reduced_beam(stiffening, real_blade):
     part = FfrPart(beam, Mount(0.2, 0.1), tip_force=np.array([3.0, -20.0, 12.0]),
                    tip_moment=np.array([0.4, -1.5, 2.0]))
     arrays = fk.pack(part)
-    q, v, acc = random_state(part, np.random.default_rng(1))
-    f_py, mats_py = part.forces(q, v, acc, GRAVITY, (0.4, 1.7), tangent=True, factor=0.8)
-    f_k, mats_k, _ = fk.forces(arrays, q, v, acc, GRAVITY, (0.4, 1.7), tangent=True, factor=0.8)
+    A, p, vb, vdot = random_state(part, np.random.default_rng(1))
+    f_py, (M_py, C_py, K_py) = part.vspace_forces(A, p, vb, vdot, GRAVITY, (0.4, 1.7), tangent=True, factor=0.8)
+    f_k, M_k, C_k, K_k, _ = kernel(arrays, A, p, vb, vdot, GRAVITY, (0.4, 1.7), 0.8)
+    C_k[6:, 6:] += part.beam.damping_matrix
     assert close(f_k, f_py, 1e-12)
-    for a, b in zip(mats_k, mats_py):
+    for a, b in ((M_k, M_py), (C_k, C_py), (K_k, K_py[6:, 6:])):
         assert close(a, b, 1e-12)
-    q[3:6] = (0.3, 0.4, -0.2)
-    assert close(fk.static_stiffness(arrays, q, GRAVITY, 0.8, 4.0), part.stiffness(q, GRAVITY, (0.0, 0.0), 0.8, 4.0),
-                 1e-6)
 
 
 def test_padded_arrays_give_the_same_numbers():
@@ -165,7 +137,7 @@ def test_padded_arrays_give_the_same_numbers():
     part = make_part(stiffening=True, tip_loads=True, tip_body=BODY, sections=tapered_sections(),
                      structural_damping=2e-3)
     a = fk.pack(part)
-    nf, extra = part.beam.ndof, 6
+    extra = 6
 
     def pad(x, axes, rows=0):
         width = [(0, 0)] * x.ndim
@@ -181,105 +153,10 @@ def test_padded_arrays_give_the_same_numbers():
                    mean_slope2=pad(a.mean_slope2, [1, 2], rows=2), tip_rows=pad(a.tip_rows, [1]),
                    tip_rotation_rows=pad(a.tip_rotation_rows, [1]), N_pts=pad(a.N_pts, [2], rows=3),
                    x_pts=pad(a.x_pts, [], rows=3), w_pts=pad(a.w_pts, [], rows=3), width=pad(a.width, [], rows=3))
-    q, v, acc = random_state(part, np.random.default_rng(2))
-    n = 6 + nf
-    outs = []
-    for arr in (a, b):
-        force, block = np.empty(n), np.empty((n + 4, n + 4))
-        power = fk.ffr_body_terms(arr.inv, q, v, acc, GRAVITY, arr.tip, arr.drag((0.4, 1.7)), 1.0, 0.5, 0.25, 1.0,
-                                  True, force, block)
-        load = np.empty((n, n))
-        fk.ffr_load_stiffness(arr.inv, q, GRAVITY, arr.tip, 1.0, load)
-        outs.append((force, block[:n, :n], power, load))
+    A, p, vb, vdot = random_state(part, np.random.default_rng(2))
+    outs = [kernel(arr, A, p, vb, vdot, GRAVITY, (0.4, 1.7)) for arr in (a, b)]
     for x, y in zip(*outs):
         assert np.allclose(x, y, rtol=1e-14, atol=1e-14 * np.max(np.abs(y)))
-
-
-# ---------------------------------------------------------------------------- exact stiffness
-THETAS = [(0.0, 0.0, 0.0), (-0.4, 0.25, -0.1), (1.1, -0.6, 0.8), (-2.5, 1.0, 2.2)]
-
-
-def _at_rest(part, theta, rng, deform=5e-3):
-    q, _, _ = random_state(part, rng, deform=deform)
-    q[3:6] = theta
-    return q
-
-
-@pytest.mark.parametrize("theta", THETAS)
-def test_load_stiffness_is_the_derivative_of_the_static_loads(theta):
-    part = make_part(stiffening=True, tip_loads=True, tip_body=BODY)
-    arrays = fk.pack(part)
-    rng = np.random.default_rng(int(1000 * (theta[0] + 3)))
-    q = _at_rest(part, theta, rng)
-    n, factor = q.size, 0.8
-    load = np.empty((n, n))
-    fk.ffr_load_stiffness(arrays.inv, q, GRAVITY, arrays.tip, factor, load)
-    z = np.zeros(n)
-
-    def load_rows(qq):  # the Python static force without its elastic part
-        f = part.forces(qq, z, z, GRAVITY, (0.0, 0.0), tangent=False, factor=factor)[0]
-        f[6:] -= part.beam.elastic(qq[6:])[1]
-        return f
-
-    load_fd = central_difference(load_rows, q, 1e-6)
-    assert close(load, load_fd, 1e-6)
-    assert np.max(np.abs(load)) > 1.0  # the check is not void
-    # K_el + load stiffness is FfrPart.stiffness (central differences of everything)
-    K_exact = fk.static_stiffness(arrays, q, GRAVITY, factor)
-    K_py = part.stiffness(q, GRAVITY, (0.0, 0.0), factor)
-    assert close(K_exact, K_py, 1e-6)
-
-
-@pytest.mark.parametrize("theta", THETAS[1:3])
-def test_spin_stiffness_is_the_derivative_in_steady_rotation(theta):
-    part = make_part(stiffening=True, tip_loads=True, tip_body=BODY)
-    arrays = fk.pack(part)
-    rng = np.random.default_rng(7)
-    q = _at_rest(part, theta, rng)
-    q[0:3] = part.mount.radius * np.array([np.cos(-theta[0]), 0.0, np.sin(-theta[0])]) + 0.01 * rng.normal(size=3)
-    n, factor, spin = q.size, 0.7, 6.0
-    w = -np.sqrt(factor) * spin * np.array([0.0, 1.0, 0.0])
-    S = np.empty((n, n))
-    fk.ffr_spin_stiffness(arrays.inv, q, w, S)
-    z = np.zeros(n)
-
-    def spin_rows(qq):
-        vel, acc = part.steady_rotation_rates(qq, None, spin)
-        moving = part.forces(qq, np.sqrt(factor) * vel, factor * acc, GRAVITY, (0.0, 0.0), tangent=False,
-                             factor=factor)[0]
-        return moving - part.forces(qq, z, z, GRAVITY, (0.0, 0.0), tangent=False, factor=factor)[0]
-
-    assert close(S, central_difference(spin_rows, q, 1e-6), 1e-6)
-    K_exact = fk.static_stiffness(arrays, q, GRAVITY, factor, spin)
-    assert close(K_exact, part.stiffness(q, GRAVITY, (0.0, 0.0), factor, spin), 1e-6)
-
-
-# ---------------------------------------------------------------------------- timing (printed)
-def test_timing_against_python(capsys):
-    part = make_part(stiffening=True, tip_loads=True, tip_body=BODY)
-    arrays = fk.pack(part)
-    q, v, acc = random_state(part, np.random.default_rng(3))
-    n = q.size
-    damping = (0.4, 1.7)
-    force, block = np.empty(n), np.empty((n, n))
-    inv, tip, drag = arrays.inv, arrays.tip, arrays.drag(damping)
-    fk.ffr_body_terms(inv, q, v, acc, GRAVITY, tip, drag, 1.0, 0.5, 0.25, 1.0, True, force, block)
-
-    def best(fun, reps):
-        times = []
-        for _ in range(5):
-            t0 = time.perf_counter()
-            for _ in range(reps):
-                fun()
-            times.append((time.perf_counter() - t0) / reps)
-        return min(times)
-
-    t_kernel = best(lambda: fk.ffr_body_terms(inv, q, v, acc, GRAVITY, tip, drag, 1.0, 0.5, 0.25, 1.0, True,
-                                              force, block), 200)
-    t_python = best(lambda: part.forces(q, v, acc, GRAVITY, damping, tangent=True), 20)
-    with capsys.disabled():
-        print(f"\nFFR forces (nf = {n - 6}, drag, stiffening, matrix): kernel {t_kernel * 1e6:.1f} us, "
-              f"FfrPart.forces {t_python * 1e6:.1f} us, ratio {t_python / t_kernel:.0f}x")
 
 
 @pytest.mark.parametrize("structural", [0.0, 2e-3])
@@ -291,10 +168,10 @@ def test_dissipated_power_alone_is_the_python_dissipated_power(damping, structur
     arrays = fk.pack(part)
     rng = np.random.default_rng(7)
     for _ in range(3):
-        q, v, _ = random_state(part, rng)
-        power = fk.ffr_dissipated_power(q, v, arrays.C_struct, arrays.damped, arrays.drag(damping))
+        A, p, vb, _ = random_state(part, rng)
+        power = fk.ffr_dissipated_power(A, p, vb, arrays.C_struct, arrays.damped, arrays.drag(damping))
         if damping == (0.0, 0.0) and not structural:
             assert power == 0.0
         else:
-            assert power == pytest.approx(part.dissipated_power(q, v, damping), rel=1e-12)
+            assert power == pytest.approx(part.dissipated_power(A, p, vb, damping), rel=1e-12)
             assert power > 0.0

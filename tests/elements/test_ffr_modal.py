@@ -29,7 +29,7 @@ from hubbeam.simulation import simulate
 from hubbeam.solvers.generalized_alpha import NewtonOptions
 from hubbeam.solvers.modal import modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import solve_static
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from hubbeam.system.laws import DriveProfile
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody

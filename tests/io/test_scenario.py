@@ -307,7 +307,7 @@ def test_a_misspelt_key_is_named_with_the_key_it_is_close_to():
 def test_a_free_hub_needs_its_inertia_and_torque_is_for_a_free_hub_only():
     data = copy.deepcopy(BASE)
     del data["hub"]["inertia"]
-    assert error_of(data) == "hub.inertia: required for motion = 'free' (kg m^2 about j0)"
+    assert error_of(data) == "hub.inertia: required for motion = 'free' (kg m^2 about its axis)"
     data = copy.deepcopy(load_example("cantilever").to_dict())
     assert error_of(data, ["hub.torque=0.0"]).startswith("hub.torque: only for hub.motion = 'free' (motion is 'fixed')")
     sc = validate(data)  # a fixed hub needs no inertia

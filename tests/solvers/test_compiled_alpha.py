@@ -10,7 +10,7 @@ from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.errors import ComputationError
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
-from hubbeam.system.hub_system import HubSystem, single_beam_system
+from hubbeam.system.multibody import MultibodySystem, single_beam_system
 from tests.conftest import assert_compiled_steps_are_python_steps, L, plate
 
 TIP = Sensor(name="tip", kind="tip_deflection")
@@ -23,7 +23,7 @@ def spinning_beam():
                          tip_moment=np.array([0.0, 0.0, 0.05]), damping=(1.73, 1.4))
 
 
-class PythonOnly(HubSystem):
+class PythonOnly(MultibodySystem):
     """The same system integrated step by step in Python."""
 
     compiled = False

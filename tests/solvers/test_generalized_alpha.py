@@ -7,7 +7,7 @@ from hubbeam.io.scenario import Sensor
 from hubbeam.simulation import simulate
 from hubbeam.solvers.generalized_alpha import AlphaParameters
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import L, plate
 
 SENSORS = [Sensor(name="energy", kind="energy"), Sensor(name="violation", kind="constraint_violation"),

@@ -6,7 +6,7 @@ import pytest
 from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import L, RHO, plate
 
 BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382])  # clamped-free roots of cos cosh = -1
@@ -131,7 +131,7 @@ def _three_beams(omega=4.0):
     from hubbeam.elements.ffr.body import FfrBeam
     from hubbeam.system.ancf_part import AncfPart
     from hubbeam.system.ffr_part import FfrPart
-    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.multibody import Hub, MultibodySystem
     from hubbeam.system.laws import DriveProfile
     from hubbeam.system.mount import Mount
     from hubbeam.system.tip_body import TipBody
@@ -140,7 +140,7 @@ def _three_beams(omega=4.0):
              FfrPart(FfrBeam(0.7, 3, plate(0.04, 0.003)), Mount(0.25, 0.3, 2.0, 0.1), name="b"),
              AncfPart(AncfBeam(0.6, 2, plate()), Mount(0.2, 0.0, 4.0, 0.0), name="c",
                       tip_body=TipBody(0.05, (1e-5, 1e-5, 1e-5), (0.01, 0.0, 0.0)))]
-    system = HubSystem(parts, Hub("prescribed", 0.5, drive=DriveProfile.constant(omega)), gravity=(0.0, -9.81, 0.0))
+    system = MultibodySystem(parts, Hub("prescribed", 0.5, drive=DriveProfile.constant(omega)), gravity=(0.0, -9.81, 0.0))
     return system, solve_static(system, load_steps=3, spin=omega)
 
 

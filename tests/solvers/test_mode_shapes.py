@@ -10,7 +10,7 @@ from hubbeam.solvers.mode_shapes import (CONFIDENT_MAC, eigenspaces, energy_frac
                                          mode_label, span_shapes, subspace_mac)
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import RHO, L, plate
 
 BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382, 10.9955407349, 14.1371683910, 17.2787595321,

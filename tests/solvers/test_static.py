@@ -7,7 +7,7 @@ from scipy.integrate import solve_bvp
 from hubbeam.errors import ConvergenceError
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import L, central_difference, plate
 
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 #: the parts of a tip_deflection record, in this order in the arrays below
 TIP_PARTS = ("radial", "vertical", "tangential")
@@ -31,7 +31,7 @@ def root_frame(beta: float, precone: float) -> tuple[np.ndarray, np.ndarray, np.
     return tau, m, n
 
 
-def rigid_axis_inertia(system: HubSystem, gauss: int = 6) -> float:
+def rigid_axis_inertia(system: MultibodySystem, gauss: int = 6) -> float:
     """Moment of inertia (kg m^2) about the hub axis of the hub, the straight beams and their
     tip bodies turning rigidly together: rho A int (R + s cos p)^2 ds by Gauss quadrature, the
     sections' rotary inertia rho (I_tau (j.tau)^2 + I_m (j.m)^2 + I_n (j.n)^2) L, and each tip

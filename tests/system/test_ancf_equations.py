@@ -5,7 +5,7 @@ import pytest
 
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import L, newton_matrix_and_differences, plate
 
 

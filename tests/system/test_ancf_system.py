@@ -10,7 +10,7 @@ from hubbeam.solvers.generalized_alpha import init
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import L, plate, rotation
 
 

@@ -167,7 +167,7 @@ def test_a_change_of_chart_keeps_the_pretwisted_beam_stress_free():
     from hubbeam.system.ancf_part import AncfPart
 
     part = AncfPart(blade(elements=4), Mount(0.0, 0.4))
-    q, F = part.initial_state(0.0)
+    q, F = part.initial_state(np.zeros(3), part.mount.frame(0.0), np.eye(3))
     F_new = frame_from_director(np.array([0.3, -0.8, 0.5]) / np.linalg.norm([0.3, -0.8, 0.5]))
     q_new = part.remap(q, F, F_new)
     assert not np.allclose(q_new, q)  # the twist coordinates did change

@@ -21,7 +21,7 @@ from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers.modal import modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.ffr_part import FfrPart
-from hubbeam.system.hub_system import Hub, HubSystem, single_beam_system
+from hubbeam.system.multibody import Hub, MultibodySystem, single_beam_system
 from hubbeam.system.laws import DriveProfile
 from hubbeam.system.mount import Mount
 from tests.conftest import B, E, H, L, RHO, newton_matrix_and_differences, plate, tapered_sections
@@ -54,7 +54,7 @@ def test_held_hub_static_tip_deflection_of_a_pretwisted_tapered_blade():
     sensor = Sensor(name="P", kind="surface_strain", x=0.5, surface="upper")
     part, q = system.beams[0], sol.x[system.layout.beam_x(0)]
     h = dims(0.5)[1]
-    assert measure(sensor, system, state, {}) == pytest.approx(part.beam.surface_strain(q[6:], 0.5, 0.0, h / 2),
+    assert measure(sensor, system, state, {}) == pytest.approx(part.beam.surface_strain(q, 0.5, 0.0, h / 2),
                                                                rel=1e-14)
 
 
@@ -120,7 +120,7 @@ def test_structural_damping_decrement_and_energy_balance():
     x0, F0 = system.initial_state(0.0)
     tip = probe.displacement_row(L) @ phi[:, 0]
     q = system.layout.beam_x(0)
-    x0[q.start + 6:q.stop] = 2e-3 / np.linalg.norm(tip) * phi[:, 0]
+    x0[q] = 2e-3 / np.linalg.norm(tip) * phi[:, 0]
     period = 2 * np.pi / omega
     dt = period / 200
     sensors = [Sensor(name="tip", kind="tip_deflection"), Sensor(name="energy", kind="energy")]
@@ -159,7 +159,7 @@ def test_newton_matrix_with_structural_damping_is_the_derivative_of_the_residual
                      Mount(0.35, 0.4, 0.3, 0.1), tip_force=np.array([0.3, -1.0, 0.5]), name="blade"),
              FfrPart(FfrBeam(L, 2, plate(thickness=0.01), structural_damping=1e-3), Mount(0.35, -0.4, np.pi, 0.0),
                      name="plain")]
-    system = HubSystem(parts, Hub(motion, 9.5, drive=DriveProfile("spin_up", 2.0, 1.0)), gravity=(0.0, -9.81, 0.0),
+    system = MultibodySystem(parts, Hub(motion, 9.5, drive=DriveProfile("spin_up", 2.0, 1.0)), gravity=(0.0, -9.81, 0.0),
                        damping=(1.73, 1.4))
     A, A_fd, res, res_fd = newton_matrix_and_differences(system, seed=5, perturbation=0.01, stiffness="exact")
     assert np.allclose(res, res_fd, rtol=0, atol=1e-14 * np.max(np.abs(res)))
@@ -233,24 +233,31 @@ def test_rotating_flap_frequency_of_a_tapered_stiffened_blade(modes):
 # ----------------------------------------------------------------------------- tip loads
 @pytest.mark.parametrize("modes", [None, 3])
 def test_tip_force_does_the_virtual_work_of_a_force_at_the_deformed_tip(modes):
-    """A constant tip force F is conservative: its generalized force on q is the gradient of
-    F . r_P(q), r_P the tip point's position (point_position: r_C + A0 ((L, 0, 0) + u(L))),
-    taken here by central differences at a deformed, turned state. The lever arm of the moment
-    on the body rotation is the deformed one: with the undeformed (L, 0, 0) the Theta rows miss
-    (T p) x F. The compiled residual and its load stiffness are held to the Python rows by
+    """A constant tip force F is conservative: its generalized force on v = [r_C', omega^b, p']
+    is the gradient of F . r_P, r_P the tip point's position (point_position: r_C + A0 ((L, 0, 0)
+    + u(L))), taken here by central differences at a deformed, turned state: along r_C, along a
+    small turn of the body frame about its own axes, and along p. The lever arm of the moment
+    on the body rotation is the deformed one: with the undeformed (L, 0, 0) the omega rows miss
+    (T p) x F. The compiled residual is held to the Python rows by
     tests/elements/test_ffr_kernels.py."""
+    from hubbeam.system.frames import rotation_vector_matrix
+
     force = np.array([3.0, -20.0, 12.0])
     beam = FfrBeam(L, 4, plate(), modes=modes)
     loaded, free = (FfrPart(beam, Mount(0.2, 0.1, 0.3, -0.2), tip_force=f) for f in (force, np.zeros(3)))
     rng = np.random.default_rng(7)
-    q, _ = loaded.initial_state(0.4)
-    q[:3] += rng.normal(scale=0.1, size=3)
-    q[3:6] += rng.normal(scale=0.3, size=3)
-    q[6:] = rng.normal(scale=1e-2, size=q.size - 6)
-    zero = np.zeros_like(q)
-    generalized = free.forces(q, zero, zero, np.zeros(3), (0.0, 0.0), tangent=False)[0] - \
-        loaded.forces(q, zero, zero, np.zeros(3), (0.0, 0.0), tangent=False)[0]
+    r_C, A = rng.normal(scale=0.1, size=3), rotation_vector_matrix(rng.normal(scale=0.5, size=3))
+    p = rng.normal(scale=1e-2, size=beam.ndof)
+    zero = np.zeros(6 + beam.ndof)
+    generalized = free.vspace_forces(A, p, zero, zero, np.zeros(3), (0.0, 0.0), tangent=False)[0] - \
+        loaded.vspace_forces(A, p, zero, zero, np.zeros(3), (0.0, 0.0), tangent=False)[0]
     eps = 1e-6
-    gradient = np.array([(force @ loaded.tip_position(q + eps * e) - force @ loaded.tip_position(q - eps * e)) / (2 * eps)
-                         for e in np.eye(q.size)])
+
+    def work(dr=np.zeros(3), dphi=np.zeros(3), dp=0.0):
+        return force @ loaded.tip_position(p + dp, (r_C + dr, A @ rotation_vector_matrix(dphi)))
+
+    gradient = np.concatenate([
+        [(work(dr=eps * e) - work(dr=-eps * e)) / (2 * eps) for e in np.eye(3)],
+        [(work(dphi=eps * e) - work(dphi=-eps * e)) / (2 * eps) for e in np.eye(3)],
+        [(work(dp=eps * e) - work(dp=-eps * e)) / (2 * eps) for e in np.eye(beam.ndof)]])
     assert np.allclose(generalized, gradient, rtol=0, atol=1e-7 * np.abs(gradient).max())

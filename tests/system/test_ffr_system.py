@@ -5,7 +5,6 @@ import numpy as np
 import pytest
 
 from hubbeam.elements.ffr.body import FfrBeam
-from hubbeam.elements.ffr.cardan import rotation_matrix
 from hubbeam.io.scenario import Sensor
 from hubbeam.simulation import simulate
 from hubbeam.solvers.modal import modal_analysis
@@ -13,8 +12,8 @@ from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
 from hubbeam.system.mount import Mount
-from hubbeam.system.hub_system import single_beam_system
-from tests.conftest import ALPHA_COEFS, L, central_difference, newton_matrix_and_differences, plate
+from hubbeam.system.multibody import single_beam_system
+from tests.conftest import L, central_difference, newton_matrix_and_differences, plate, rotation
 
 THICK = plate(thickness=0.01)
 
@@ -28,21 +27,22 @@ def pair(section=THICK, elements=8, stiffening=False, **kw):
 @pytest.mark.parametrize("theta, beta, azimuth, precone",
                          [(0.0, 0.0, 0.0, 0.0), (0.7, np.pi / 4, 0.0, 0.0), (-2.5, np.pi / 2, 2.0, 0.2),
                           (3.0, -0.3, -1.0, -0.4)])
-def test_clamped_body_frame_is_the_mount_frame(theta, beta, azimuth, precone):
+def test_body_frame_is_the_mount_frame(theta, beta, azimuth, precone):
+    """The FFR beam floats on its root section frame: at hub angle theta its body frame is
+    A_h(theta + psi) R_k(p) R_x(-beta) and its origin R i_k (the mount's convention, written
+    out here with plain rotation matrices), its tip at (L, 0, 0) of that frame when undeformed,
+    and it has no coordinates but its elastic ones (no clamp)."""
     system = single_beam_system(FfrBeam(L, 2, THICK), radius=0.35, twist=beta, azimuth=azimuth, precone=precone)
-    part = system.beams[0]
     x, F = system.initial_state(theta)
-    assert np.allclose(rotation_matrix(x[4:7]), Mount(0.35, beta, azimuth, precone).frame(theta), atol=1e-14)
-
-    def clamp(c):  # c = [theta, r_C, Theta]
-        return part.clamp(np.concatenate([c[1:], x[7:]]), F[0], c[0])
-
-    phi, jac, hess = clamp(x[0:7])
-    assert np.max(np.abs(phi)) < 1e-15
-    assert np.allclose(jac, central_difference(lambda c: clamp(c)[0], x[0:7], 1e-7), atol=1e-8)
-    lam = np.array([0.3, -1.2, 2.0, 0.1, 0.4, -0.5])
-    H_fd = central_difference(lambda c: clamp(c)[1].T @ lam, x[0:7], 1e-6)
-    assert np.allclose(hess(lam), H_fd, atol=1e-7)
+    a = theta + azimuth
+    A_h = np.array([[np.cos(a), 0.0, -np.sin(a)], [0.0, 1.0, 0.0], [np.sin(a), 0.0, np.cos(a)]])
+    R_k = rotation([0, 0, 1], precone)
+    R_x = rotation([1, 0, 0], -beta)
+    r, R = system.root_pose(0, x, F)
+    assert np.allclose(R, A_h @ R_k @ R_x, atol=1e-14)
+    assert np.allclose(r, 0.35 * A_h[:, 0], atol=1e-14)
+    assert np.allclose(system.tip_position(x, 0, F), r + L * R[:, 0], atol=1e-14)
+    assert system.layout.n_lambda == 1 and system.beams[0].ndof == x.size - 1  # the drive; theta and p
 
 
 def test_static_sag_and_frequencies_agree_with_ancf_at_small_deformation():
@@ -143,11 +143,11 @@ def test_exact_newton_matrix_with_ffr_beams_is_the_derivative_of_the_residual(mo
     at rest, where the inertia terms it leaves out vanish."""
     from hubbeam.system.ancf_part import AncfPart
     from hubbeam.system.ffr_part import FfrPart
-    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.multibody import Hub, MultibodySystem
     from hubbeam.system.tip_body import TipBody
 
     body = TipBody(0.2, (2e-4, 3e-4, 4e-4), (0.03, 0.01, -0.02))
-    system = HubSystem([FfrPart(FfrBeam(L, 3, THICK, tip_body=body), Mount(0.35, 0.4, 0.3, 0.1),
+    system = MultibodySystem([FfrPart(FfrBeam(L, 3, THICK, tip_body=body), Mount(0.35, 0.4, 0.3, 0.1),
                                 tip_force=np.array([0.3, -1.0, 0.5]), tip_moment=np.array([0.1, 0.05, -0.2]),
                                 name="ffr"),
                         AncfPart(AncfBeam(L, 3, THICK), Mount(0.35, -0.4, np.pi, 0.0), tip_body=body, name="ancf")],
@@ -173,11 +173,11 @@ def test_drag_damping_matrix_is_the_velocity_derivative_of_the_drag_in_motion(mo
     and its rank-one part (c2 / |rdot|) rdot rdot^T dominate C."""
     from hubbeam.system.ancf_part import AncfPart
     from hubbeam.system.ffr_part import FfrPart
-    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.multibody import Hub, MultibodySystem
     from hubbeam.system.tip_body import TipBody
 
     body = TipBody(0.2, (2e-4, 3e-4, 4e-4), (0.03, 0.01, -0.02))
-    system = HubSystem([FfrPart(FfrBeam(L, 3, THICK, tip_body=body), Mount(0.35, 0.4, 0.3, 0.1), name="ffr"),
+    system = MultibodySystem([FfrPart(FfrBeam(L, 3, THICK, tip_body=body), Mount(0.35, 0.4, 0.3, 0.1), name="ffr"),
                         AncfPart(AncfBeam(L, 3, THICK), Mount(0.35, -0.4, np.pi, 0.0), tip_body=body, name="ancf")],
                        Hub(motion, 9.5, drive=DriveProfile("spin_up", 2.0, 1.0)), gravity=(0.0, -9.81, 0.0),
                        damping=(1.73, 1.4))
@@ -188,7 +188,7 @@ def test_drag_damping_matrix_is_the_velocity_derivative_of_the_drag_in_motion(mo
     x[1:] += 0.01 * rng.normal(size=x.size - 1)
     v = rng.normal(size=x.size)  # hub, frame and node rates of order 1
     ffr = layout.beam_x(0)
-    v[ffr.start + 6:ffr.stop] *= 0.3
+    v[ffr] *= 0.3  # elastic rates
     acc = rng.normal(size=x.size)
     lam = rng.normal(size=layout.n_lambda)
 
@@ -206,53 +206,6 @@ def test_drag_damping_matrix_is_the_velocity_derivative_of_the_drag_in_motion(mo
     z = layout.z_of_x[ffr]
     block, block_fd = C_x[np.ix_(z, range(ffr.start, ffr.stop))], C_fd[np.ix_(z, range(ffr.start, ffr.stop))]
     assert np.max(np.abs(block - block_fd)) < 1e-5 * np.max(np.abs(block))  # measured: 1.3e-7
-
-
-@pytest.mark.parametrize("motion", ["free", "prescribed"])
-def test_hub_entry_of_the_newton_matrix_carries_the_ffr_clamp_hessian(motion):
-    """The hub angle's diagonal entry of the Newton matrix against the central difference of the
-    residual along the generalized-alpha correction of theta alone, with clamp multipliers of a
-    rotor's size (hundreds of N): there lambda . d2 Phi / dtheta2 of the FFR clamps' position
-    rows is a visible share of the entry (8e-6 of it: below the whole-matrix tolerance of
-    the test above). Two FFR beams (one with an offset tip body), gravity, drag; the share is
-    what the differences see when the clamp multipliers are set to zero."""
-    from hubbeam.system.ffr_part import FfrPart
-    from hubbeam.system.hub_system import Hub, HubSystem
-    from hubbeam.system.tip_body import TipBody
-
-    body = TipBody(0.2, (2e-4, 3e-4, 4e-4), (0.03, 0.01, -0.02))
-    system = HubSystem([FfrPart(FfrBeam(L, 3, THICK, tip_body=body), Mount(0.35, 0.4, 0.3, 0.1), name="a"),
-                        FfrPart(FfrBeam(L, 2, THICK), Mount(0.5, -0.4, 2.0, 0.0), name="b")],
-                       Hub(motion, 9.5, drive=DriveProfile("spin_up", 2.0, 1.0)), gravity=(0.0, -9.81, 0.0),
-                       damping=(1.73, 1.4))
-    ck, gp, bp = ALPHA_COEFS
-    s, t, layout = system.mass_scale, 0.3, system.layout
-    x0, F = system.initial_state(t)
-    rng = np.random.default_rng(4)
-    x0[1:] += 0.01 * rng.normal(size=x0.size - 1)
-    lam = rng.normal(size=layout.n_lambda)
-    for k, psi in enumerate((0.3, 2.0)):  # each clamp pulls its frame outwards with 300 N, as a spinning rotor's do
-        rows = layout.clamp_lambda(k)
-        lam[rows.start], lam[rows.start + 2] = 300.0 * np.cos(t + psi), 300.0 * np.sin(t + psi)
-    zero = np.zeros_like(x0)
-    z_theta = layout.z_of_x[0]
-
-    def hub_entry(multipliers, h=1e-5):
-        def row(d):
-            dx = zero.copy()
-            dx[0] = d
-            return system.equations(x0 + dx, gp * dx, bp * dx, multipliers, F, t, 0.0, 0.0, ck, s,
-                                    want_matrix=False)[0][z_theta]
-        return (row(h) - row(-h)) / (2 * h)
-
-    A = system.equations(x0, zero, zero, lam, F, t, ck * bp, ck * gp, ck, s, stiffness="exact")[1].to_dense()
-    entry = hub_entry(lam)
-    unclamped = lam.copy()
-    for k in range(2):
-        unclamped[layout.clamp_lambda(k)] = 0.0
-    share = entry - hub_entry(unclamped)
-    assert abs(share) > 1e-6 * abs(entry)  # the clamps' curvature does enter (measured: 8e-6 of it)
-    assert abs(A[z_theta, z_theta] - entry) < 1e-3 * abs(share)  # measured: 5e-11 of the share
 
 
 def test_ffr_energy_balance_on_a_driven_hub():

@@ -17,11 +17,12 @@ import numpy as np
 import pytest
 
 from hubbeam import api
-from hubbeam.elements.ffr.kernels import ffr_body_terms, ffr_energies, pack
+from hubbeam.elements.ffr.kernels import ffr_energies, ffr_vspace_terms, pack
+from hubbeam.system.frames import rotation_vector_matrix
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import initial_state
 from hubbeam.system.ffr_part import FfrPart
-from hubbeam.system.hub_system import energy_sums
+from hubbeam.system.multibody import energy_sums
 
 CASES = {
     "ancf exp1": ("exp1", []),
@@ -38,8 +39,9 @@ def python_energies(system, x, v, F, beam=None):
     rows = {}
     for k, part, q, chart in system.parts(x, F):
         qd = v[system.layout.beam_x(k)]
-        if isinstance(part, FfrPart):
-            e = part.energies(q, qd, chart, system.gravity)
+        if isinstance(part, FfrPart):  # in v-space: the root frame's motion and p'
+            (r, R), (v_r, w) = system._frame_and_rate(k, x, v, F)
+            e = part.energies(r, R, q, np.concatenate([v_r, R.T @ w, qd]), system.gravity)
             rows[k] = np.array([e["kinetic"], e["strain"], e["gravity"]])
             continue
         b = part.beam
@@ -52,7 +54,7 @@ def python_energies(system, x, v, F, beam=None):
         rows[k] = row
     if beam is not None:
         return dict(zip(("kinetic", "strain", "gravity"), rows[beam]))
-    total = sum(rows.values()) + np.array([0.5 * system.hub.inertia * v[0] ** 2, 0.0, 0.0])
+    total = sum(rows.values()) + np.array([0.5 * system.hub.inertia * v[system.theta_index] ** 2, 0.0, 0.0])
     return dict(zip(("kinetic", "strain", "gravity"), total))
 
 
@@ -84,7 +86,7 @@ def test_compiled_measures_are_the_parts_energies_and_tips(case):
             assert got["strains"][r, i] == pytest.approx(system.surface_strain(xs[r], chart, x, y, z, k),
                                                          rel=1e-12, abs=1e-15)
         for k in range(len(system.beams)):
-            tip = system.tip_displacement(xs[r], k)
+            tip = system.tip_displacement(xs[r], k, chart)
             assert np.allclose(got["tips"][r, k], [tip["radial"], tip["vertical"], tip["tangential"]],
                                rtol=0, atol=1e-15)
 
@@ -98,40 +100,43 @@ def test_without_energies_only_tips_are_measured():
 
 @pytest.mark.parametrize("modes", [None, 3])
 def test_ffr_energies_are_the_potentials_of_its_forces(modes):
+    """In v-space (v = [r_C', omega^b, p']): the elastic force is dU/dp, the kinetic energy is
+    v^T M_v v / 2 with the kernel's mass matrix, and the gravity load is minus the gradient of
+    the gravity potential along r_C, a small turn of the body frame about its own axes and p."""
     overrides = ['beam.formulation="ffr"', "beam.geometric_stiffening=true", "beam.elements=4"]
     system = api.build_system(load_example("exp1", overrides + ([f"beam.modes={modes}"] if modes else [])))
     arrays = pack(system.beams[0])
     inv, tip, drag = arrays.inv, arrays.tip, arrays.drag()
     rng = np.random.default_rng(1)
-    n = 6 + system.beams[0].beam.ndof
-    q = 0.05 * rng.standard_normal(n)
-    v = rng.standard_normal(n)
+    nf = system.beams[0].beam.ndof
+    n = 6 + nf
+    A, r_C = rotation_vector_matrix(rng.normal(size=3)), rng.normal(size=3)
+    p = 0.05 * rng.standard_normal(nf)
+    vb = rng.standard_normal(n)
     g = np.array([0.3, -9.81, 0.2])
     zero = np.zeros(n)
 
-    def energies(qq, vv, gg=g):
-        return np.array(ffr_energies(inv, qq, vv, gg))
+    def terms(gravity, factor):
+        fv, Mv = np.empty(n), np.empty((n, n))
+        ffr_vspace_terms(inv, A, p, zero, zero, gravity, tip, drag, factor, False, fv, Mv, np.empty((0, 0)),
+                         np.empty((nf, nf)))
+        return fv, Mv
 
-    # elastic force = dU/dp: the body force at rest without gravity or
-    # tip loads (load factor 0) is the elastic force on p
-    force = np.empty(n)
-    ffr_body_terms(inv, q, zero, zero, np.zeros(3), tip, drag, 0.0, 0.0, 0.0, 0.0, False, force,
-                   np.empty((0, 0)))
+    def energies(AA=A, rr=r_C, pp=p, vv=vb):
+        return np.array(ffr_energies(inv, AA, rr, pp, vv, g))
+
+    force, Mv = terms(np.zeros(3), 0.0)  # at rest, no loads: the elastic force on p
     h = 1e-6
-    for f in range(6, n):
-        e = np.zeros(n)
+    for f in range(nf):
+        e = np.zeros(nf)
         e[f] = h
-        dU = (energies(q + e, v)[1] - energies(q - e, v)[1]) / (2 * h)
-        assert dU == pytest.approx(force[f], rel=1e-6, abs=1e-9 * np.max(np.abs(force)))
-    # kinetic energy = v^T M v / 2 with M the Newton matrix's mass block (coef_m = 1)
-    M = np.empty((n, n))
-    ffr_body_terms(inv, q, zero, zero, g, tip, drag, 1.0, 0.0, 0.0, 1.0, True, np.empty(n), M)
-    assert energies(q, v)[0] == pytest.approx(0.5 * v @ M @ v, rel=1e-12)
-    # gravity potential: dV/dq = -Q_g, the difference of the body force at rest with and without gravity
-    with_g = np.empty(n)
-    ffr_body_terms(inv, q, zero, zero, g, tip, drag, 0.0, 0.0, 0.0, 1.0, False, with_g, np.empty((0, 0)))
-    for i in range(n):
-        e = np.zeros(n)
-        e[i] = h
-        dV = (energies(q + e, v)[2] - energies(q - e, v)[2]) / (2 * h)
-        assert dV == pytest.approx(with_g[i] - force[i], rel=1e-6, abs=1e-9 * np.max(np.abs(with_g - force)))
+        dU = (energies(pp=p + e)[1] - energies(pp=p - e)[1]) / (2 * h)
+        assert dU == pytest.approx(force[6 + f], rel=1e-6, abs=1e-9 * np.max(np.abs(force)))
+    assert energies()[0] == pytest.approx(0.5 * vb @ Mv @ vb, rel=1e-12)
+    load = force - terms(g, 1.0)[0]  # Q_g on v
+    grad = np.concatenate([
+        [(energies(rr=r_C + h * e)[2] - energies(rr=r_C - h * e)[2]) / (2 * h) for e in np.eye(3)],
+        [(energies(AA=A @ rotation_vector_matrix(h * e))[2] - energies(AA=A @ rotation_vector_matrix(-h * e))[2])
+         / (2 * h) for e in np.eye(3)],
+        [(energies(pp=p + h * e)[2] - energies(pp=p - h * e)[2]) / (2 * h) for e in np.eye(nf)]])
+    assert np.allclose(-grad, load, rtol=0, atol=1e-7 * np.max(np.abs(load)))

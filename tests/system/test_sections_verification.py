@@ -19,7 +19,7 @@ from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from hubbeam.system.laws import DriveProfile
 from tests.conftest import plate
 
@@ -293,7 +293,7 @@ def test_beams_of_different_meshes_and_tables_packed_together_keep_their_own_pro
     (5 elements, 5 points): the per-element and per-point arrays are padded to the larger beam; each
     beam's static sag and the energies equal those of the beam alone."""
     from hubbeam.system.ancf_part import AncfPart
-    from hubbeam.system.hub_system import Hub, HubSystem
+    from hubbeam.system.multibody import Hub, MultibodySystem
     from hubbeam.system.mount import Mount
 
     section = plate(width=0.05, thickness=0.004)
@@ -303,10 +303,10 @@ def test_beams_of_different_meshes_and_tables_packed_together_keep_their_own_pro
     b = AncfBeam(0.8, 5, section)
     mounts = (Mount(0.2, np.radians(70.0), 0.0), Mount(0.2, np.radians(90.0), np.pi))
     parts = [AncfPart(beam, mount, name=name) for beam, mount, name in zip((a, b), mounts, ("a", "b"))]
-    together = HubSystem(parts, Hub("fixed"), gravity=gravity)
+    together = MultibodySystem(parts, Hub("fixed"), gravity=gravity)
     both = solve_static(together)
     for k, part in enumerate(parts):
-        alone = HubSystem([part], Hub("fixed"), gravity=gravity)
+        alone = MultibodySystem([part], Hub("fixed"), gravity=gravity)
         single = solve_static(alone)
         assert together.tip_displacement(both.x, k) == pytest.approx(alone.tip_displacement(single.x), rel=1e-9)
         e_both = together.energies(both.x, np.zeros_like(both.x), both.chart, beam=k)

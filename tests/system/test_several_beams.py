@@ -20,7 +20,7 @@ from hubbeam.solvers.static import solve_static
 from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.ffr_part import FfrPart
-from hubbeam.system.hub_system import Hub, HubSystem, single_beam_system
+from hubbeam.system.multibody import Hub, MultibodySystem, single_beam_system
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
@@ -49,7 +49,7 @@ def mirror_pair(body=None, precone=0.0, mirrored_body=True):
     if body is not None and mirrored_body:
         c = body.offset
         other = TipBody(body.mass, body.inertia, (c[0], c[1], -c[2]))
-    return HubSystem([AncfPart(AncfBeam(L, 3, plate()), Mount(0.35, BETA, 0.0, precone), tip_body=body, name="b1"),
+    return MultibodySystem([AncfPart(AncfBeam(L, 3, plate()), Mount(0.35, BETA, 0.0, precone), tip_body=body, name="b1"),
                       AncfPart(AncfBeam(L, 3, plate()), Mount(0.35, -BETA, np.pi, precone), tip_body=other,
                                name="b2")],
                      Hub(motion="free", inertia=9.5), gravity=GRAVITY)
@@ -90,13 +90,13 @@ def twin_part(azimuth, name):
 def twins():
     """Two identical beams (same twist, precone, tip body) at 0 and 180 deg: a half-turn about
     j0 maps the system onto itself."""
-    return HubSystem([twin_part(0.0, "b1"), twin_part(np.pi, "b2")], Hub("free", J_HUB, TorqueLaw.constant(TORQUE)),
+    return MultibodySystem([twin_part(0.0, "b1"), twin_part(np.pi, "b2")], Hub("free", J_HUB, TorqueLaw.constant(TORQUE)),
                      gravity=GRAVITY)
 
 
 def half():
     """One of the twins on half the hub inertia with half the torque."""
-    return HubSystem([twin_part(0.0, "b1")], Hub("free", J_HUB / 2, TorqueLaw.constant(TORQUE / 2)), gravity=GRAVITY)
+    return MultibodySystem([twin_part(0.0, "b1")], Hub("free", J_HUB / 2, TorqueLaw.constant(TORQUE / 2)), gravity=GRAVITY)
 
 
 def test_two_rotationally_symmetric_beams_move_like_one_on_half_the_hub():
@@ -140,7 +140,7 @@ def three_beams(torque=None, hub_inertia=J_HUB_THREE):
     layout = [(BETA, 0.0, 0.0), (np.pi / 6, 2 * np.pi / 3, 0.1), (0.0, 4 * np.pi / 3, -0.05)]
     parts = [AncfPart(AncfBeam(L, 3, plate()), Mount(0.35, beta, azimuth, precone), tip_body=BODY, name=f"b{i}")
              for i, (beta, azimuth, precone) in enumerate(layout)]
-    return HubSystem(parts, Hub("free", hub_inertia, torque or TorqueLaw()), gravity=GRAVITY)
+    return MultibodySystem(parts, Hub("free", hub_inertia, torque or TorqueLaw()), gravity=GRAVITY)
 
 
 def test_constant_torque_on_three_beams_angular_momentum_is_torque_times_time():
@@ -200,7 +200,7 @@ def test_each_beams_energy_sensor_measures_that_beam():
                     state=ga.init(system, x, F, v0=v0))
     expected = []
     for part in system.beams:
-        alone = HubSystem([part], Hub("free", 1.0))
+        alone = MultibodySystem([part], Hub("free", 1.0))
         expected.append(0.5 * omega**2 * (rigid_axis_inertia(alone) - 1.0))
     measured = [traj.records[f"e_{n}"][0]["kinetic"] for n in names]
     assert measured == pytest.approx(expected, rel=1e-9)
@@ -245,7 +245,7 @@ def loaded_pair(motion, torque):
              AncfPart(AncfBeam(L, 2, plate()), Mount(0.3, -np.pi / 6, 2.2, 0.15),
                       tip_body=TipBody(0.2, (1e-4, 1e-4, 1.5e-4), (-0.02, 0.01, 0.03)),
                       tip_force=(-0.2, 0.1, 0.1), tip_moment=(-0.01, 0.04, 0.02), name="b2")]
-    return HubSystem(parts, Hub(motion, 9.5, torque, REFERENCE), gravity=GRAVITY, damping=(1.73, 1.4))
+    return MultibodySystem(parts, Hub(motion, 9.5, torque, REFERENCE), gravity=GRAVITY, damping=(1.73, 1.4))
 
 
 @pytest.mark.parametrize("motion, torque", [("free", TorqueLaw.pd(KP, KD, REFERENCE)),
@@ -278,7 +278,7 @@ MIXED_BODY = TipBody(0.1, (2e-4, 3e-4, 4e-4), (0.02, 0.0, 0.0))
 def mixed_pair(elements=4):
     """An ANCF beam at 0 deg and an FFR beam at 180 deg (mirror twists), tip bodies on both,
     a 10 mm plate (small deformation, where the two formulations agree)."""
-    return HubSystem([AncfPart(AncfBeam(L, elements, THICK), Mount(0.35, BETA, 0.0, 0.0), tip_body=MIXED_BODY,
+    return MultibodySystem([AncfPart(AncfBeam(L, elements, THICK), Mount(0.35, BETA, 0.0, 0.0), tip_body=MIXED_BODY,
                                name="ancf"),
                       FfrPart(FfrBeam(L, elements, THICK, tip_body=MIXED_BODY), Mount(0.35, -BETA, np.pi, 0.0),
                               name="ffr")],
@@ -346,12 +346,12 @@ def test_a_chart_change_of_one_beam_among_two_matches_the_python_run():
     from hubbeam.elements.ancf.chart import frame_from_director
     from hubbeam.simulation import initial_state
 
-    class PythonOnly(HubSystem):
+    class PythonOnly(MultibodySystem):
         compiled = False
 
     parts = [AncfPart(AncfBeam(L, 4, plate()), Mount(0.35, np.pi / 2, 0.0, 0.0), tip_body=MIXED_BODY, name="a"),
              AncfPart(AncfBeam(L, 3, plate()), Mount(0.3, 0.3, 2.0, 0.1), name="b")]
-    system = HubSystem(parts, Hub("free", 3.0, TorqueLaw.constant(1.0)), gravity=GRAVITY)
+    system = MultibodySystem(parts, Hub("free", 3.0, TorqueLaw.constant(1.0)), gravity=GRAVITY)
     python = PythonOnly(system.beams, system.hub, system.gravity, system.damping)
     start = initial_state(system)
     charts = start.chart.copy()
@@ -397,9 +397,9 @@ def test_tip_body_on_a_cantilever_is_a_tip_force_and_moment(formulation):
         beam = FfrBeam(L, 4, THICK)
         system = single_beam_system(beam, radius=0.35, twist=np.pi / 2, gravity=(0, -g, 0), tip_body=body)
     sol = solve_static(system, load_steps=2)
-    part, qk = system.beams[0], sol.x[1:]
+    part, qk = system.beams[0], sol.x[system.layout.beam_x(0)]
     position = (lambda s: beam.interpolate(qk, s)[0]) if formulation == "ancf" else \
-        (lambda s: part.point_position(qk, s))
+        (lambda s: part.point_position(qk, system.root_pose(0, sol.x, sol.chart), s))
     tip = system.tip_displacement(sol.x)
     # ANCF (nonlinear, cubic centre line): measured 9e-6 and 1.7e-6, a discretisation effect
     # that falls ~16x per mesh halving and grows with the load squared (about 1 % with 2

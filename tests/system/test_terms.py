@@ -26,7 +26,7 @@ from hubbeam.system import terms
 from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.assembly import add_entry
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import Hub, HubSystem
+from hubbeam.system.multibody import Hub, MultibodySystem
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
 from tests.conftest import L, plate
@@ -71,7 +71,7 @@ def point_mass_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
             res[z] += coef_k * m * (acc[pack.x0[k] + i] - load_factor * ctx.gravity[i])
             if want_matrix:
                 add_entry(ab, brow, bcol, bb, ctx.ku, z, z, coef_m * m)
-    return 0.0, 2.0, 0.0
+    return 2.0, 0.0
 
 
 def point_mass_energies(pack, ctx, F, x, v, beams):
@@ -83,7 +83,23 @@ def point_mass_energies(pack, ctx, F, x, v, beams):
     return 0.0, 0.0, 0.0
 
 
-terms.register(PointMasses, pack_point_masses, point_mass_equations, point_mass_energies, bandwidth=lambda system: 1)
+def point_mass_momenta(pack, ctx, F, x, v, out):
+    """m, m r, m v and r x m v about the origin (what a kind with mass adds to the momenta)."""
+    for k in range(pack.x0.shape[0]):
+        m = pack.mass[k]
+        r = x[pack.x0[k]:pack.x0[k] + 3]
+        u = v[pack.x0[k]:pack.x0[k] + 3]
+        out[0] += m
+        for i in range(3):
+            out[1 + i] += m * r[i]
+            out[4 + i] += m * u[i]
+        out[7] += m * (r[1] * u[2] - r[2] * u[1])
+        out[8] += m * (r[2] * u[0] - r[0] * u[2])
+        out[9] += m * (r[0] * u[1] - r[1] * u[0])
+
+
+terms.register(PointMasses, pack_point_masses, point_mass_equations, point_mass_energies,
+               bandwidth=lambda system, layout: 1, momenta=point_mass_momenta)
 
 
 # --------------------------------------------------------------------------- the checks
@@ -92,8 +108,8 @@ def systems(elements=4, motion="free"):
     beam = AncfBeam(L, elements, plate())
     mount = Mount(0.2, np.pi / 4, 0.0, 0.0)
     hub = Hub(motion, 0.5)
-    with_point = HubSystem([AncfPart(beam, mount)], hub, GRAVITY, attachments=[PointMass(0, elements, MASS)])
-    with_body = HubSystem([AncfPart(beam, mount, tip_body=TipBody(MASS))], hub, GRAVITY)
+    with_point = MultibodySystem([AncfPart(beam, mount)], hub, GRAVITY, attachments=[PointMass(0, elements, MASS)])
+    with_body = MultibodySystem([AncfPart(beam, mount, tip_body=TipBody(MASS))], hub, GRAVITY)
     return with_point, with_body
 
 

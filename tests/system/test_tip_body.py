@@ -276,7 +276,7 @@ def ancf_weak_frequencies(elements, body):
     tip body's mass block added on the tip node's 8 coordinates, modes on the null space of
     the constraint Jacobian."""
     from hubbeam.system.beam import AncfBeam
-    from hubbeam.system.hub_system import single_beam_system
+    from hubbeam.system.multibody import single_beam_system
 
     beam = AncfBeam(L, elements, plate())
     system = single_beam_system(beam, radius=0.0, twist=0.0, motion="fixed")

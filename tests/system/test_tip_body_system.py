@@ -5,7 +5,7 @@ terms (the ANCF kernel, the FFR invariants) and, with those terms added by hand 
 beam's matrices, the frequencies. Here the body goes in as a user puts it in
 (``single_beam_system(..., tip_body=...)``: the compiled system equations for ANCF, the FFR
 beam's invariants for FFR) and :func:`hubbeam.solvers.modal.modal_analysis` gives the modes,
-picked by their kinetic energy (:meth:`HubSystem.kinetic_energy_split`). Every principal
+picked by their kinetic energy (:meth:`MultibodySystem.kinetic_energy_split`). Every principal
 inertia of the body is checked against a closed form that knows nothing of the code:
 
 - bending about m (deflection along n, the weak axis; ``lag`` at twist 0): tip mass and J_m,
@@ -25,7 +25,7 @@ from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import single_beam_system
+from hubbeam.system.multibody import single_beam_system
 from tests.conftest import L, plate
 from tests.system.test_tip_body import FREQUENCY_BODY, MESHES, TIP_MASS, check_convergence, tip_body_roots
 

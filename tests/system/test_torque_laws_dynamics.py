@@ -18,7 +18,7 @@ from hubbeam.solvers.modal import modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.beam import AncfBeam
-from hubbeam.system.hub_system import Hub, HubSystem, single_beam_system
+from hubbeam.system.multibody import Hub, MultibodySystem, single_beam_system
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
@@ -45,10 +45,10 @@ STIFF_BODY = TipBody(0.5, (0.01, 0.02, 0.015), (0.03, 0.0, 0.0))
 HUB_INERTIA = 1.0
 
 
-def stiff_rotor(torque=None, motion="free", drive=None) -> HubSystem:
+def stiff_rotor(torque=None, motion="free", drive=None) -> MultibodySystem:
     parts = [AncfPart(AncfBeam(STIFF_LENGTH, 3, steel()), Mount(*mount), tip_body=STIFF_BODY, name=f"b{i}")
              for i, mount in enumerate(STIFF_MOUNTS)]
-    return HubSystem(parts, Hub(motion, HUB_INERTIA, torque or TorqueLaw(), drive or DriveProfile("rest")))
+    return MultibodySystem(parts, Hub(motion, HUB_INERTIA, torque or TorqueLaw(), drive or DriveProfile("rest")))
 
 
 STIFF_ROTOR = stiff_rotor()
@@ -138,7 +138,7 @@ def flexible_slew(damping):
     tracking a 0.3 rad slew in 1.5 s."""
     part = AncfPart(AncfBeam(L, 3, plate()), Mount(0.35, 0.0, 0.0, 0.0), name="b0")
     law = TorqueLaw.pd(40.0, 28.0, DriveProfile.slew(0.3, 1.5))
-    return HubSystem([part], Hub("free", 9.557, law), damping=damping)
+    return MultibodySystem([part], Hub("free", 9.557, law), damping=damping)
 
 
 def test_a_slew_leaves_the_flexible_tip_vibrating_and_drag_damps_it():
@@ -220,7 +220,7 @@ def three_beam_rotor(torque):
     layout = [(np.pi / 4, 0.0, 0.0), (np.pi / 6, 2 * np.pi / 3, 0.1), (0.0, 4 * np.pi / 3, -0.05)]
     parts = [AncfPart(AncfBeam(L, 3, plate()), Mount(0.35, beta, azimuth, precone), tip_body=body, name=f"b{i}")
              for i, (beta, azimuth, precone) in enumerate(layout)]
-    return HubSystem(parts, Hub("free", 2.0, torque), gravity=(0.0, -9.81, 0.0), damping=(1.73, 1.4))
+    return MultibodySystem(parts, Hub("free", 2.0, torque), gravity=(0.0, -9.81, 0.0), damping=(1.73, 1.4))
 
 
 @pytest.mark.parametrize("update", ["iteration", "step", "adaptive"])
@@ -258,7 +258,7 @@ def blades_on_a_driven_hub(drive, elements=2, damping=0.0):
     sec = Section(0.06, 0.004, 2700.0, 70e9, 70e9 / 2.66, saint_venant_torsion_constant(0.06, 0.004))
     parts = [AncfPart(AncfBeam(1.0, elements, sec, structural_damping=damping), Mount(0.2, np.pi / 2, 2 * np.pi * k / 3, 0.0),
                       name=f"blade{k + 1}") for k in range(3)]
-    return HubSystem(parts, Hub("prescribed", 0.5, drive=drive))
+    return MultibodySystem(parts, Hub("prescribed", 0.5, drive=drive))
 
 
 def test_a_noisy_speed_log_smoothed_drives_like_the_clean_one():

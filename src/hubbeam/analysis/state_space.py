@@ -17,7 +17,7 @@ constraint drift:
     d/dt [y, y'] = [[0, I], [-Mr^-1 Kr, -Mr^-1 Cr]] [y, y'] + [0; Mr^-1 N^T B_x] u,
     Mr = N^T M N, Cr = N^T C N, Kr = N^T K N.
 
-At rest K, M and A are the exact derivatives of :meth:`HubSystem.linearised` and C (the linear
+At rest K, M and A are the exact derivatives of :meth:`MultibodySystem.linearised` and C (the linear
 part of the drag, and -dT/dtheta' of a torque law) is the system's Newton matrix with coef_c =
 1, which is exact at zero velocity. About the steady rotation K and C (centrifugal softening and
 pre-stress, gyroscopic and Coriolis terms, drag) are central differences of the system's own
@@ -55,7 +55,7 @@ from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.sensors import UNITS, measure
 from hubbeam.solvers.modal import rotating_matrices
 from hubbeam.solvers.static import StaticSolution
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 #: sensor kinds that give no linear output (a norm, zero to first order)
 NOT_LINEARISED = ("constraint_violation",)
@@ -173,7 +173,11 @@ class _Probe:
     chart: np.ndarray
 
 
-def input_columns(system: HubSystem, names, x, v, acc, lam, F) -> tuple[np.ndarray, list[str], list[str]]:
+#: the inputs of a free base: its attitude torque's components, base axes (N m)
+BASE_TORQUE_INPUTS = ("base_torque_x", "base_torque_y", "base_torque_z")
+
+
+def input_columns(system: MultibodySystem, names, x, v, acc, lam, F) -> tuple[np.ndarray, list[str], list[str]]:
     """(B_x (nx x m), input names, units) of the inputs ``names``: "hub_torque" (a free hub) and
     "tip_force:NAME" (three components). ScenarioError ("inputs: ...") for an unknown one."""
     columns, labels, units = [], [], []
@@ -187,9 +191,15 @@ def input_columns(system: HubSystem, names, x, v, acc, lam, F) -> tuple[np.ndarr
                 raise ScenarioError(f"inputs: hub_torque needs a free hub (hub.motion = {system.motion!r} holds it; "
                                     "a tip_force:BEAM input works on any hub)")
             e = np.zeros(system.nx)
-            e[0] = 1.0  # the hub row is J theta'' - T - u + ...: u enters as the torque law's T
+            e[system.theta_index] = 1.0  # the hub row is J theta'' - T - u + ...: u enters as the torque law's T
             columns.append(e)
             labels.append("hub_torque")
+            units.append("N m")
+        elif kind in BASE_TORQUE_INPUTS and not beam:
+            if system.base.motion.value != "free":
+                raise ScenarioError(f"inputs: {kind} needs a free base (base.motion = {system.base.motion.value!r})")
+            columns.append(system.base_torque_column(x, BASE_TORQUE_INPUTS.index(kind)))
+            labels.append(kind)
             units.append("N m")
         elif kind == "tip_force":
             names_ = [b.name for b in system.beams]
@@ -200,34 +210,33 @@ def input_columns(system: HubSystem, names, x, v, acc, lam, F) -> tuple[np.ndarr
             for i, axis in enumerate(AXES):
                 part = system.beams[k]
                 pushed = replace(part, tip_force=np.asarray(part.tip_force, dtype=float) + np.eye(3)[i])
-                variant = HubSystem([pushed if j == k else b for j, b in enumerate(system.beams)], system.hub,
-                                    system.gravity, system.damping, system.attachments)
+                variant = system.with_beams([pushed if j == k else b for j, b in enumerate(system.beams)])
                 columns.append(base - _forces(variant, x, v, acc, lam, F))  # residual is affine in a dead load
                 labels.append(f"tip_force_{axis}_{system.beams[k].name}")
                 units.append("N")
         else:
-            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque or tip_force:BEAM)")
+            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque, base_torque_x|y|z or tip_force:BEAM)")
     if len(set(labels)) != len(labels):
         raise ScenarioError(f"inputs: an input is given twice ({', '.join(map(str, names))})")
     return np.array(columns).T.reshape(system.nx, len(columns)), labels, units
 
 
-def _forces(system: HubSystem, x, v, acc, lam, F) -> np.ndarray:
+def _forces(system: MultibodySystem, x, v, acc, lam, F) -> np.ndarray:
     """The force rows of the equations of motion on x (N, N m): M acc + r(x, v) + Phi_x^T lam - Q."""
     res = system.equations(x, v, acc, lam, F, 0.0, 0.0, 0.0, 1.0, 1.0, want_matrix=False)[0]
     return res[system.layout.z_of_x]
 
 
-def _dense(system: HubSystem, x, v, acc, lam, F, coef_m, coef_c) -> np.ndarray:
+def _dense(system: MultibodySystem, x, v, acc, lam, F, coef_m, coef_c) -> np.ndarray:
     """coef_m M + coef_c C of the system's Newton matrix on x (dense)."""
     _, matrix = system.equations(x, v, acc, lam, F, 0.0, coef_m, coef_c, 0.0, 1.0)
     zx = system.layout.z_of_x
     return matrix.to_dense()[np.ix_(zx, zx)]
 
 
-def rest_matrices(system: HubSystem, x, lam_held, F):
+def rest_matrices(system: MultibodySystem, x, lam_held, F):
     """(M, C, K, A) about a static equilibrium (x, the held layout's multipliers lam_held as
-    ``solve_static`` gives them, charts F): exact K, M, A of :meth:`HubSystem.linearised`, C the
+    ``solve_static`` gives them, charts F): exact K, M, A of :meth:`MultibodySystem.linearised`, C the
     Newton matrix's velocity part at zero velocity (exact there: the drag's linear part and
     -dT/dtheta' of a torque law; the quadratic velocity terms have no slope at rest)."""
     held = system.hub.held
@@ -261,7 +270,7 @@ def _output_specs(sensors, system):
     return specs, left_out
 
 
-def linearise(system: HubSystem, equilibrium: StaticSolution, omega: float = 0.0, inputs=("hub_torque",),
+def linearise(system: MultibodySystem, equilibrium: StaticSolution, omega: float = 0.0, inputs=("hub_torque",),
               sensors=(), about: str = "") -> LinearModel:
     """The state space of ``system`` about ``equilibrium`` (a ``solve_static`` solution; with
     ``spin=omega`` for a hub driven at the constant speed omega rad/s, then the system's hub is
@@ -315,7 +324,7 @@ def linearise(system: HubSystem, equilibrium: StaticSolution, omega: float = 0.0
     C_ss = np.hstack([Hy + Hl @ lam_y, Hv + Hl @ lam_v])
     D_ss = Hl @ lam_u
     states = [f"y{i + 1}" for i in range(n)] + [f"y{i + 1}_rate" for i in range(n)]
-    rigid = int(not held and system.hub.torque(0.0, x0[0], 0.0)[1] == 0.0)
+    rigid = int(not held and system.hub.torque(0.0, x0[system.theta_index], 0.0)[1] == 0.0)
     return LinearModel(A_ss, B_ss, C_ss, D_ss, states, in_names, [sp[2] for sp in specs], in_units,
                        [sp[3] for sp in specs], N, Equilibrium(x0, lam, F, float(omega), v0), offsets, about,
                        rigid, left_out)

@@ -27,6 +27,8 @@ def cmd_static(args, scenario) -> dict:
             raise ComputationError(f"static equilibrium: {exc}", partial=exc.partial) from exc
         raise
     d = result.to_dict()
+    for note in result.notes:
+        say(f"hubbeam: note: {note}")
     if targets:
         from hubbeam import plots
 
@@ -69,6 +71,8 @@ def cmd_modes(args, scenario) -> dict:
         write_netcdf(ds, path)
 
     write_jobs([(t, figure if t.option == "--plot" else shapes) for t in targets])
+    for note in result.static.notes:
+        say(f"hubbeam: note: {note}")
     if len(d["frequencies_hz"]) < scenario.analysis.count:
         say(f"hubbeam: note: analysis.count = {scenario.analysis.count}, but the model has only "
              f"{len(d['frequencies_hz'])} (more beam.elements give more)")

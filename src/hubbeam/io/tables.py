@@ -185,3 +185,34 @@ def read_torque_table(path: str | Path, key: str, *, base_dir: str | Path | None
         return TorqueLaw.table(t, cols["torque"])
     except ValueError as exc:  # pragma: no cover - read_series checks everything TorqueLaw does
         raise ScenarioError(f"{key}: {_resolve(path, base_dir)}: {exc}") from None
+
+
+#: the columns of a base's pose table besides time: O_b (m) and the rotation vector (rad)
+POSE_COLUMNS = ("x", "y", "z", "rx", "ry", "rz")
+
+
+def read_pose_table(path: str | Path, key: str, *, base_dir: str | Path | None = None):
+    """A base's :class:`~hubbeam.system.base_laws.PoseTable` from a CSV with columns ``time``
+    (s), ``x``, ``y``, ``z`` (m: the base origin, global) and ``rx``, ``ry``, ``rz`` (rad: the
+    rotation vector of the base axes); at least 4 rows from t = 0. A rotation vector that jumps
+    by more than pi between rows (the same attitude written as another vector: unwrap it) is
+    refused naming the row."""
+    from hubbeam.system.base_laws import MIN_POSE_ROWS, PoseTable
+
+    columns = {}
+    t = None
+    for name in POSE_COLUMNS:
+        t, cols = read_series(path, key, (name,), base_dir=base_dir, min_rows=MIN_POSE_ROWS, start_at_zero=True)
+        columns[name] = cols[name]
+    position = np.column_stack([columns[c] for c in POSE_COLUMNS[:3]])
+    rotation = np.column_stack([columns[c] for c in POSE_COLUMNS[3:]])
+    p = _resolve(path, base_dir)
+    jumps = np.linalg.norm(np.diff(rotation, axis=0), axis=1)
+    if np.any(jumps > np.pi):
+        r = int(np.argmax(jumps > np.pi)) + 2
+        raise ScenarioError(f"{key}: {p}: row {r}: the rotation vector jumps by {jumps[r - 2]:.4g} rad (more than pi) "
+                            "from the row before: write the rotation continuously (unwrapped)")
+    try:
+        return PoseTable(t, position, rotation)
+    except ValueError as exc:  # pragma: no cover - read_series checks everything PoseTable does
+        raise ScenarioError(f"{key}: {p}: {exc}") from None

@@ -28,7 +28,7 @@ import enum
 
 from hubbeam.errors import ConvergenceError
 from hubbeam.system.assembly import Factorisation
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 
 @dataclass(frozen=True)
@@ -137,7 +137,7 @@ def factorise(matrix, h: float, chart: np.ndarray) -> IterationMatrix:
         raise ConvergenceError(f"singular iteration matrix (a constraint lost rank or a mass vanished): {exc}") from exc
 
 
-def init(system: HubSystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
+def init(system: MultibodySystem, x0: np.ndarray, F: np.ndarray, t0: float = 0.0,
          v0: np.ndarray | None = None) -> AlphaState:
     """Consistent accelerations and multipliers at (x0, v0): M xdd + Phi_x^T lam = Q - f,
     Phi_x xdd = -Phi_tt - (d/dt Phi_x) v (the drive's prescribed angular acceleration and the
@@ -319,10 +319,10 @@ class KeptMatrix:
     reuse: np.ndarray = field(default_factory=reuse_state)
 
 
-def step(system: HubSystem, state: AlphaState, h: float, p: AlphaParameters,
+def step(system: MultibodySystem, state: AlphaState, h: float, p: AlphaParameters,
          options: NewtonOptions = NewtonOptions(), kept: KeptMatrix | None = None
          ) -> tuple[AlphaState, int, KeptMatrix]:
-    """One step of length h in Python (any :class:`HubSystem`; systems that compile run the
+    """One step of length h in Python (any :class:`MultibodySystem`; systems that compile run the
     same controller in :func:`hubbeam.solvers.compiled_alpha.advance`).
 
     Returns the new state, the Newton iterations it took and the matrix kept for the next

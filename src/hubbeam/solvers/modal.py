@@ -26,7 +26,7 @@ from scipy.linalg import eig, eigh, null_space
 
 from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.solvers.static import StaticSolution
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 
 @dataclass
@@ -43,7 +43,7 @@ class Modes:
 
 
 def modal_analysis(
-    system: HubSystem, equilibrium: StaticSolution, count: int = 6, free_hub: bool | None = None,
+    system: MultibodySystem, equilibrium: StaticSolution, count: int = 6, free_hub: bool | None = None,
     rigid_tol_hz: float = 1e-3,
 ) -> Modes:
     """Lowest ``count`` elastic natural frequencies about ``equilibrium``.
@@ -69,7 +69,7 @@ def modal_analysis(
         w2, V = w2.real[order], V.real[:, order]
     f = np.sqrt(np.abs(w2)) * np.sign(w2) / (2.0 * np.pi)
     rigid = np.abs(f) < rigid_tol_hz
-    if free_hub and system.hub.torque(0.0, equilibrium.x[0], 0.0)[1] == 0.0:
+    if free_hub and system.hub.torque(0.0, equilibrium.x[system.theta_index], 0.0)[1] == 0.0:
         # the rigid rotation of hub and beams; a torque law with a stiffness (PD, kp > 0) makes
         # it the servo mode, an elastic mode like the others
         rigid[np.argmin(np.abs(f))] = True
@@ -112,7 +112,7 @@ def grouped_central_differences(fun, x: np.ndarray, steps: np.ndarray, groups, r
     return jac
 
 
-def rotating_matrices(system: HubSystem, x_s, lam, F, omega: float, held: bool = True, hub_row: bool = True):
+def rotating_matrices(system: MultibodySystem, x_s, lam, F, omega: float, held: bool = True, hub_row: bool = True):
     """(M, G, K, A) about the steadily rotating state x_s (multipliers ``lam`` of the layout with
     the hub ``held``, charts F, hub speed omega in rad/s), in the co-rotating coordinates of
     :func:`rotating_modal_analysis`: M the system's mass matrix (exact), G the gyroscopic,
@@ -144,7 +144,7 @@ def rotating_matrices(system: HubSystem, x_s, lam, F, omega: float, held: bool =
         G = central_difference_jacobian(
             lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), zero, unit)
     else:
-        band, border = system.bandwidth, layout.border
+        band, border = system.bandwidth_for(layout), layout.border
         groups = band_column_groups(zx, band, border)
 
         def rows_of(i):  # the x-rows column i reaches (all for a border column), the border's left out
@@ -197,7 +197,7 @@ def coupled_blocks(A: np.ndarray, *matrices: np.ndarray) -> list[tuple[np.ndarra
     return sorted(blocks, key=lambda b: b[0][0])
 
 
-def rotating_modal_analysis(system: HubSystem, steady: StaticSolution, omega: float, count: int | None = 6,
+def rotating_modal_analysis(system: MultibodySystem, steady: StaticSolution, omega: float, count: int | None = 6,
                             include_damping: bool = False, same: float = 0.0) -> Modes:
     """Lowest ``count`` natural frequencies (Hz) about the state that turns steadily with the
     hub at theta' = omega (rad/s), ``steady`` from ``solve_static(system, spin=omega)``.

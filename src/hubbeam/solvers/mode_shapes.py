@@ -3,10 +3,10 @@ modal assurance criterion that follows a mode from one hub speed to the next.
 
 **Split and label.** A mode shape u about the configuration x is a rate of the coordinates;
 the kinetic energy of the system moving at u is split into the hub's and, for every beam in
-its own directions, the ``flap`` (centre line along j0, out of the hub plane), ``lag`` (along
+its own directions, the ``flap`` (centre line along j_h, out of the hub plane), ``lag`` (along
 the beam's k_k, in the hub plane across the beam), ``axial`` (along the beam axis) and
 ``torsion`` (section rotation about the beam axis) parts
-(:meth:`hubbeam.system.hub_system.HubSystem.kinetic_energy_split`). The fractions add up to
+(:meth:`hubbeam.system.multibody.MultibodySystem.kinetic_energy_split`). The fractions add up to
 1. The label is the largest part's name; when that part is below :data:`DOMINANT` of the
 total, the two largest joined by "+" in the order of :data:`MOTIONS` (``"flap+lag"``).
 
@@ -32,8 +32,9 @@ import numpy as np
 
 from hubbeam.system.parts import BEAM_MOTIONS
 
-#: the parts of a mode's kinetic energy, in the order a label joins them
-MOTIONS = BEAM_MOTIONS + ("hub",)
+#: the parts of a mode's kinetic energy, in the order a label joins them (``base``: a moving
+#: base's own body)
+MOTIONS = BEAM_MOTIONS + ("hub", "base")
 #: a part at least this share of the kinetic energy names the mode alone
 DOMINANT = 0.6
 #: frequencies closer than this (relative) are one repeated frequency: their modes one eigenspace
@@ -59,14 +60,15 @@ def energy_fractions(system, x, F, shape) -> dict[str, float]:
     total = sum(split.values())
     if not total > 0.0:
         raise ValueError("a mode shape without kinetic energy has no energy split")
-    return {k: split[k] / total for k in MOTIONS}
+    return {k: split.get(k, 0.0) / total for k in MOTIONS}
 
 
 def mode_label(fractions: dict[str, float], dominant: float = DOMINANT) -> str:
     """The largest part's name, or the two largest joined by "+" (in the order of
-    :data:`MOTIONS`) when the largest is below ``dominant``."""
-    ranked = sorted(MOTIONS, key=lambda k: -fractions[k])
-    if fractions[ranked[0]] >= dominant:
+    :data:`MOTIONS`) when the largest is below ``dominant``; a part missing from ``fractions``
+    counts as 0."""
+    ranked = sorted(MOTIONS, key=lambda k: -fractions.get(k, 0.0))  # a part not given (no base): none
+    if fractions.get(ranked[0], 0.0) >= dominant:
         return ranked[0]
     return "+".join(k for k in MOTIONS if k in ranked[:2])
 
@@ -173,7 +175,7 @@ def span_shapes(system, x, F, shapes, points_per_element: int = 8):
         xs = part.stations(points_per_element)
         disp, twist = [], []
         for u in np.asarray(shapes).T:
-            d, t = part.span_shape(q, chart, u[system.layout.beam_x(k)], x[0], xs)
+            d, t = system.span_shape(k, x, F, u, xs)
             disp.append(d)
             twist.append(t)
         out.append((xs, np.array(disp), np.array(twist)))
@@ -188,14 +190,17 @@ def blade_vectors(system, x, F, shapes, points_per_element: int = 2) -> np.ndarr
     displacements), per unit of the modal coordinate. A beam a mode does not move is zero
     without evaluating it. The beams must have one mesh (identical beams)."""
     shapes = np.asarray(shapes)
+    frames = np.ones(shapes.shape[0], dtype=bool)  # the coordinates of no beam: base, hub, joints
+    for k in range(len(system.beams)):
+        frames[system.layout.beam_x(k)] = False
+    frames_move = np.any(shapes[frames] != 0.0, axis=0)
     out = None
     for k, part, q, chart in system.parts(x, F):
         xs = part.stations(points_per_element)
         half = 0.5 * max(part.section_size(0.0))
-        u_k = shapes[system.layout.beam_x(k)]
         if out is None:
             out = np.zeros((shapes.shape[1], len(system.beams), 4 * xs.size), dtype=complex)
-        for i in np.flatnonzero(np.any(u_k != 0.0, axis=0)):
-            d, t = part.span_shape(q, chart, u_k[:, i], x[0], xs)
+        for i in np.flatnonzero(frames_move | np.any(shapes[system.layout.beam_x(k)] != 0.0, axis=0)):
+            d, t = system.span_shape(k, x, F, shapes[:, i], xs)
             out[i, k] = np.concatenate([np.ravel(d), half * np.ravel(t)])
     return out

@@ -17,7 +17,7 @@ from numpy.linalg import LinAlgError
 
 from hubbeam.errors import ChartSingularityError, ConvergenceError
 from hubbeam.solvers.generalized_alpha import MatrixUpdate, NewtonAction, newton_decide, reuse_state
-from hubbeam.system.hub_system import HubSystem
+from hubbeam.system.multibody import MultibodySystem
 
 #: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
 CHART_SWITCH_MARGIN = 0.5
@@ -37,7 +37,7 @@ class StaticSolution:
 
 
 
-def replace_chart_if_needed(system: HubSystem, x: np.ndarray, F: np.ndarray, force: bool = False):
+def replace_chart_if_needed(system: MultibodySystem, x: np.ndarray, F: np.ndarray, force: bool = False):
     """(x, F, switched): x re-expressed in a better chart when the current one is near singular."""
     if not force and system.chart_margin(x, F) >= CHART_SWITCH_MARGIN:
         return x, F, False
@@ -50,7 +50,7 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
     or raises. Converged when the shared controller (:func:`newton_decide`, matrix rebuilt
     every iteration) accepts the increment (relative to the length scale) or the residual is
     below ``tol_force`` (N)."""
-    layout = system.layout_for(True)
+    layout = system.layout_for(True, static=True)
     scale_x = max(system.length_scale, 1e-12)
     reuse = reuse_state()
     norm = np.inf
@@ -74,7 +74,7 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0):
 
 
 def solve_static(
-    system: HubSystem,
+    system: MultibodySystem,
     load_steps: int = 20,
     max_iterations: int = 30,
     max_cuts: int = 8,
@@ -98,7 +98,7 @@ def solve_static(
     if spin is not None:
         x, F = system.axis_chart(x, F)
     spin = spin or 0.0
-    mu = np.zeros(system.n_constraints(held=True))
+    mu = np.zeros(system.n_constraints(held=True, static=True))
     # force and step tolerances: relative to the loads, above the round-off floor of EA
     f_ref = system.static_force_scale(x, F, spin)
     tol_force = 1e-9 * f_ref + 1e-13 * max(b.section.stiffness[0] for b in system.beams)

@@ -1,4 +1,4 @@
-"""An ANCF beam on the hub (paper Secs. 2 and 4): its mount, clamp, states, measures and
+"""An ANCF beam on its frame (paper Secs. 2 and 4): its mount, clamp, states, measures and
 compiled terms.
 
 :class:`AncfPart` supplies what the system needs around the equations: initial and
@@ -7,8 +7,8 @@ beams" (:data:`KIND`, :mod:`hubbeam.system.terms`) packs every ANCF beam of a sy
 (:class:`AncfBeams`) and gives the compiled equations their terms: elastic forces with
 structural damping, rotary inertia, drag (:mod:`hubbeam.elements.ancf.kernels`),
 translational mass, gravity and tip loads (:func:`applied_load`), and the clamp of each
-root to the hub (:mod:`hubbeam.system.clamp`); their energies, dissipated power and tip
-displacements.
+root to its root frame (:mod:`hubbeam.system.clamp`); their energies, dissipated power, tip
+displacements and momenta.
 """
 
 from __future__ import annotations
@@ -24,19 +24,16 @@ from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
 from hubbeam.elements.ancf.frame import section_frame
 from hubbeam.elements.ancf.strain import strain_measures
 from hubbeam.system import terms
-from hubbeam.system.assembly import add_element_blocks_banded, add_entry
+from hubbeam.system.assembly import add_element_blocks_banded
 from hubbeam.system.beam import NODE_DOFS, AncfBeam
-from hubbeam.system.clamp import add_clamp_jacobian, clamp_constraints, clamp_equations, clamp_residual, clamp_work
+from hubbeam.system.clamp import ROOT_COORDINATES, add_clamp_matrix, clamp_residual, frame_clamp
+from hubbeam.system.frames import chain_columns, chain_kinematics, displacement_in_reference
 from hubbeam.system.loads import tip_moment_terms
-from hubbeam.system.mount import Mount, tip_from_mount
+from hubbeam.system.mount import Mount
 from hubbeam.system.parts import ChartedBeamPart
 
 if TYPE_CHECKING:
     from hubbeam.system.tip_body import TipBody
-
-#: the hub's axis j0 (global)
-AXIS = np.array([0.0, 1.0, 0.0])
-
 
 @dataclass(eq=False)
 class AncfPart(ChartedBeamPart):
@@ -67,35 +64,44 @@ class AncfPart(ChartedBeamPart):
         return self.tip
 
     # ------------------------------------------------------------ states
-    def initial_state(self, theta: float) -> tuple[np.ndarray, np.ndarray]:
-        return self.beam.straight_state(self.mount.root(theta), self.mount.frame(theta))
+    def initial_state(self, root: np.ndarray, frame: np.ndarray, reference: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The undeformed, straight beam from ``root`` (m) with root section frame ``frame``
+        (3 x 3, columns global): (q, chart), the chart chosen in the ``reference`` axes (the
+        hub's at theta = 0), so that a turned model has the turned chart."""
+        return self.beam.straight_state(root, frame, reference)
 
-    def clamp(self, q, chart, theta):
-        return clamp_constraints(np.concatenate([[theta], q[0:7]]), self.mount.params(), chart)
-
-    def steady_rotation_rates(self, q, chart, omega):
-        """r and r' move with w x (.), accelerate with w x (w x .) (w = -omega j0). theta_1 is
-        measured from the chart's untwisted frame; in general theta_1' = w.tau + d.(tau x (w x
-        tau))/(1 + d.tau); in the axis chart (d = w/|w|) that is exactly omega at every point,
-        so d(theta_1')/dt = 0. Other charts are refused."""
-        if not np.allclose(chart[:, 0], -AXIS, atol=1e-12):
-            raise ValueError("steady rotation rates need the axis chart (director -j0); see axis_chart")
-        w = -omega * AXIS
+    def rigid_rates(self, q, chart, velocity, w, origin, acceleration=None):
+        """(q', q'') of the beam moving rigidly: its points at velocity + w x (r - origin) (m/s;
+        w rad/s, global), turning at w; accelerations w x (w x (r - origin)) + ``acceleration``
+        for a steady rotation about an axis through ``origin`` (None: zero). r and r' move with
+        w, theta_1 at the chart's rate w.tau + d.(w - tau (tau.w))/(1 + d.tau) (which is exactly
+        d.w at every point normal to the axis in the axis chart, director along w, so that
+        d(theta_1')/dt = 0 there; other charts are refused for accelerations)."""
+        w = np.asarray(w, dtype=float)
         nodes = q.reshape(self.beam.nodes, NODE_DOFS)
         vel = np.zeros_like(nodes)
         acc = np.zeros_like(nodes)
-        for k in (0, 3):
-            vel[:, k : k + 3] = np.cross(w, nodes[:, k : k + 3])
-            acc[:, k : k + 3] = np.cross(w, vel[:, k : k + 3])
-        vel[:, 6] = omega
+        rel = nodes[:, 0:3] - np.asarray(origin, dtype=float)
+        vel[:, 0:3] = np.asarray(velocity, dtype=float) + np.cross(w, rel)
+        vel[:, 3:6] = np.cross(w, nodes[:, 3:6])
+        d = chart[:, 0]
+        tau = nodes[:, 3:6] / np.linalg.norm(nodes[:, 3:6], axis=1)[:, None]
+        dt = tau @ d
+        tw = tau @ w
+        vel[:, 6] = tw + (d @ w - dt * tw) / (1.0 + dt)
+        if acceleration is not None:
+            acc[:, 0:3] = np.cross(w, np.cross(w, rel)) + np.asarray(acceleration)
+            acc[:, 3:6] = np.cross(w, np.cross(w, nodes[:, 3:6]))
+            if np.any(w) and not np.allclose(np.cross(d, w), 0.0, atol=1e-12 * np.linalg.norm(w)):
+                raise ValueError("steady rotation rates need the axis chart (director along the axis); see axis_chart")
         return vel.ravel(), acc.ravel()
 
     # ------------------------------------------------------------ charts
     def chart_margin(self, q, chart) -> float:
         return self.beam.chart_margin(q, chart)
 
-    def better_chart(self, q) -> np.ndarray:
-        return self.beam.better_chart(q)
+    def better_chart(self, q, reference=None) -> np.ndarray:
+        return self.beam.better_chart(q, reference)
 
     def remap(self, q, chart, new_chart) -> np.ndarray:
         """Only theta_1 and theta_1' change."""
@@ -103,24 +109,24 @@ class AncfPart(ChartedBeamPart):
         nodes = remap_chart(q.reshape(beam.nodes, NODE_DOFS), beam.node_tangent_rates(q), chart, new_chart)
         return nodes.ravel()
 
-    def axis_chart(self) -> np.ndarray:
-        """Director d = -j0: the beam stays near the plane normal to the hub axis while the hub
-        sweeps it through every direction of that plane; each of those tangents is 90 deg from
-        the singular direction (+j0), and a rigid rotation about the axis advances theta_1 by
-        exactly the hub angle (see :meth:`steady_rotation_rates`)."""
-        return frame_from_director(-AXIS, hint=np.array([1.0, 0.0, 0.0]))
+    def axis_chart(self, axis=(0.0, 1.0, 0.0), hint=(1.0, 0.0, 0.0)) -> np.ndarray:
+        """Director d = -axis (the hub's axis j_h, hint its i_h): the beam stays near the plane
+        normal to the hub axis while the hub sweeps it through every direction of that plane;
+        each of those tangents is 90 deg from the singular direction (+j_h), and a rigid rotation
+        about the axis advances theta_1 by exactly the hub angle (see :meth:`rigid_rates`)."""
+        return frame_from_director(-np.asarray(axis, dtype=float), hint=np.asarray(hint, dtype=float))
 
     # ------------------------------------------------------------ measured quantities
-    def tip_position(self, q) -> np.ndarray:
+    def tip_position(self, q, frame=None) -> np.ndarray:
         return q[self.tip][0:3].copy()
 
     def surface_strain(self, q, chart, station, y, z) -> float:
         return self.beam.surface_strain(q, chart, station, y, z)
 
-    def frame_at(self, q, chart, station) -> np.ndarray:
+    def frame_at(self, q, chart, station, frame=None) -> np.ndarray:
         return self.beam.frame_at(q, chart, station)
 
-    def section_motion(self, q, chart, u, stations):
+    def section_motion(self, q, chart, u, stations, frame=None, rate=None):
         """The section frame R = F [tau m n](U, theta_1) (U = F^T r0') and its angular velocity
         R omega, where omega (section axes) is the curvature function of
         :func:`~hubbeam.elements.ancf.strain.strain_measures` evaluated at
@@ -138,13 +144,13 @@ class AncfPart(ChartedBeamPart):
             omega[i] = frames[i] @ np.array(strain_measures(U, F.T @ v1, phi, phi_dot)[1:4])
         return frames, vel, omega
 
-    def frames_at(self, q, chart, stations) -> np.ndarray:
+    def frames_at(self, q, chart, stations, frame=None) -> np.ndarray:
         return self.beam.frames_at(q, chart, stations)
 
     def surface_strains(self, q, chart, stations, y, z) -> np.ndarray:
         return self.beam.surface_strains(q, chart, stations, y, z)
 
-    def centre_line_at(self, q, chart, stations) -> np.ndarray:
+    def centre_line_at(self, q, chart, stations, frame=None) -> np.ndarray:
         return self.beam.interpolate_at(q, stations)[0]
 
 
@@ -160,6 +166,8 @@ class AncfBeams(NamedTuple):
     index: np.ndarray  # int64 (nb,): the beam's place among all beams (its chart in F, its energy row)
     x0: np.ndarray  # int64 (nb,): where its coordinates start in x (the layout's)
     lambda0: np.ndarray  # int64 (nb,): where its clamp multipliers start in lambda (the layout's)
+    chains: np.ndarray  # int64 (nb, 2): its root section frame's chain and its reference frame's
+    #                     (the tip deflection's axes), :mod:`hubbeam.system.frames`
     elements: np.ndarray  # int64 (nb,)
     S: np.ndarray  # (nb, ng, 4) Hermite functions at the Gauss points, and derivatives (1/m, 1/m^2)
     dS: np.ndarray
@@ -172,7 +180,7 @@ class AncfBeams(NamedTuple):
     trans_mass: np.ndarray  # (nb, n_el, 16, 16) translational element masses (kg)
     inertia: np.ndarray  # (nb, n_el, ng, 3) rho (I_y + I_z), rho I_y, rho I_z (kg m)
     width: np.ndarray  # (nb, n_el, ng) frontal width of the drag (m)
-    mount: np.ndarray  # (nb, 4) radius, twist, azimuth, precone (m, rad)
+    twist: np.ndarray  # (nb,) rad: the root section's twist from its axis frame (the clamp's tangent normals)
     tip_force: np.ndarray  # (nb, 3) N
     tip_moment: np.ndarray  # (nb, 3) N m
     gravity_load: np.ndarray  # (nb, nq) generalized gravity force of the beam's own mass (N)
@@ -208,11 +216,14 @@ def pack_ancf_beams(system, layout) -> AncfBeams | None:
         gravity_load[i, : beam.ndof] = beam.gravity_load(system.gravity)
     ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
     rows = lambda values, width: np.array(values, dtype=float).reshape(nb, width)  # noqa: E731
+    chains = np.array([(system.frames.root(k), system.frames.reference(k)) for k, _ in ancf],
+                      dtype=np.int64).reshape(nb, 2)
     return AncfBeams(ints([k for k, _ in ancf]), ints([layout.beam_x(k).start for k, _ in ancf]),
-                     ints([layout.clamp_lambda(k).start for k, _ in ancf]), ints([b.beam.elements for _, b in ancf]),
+                     ints([layout.clamp_lambda(k).start for k, _ in ancf]), chains,
+                     ints([b.beam.elements for _, b in ancf]),
                      S, dS, d2S, w, np.array([b.beam.element_length for _, b in ancf], dtype=float),
                      stiffness, reference, np.array([b.beam.structural_damping for _, b in ancf], dtype=float),
-                     trans_mass, inertia, width, rows([b.mount.params() for _, b in ancf], 4),
+                     trans_mass, inertia, width, np.array([b.mount.twist for _, b in ancf], dtype=float),
                      rows([b.tip_force for _, b in ancf], 3), rows([b.tip_moment for _, b in ancf], 3), gravity_load)
 
 
@@ -253,21 +264,21 @@ def applied_load(pack, k, q, F, factor, Q, tip_jacobian):
 def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
                    want_matrix, res, ab, brow, bcol, bb):
     """Every ANCF beam's rows (:mod:`hubbeam.system.terms`): coef_k (M(q) acc + f_int - Q_ext
-    - Q_v - Q_d + Phi_q^T lambda) on its coordinates, scale Phi of its clamp; the matrix
-    coef_m M + coef_c C + coef_k (K - dQ/dq + lambda . d2 Phi) (the small velocity derivative
-    of the rotary-inertia force and the q-derivative of M(q) acc left out: they slow Newton
-    slightly and never change the answer; the matrix is exact at rest). f_int holds the
+    - Q_v - Q_d + Phi_q^T lambda) on its coordinates, scale Phi of its clamp to its root frame
+    (:mod:`hubbeam.system.clamp`) and coef_k Phi_c^T lambda on the frame's coordinates; the
+    matrix coef_m M + coef_c C + coef_k (K - dQ/dq + lambda . d2 Phi) (the small velocity
+    derivative of the rotary-inertia force and the q-derivative of M(q) acc left out: they slow
+    Newton slightly and never change the answer; the matrix is exact at rest). f_int holds the
     structural damping (Kelvin-Voigt resultants c D e_dot), whose matrix enters with coef_c."""
     zx, zl, ku = ctx.z_of_x, ctx.z_of_lambda, ctx.ku
-    z_theta = zx[ctx.theta]
-    theta = x[ctx.theta]
     margin = 2.0
     power = 0.0
-    hub_force = 0.0
-    phi, jac, hess, lam_k = clamp_work()
-    c = np.empty(8)
+    phi = np.empty(6)
+    lam_k = np.empty(6)
+    r, R = np.empty(3), np.empty((3, 3))
     tip_jacobian = np.empty((4, 3))
     no_blocks = np.empty((0, 16, 16))
+    order = 2 if want_matrix else 1
     for k in range(pack.index.shape[0]):
         n_el = pack.elements[k]
         x0, nq, Fk, q, qd = ancf_beam(pack, k, F, x, v)
@@ -283,7 +294,7 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
         margin = min(margin, mk)
         power += pk
         if not mk > terms.CHART_SINGULAR:
-            return 0.0, margin, 0.0
+            return margin, 0.0
         term = np.empty(nq)
         kernels.rotary_inertia_kernel(q, qd, qa, Fk, le, S, dS, w, pack.inertia[k], coef_m, term, no_blocks)
         for j in range(nq):
@@ -295,17 +306,25 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
         kernels.translational_mass_product(pack.trans_mass[k], qa, fq)
         applied_load(pack, k, q, Fk, load_factor, term, tip_jacobian)
         for j in range(nq):
-            fq[j] -= term[j]
-        # clamp of the root to the hub
-        c[0] = theta
-        for j in range(7):
-            c[1 + j] = q[j]
+            res[zx[x0 + j]] += coef_k * (fq[j] - term[j])
+        # clamp of the root to its frame
+        chain = pack.chains[k, 0]
+        cols = chain_columns(ctx.chains, chain)
+        nc = cols.shape[0]
+        Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
+        Hr, Hw = np.empty((3, nc, nc)), np.empty((3, nc, nc))
+        chain_kinematics(ctx.chains, chain, x, F, order, r, R, Jr, Jw, Hr, Hw)
+        jac = np.empty((6, nc + ROOT_COORDINATES))
+        hess = np.empty((nc + ROOT_COORDINATES, nc + ROOT_COORDINATES))
         for i in range(6):
             lam_k[i] = lam[l0 + i]
-        clamp_equations(c, pack.mount[k], Fk, lam_k, phi, jac, hess)
-        hub_force += clamp_residual(lam_k, phi, jac, 7, scale, zl, l0, fq, res)
-        for j in range(nq):
-            res[zx[x0 + j]] += coef_k * fq[j]
+        frame_clamp(r, R, Jr, Jw, Hr, Hw, q[0:ROOT_COORDINATES], Fk, pack.twist[k], lam_k, order, phi, jac, hess)
+        rows = np.empty(nc + ROOT_COORDINATES, dtype=np.int64)
+        for j in range(nc):
+            rows[j] = zx[cols[j]]
+        for j in range(ROOT_COORDINATES):
+            rows[nc + j] = zx[x0 + j]
+        clamp_residual(lam_k, phi, jac, nc, scale, zl, l0, rows, res, coef_k)
         if not want_matrix:
             continue
         # the tip moment's load stiffness on the tip's (r0', theta_1) rows and r0' columns
@@ -313,17 +332,9 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
             for j in range(3):
                 blocks[n_el - 1, 11 + i, 11 + j] -= coef_k * tip_jacobian[i, j]
         kernels.add_translational_mass(pack.trans_mass[k], n_el, coef_m, blocks)
-        q_start = zx[x0]  # z index of the beam's first coordinate
-        add_element_blocks_banded(ab, blocks, q_start - ctx.border, ku, 1.0)
-        # clamp: Jacobian in the multiplier rows and columns, Hessian on [theta, root coordinates]
-        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 7, scale, zl, l0, q_start, z_theta)
-        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta, coef_k * hess[0, 0])
-        for a in range(7):
-            add_entry(ab, brow, bcol, bb, ku, z_theta, q_start + a, coef_k * hess[0, 1 + a])
-            add_entry(ab, brow, bcol, bb, ku, q_start + a, z_theta, coef_k * hess[1 + a, 0])
-            for b in range(7):
-                add_entry(ab, brow, bcol, bb, ku, q_start + a, q_start + b, coef_k * hess[1 + a, 1 + b])
-    return hub_force, margin, power
+        add_element_blocks_banded(ab, blocks, zx[x0] - ctx.border, ku, 1.0)
+        add_clamp_matrix(ab, brow, bcol, bb, ku, jac, hess, rows, nc, scale, coef_k, zl, l0)
+    return margin, power
 
 
 def ancf_energies(pack, ctx, F, x, v, beams):
@@ -347,6 +358,49 @@ def ancf_energies(pack, ctx, F, x, v, beams):
     return 0.0, 0.0, 0.0
 
 
+def ancf_momenta(pack, ctx, F, x, v, out):
+    """Every ANCF beam's mass, first moment, linear momentum and angular momentum about the origin
+    (:mod:`hubbeam.system.terms`): by Noether's theorem the translational momenta are the
+    generalized momenta M q' on the positions and slopes (a rigid translation moves the
+    positions alone, a rotation e x r0 and e x r0'), so p = sum_i p_r,i and H_trans = sum_i
+    (r0_i x p_r,i + r0'_i x p_r',i); the sections' rotary inertia adds int R J omega dx."""
+    for k in range(pack.index.shape[0]):
+        _, nq, Fk, q, qd = ancf_beam(pack, k, F, x, v)
+        p = np.zeros(nq)
+        kernels.translational_mass_product(pack.trans_mass[k], qd, p)
+        H = np.zeros(3)
+        for node in range(nq // NODE_DOFS):
+            o = NODE_DOFS * node
+            for a in (0, 3):
+                r0, r1, r2 = q[o + a], q[o + a + 1], q[o + a + 2]
+                p0, p1, p2 = p[o + a], p[o + a + 1], p[o + a + 2]
+                H[0] += r1 * p2 - r2 * p1
+                H[1] += r2 * p0 - r0 * p2
+                H[2] += r0 * p1 - r1 * p0
+            for i in range(3):
+                out[4 + i] += p[o + i]
+        kernels.rotary_momentum(q, qd, Fk, pack.element_length[k], pack.S[k], pack.dS[k], pack.w[k], pack.inertia[k],
+                                H)
+        for i in range(3):
+            out[7 + i] += H[i]
+        # mass and first moment: the generalized gravity load of a unit field along e_i is the
+        # beam's mass m on the positions; m r_cm . e_i = (M u_i) . q with u_i the unit translation
+        for i in range(3):
+            u = np.zeros(nq)
+            for node in range(nq // NODE_DOFS):
+                u[NODE_DOFS * node + i] = 1.0
+            mu = np.zeros(nq)
+            kernels.translational_mass_product(pack.trans_mass[k], u, mu)
+            first = 0.0
+            mass = 0.0
+            for j in range(nq):
+                first += mu[j] * q[j]
+                mass += mu[j] * u[j]
+            out[1 + i] += first
+            if i == 0:
+                out[0] += mass
+
+
 def ancf_power(pack, ctx, F, x, v):
     """Power of the drag of Eq. 37 and of the structural damping on every ANCF beam (W)."""
     power = 0.0
@@ -362,16 +416,33 @@ def ancf_power(pack, ctx, F, x, v):
     return power
 
 
-def ancf_tips(pack, ctx, x, out):
-    """Each ANCF beam's tip centroid displacement in its hub frame (m)."""
-    theta = x[ctx.theta]
-    tip_at = np.empty(3)
+def ancf_tips(pack, ctx, F, x, out):
+    """Each ANCF beam's tip centroid displacement from its undeformed place (the root frame's
+    axis carried out to the length), along its reference frame's axes (m)."""
     for k in range(pack.index.shape[0]):
         tip = pack.x0[k] + NODE_DOFS * pack.elements[k]
-        for i in range(3):
-            tip_at[i] = x[tip + i]
-        tip_from_mount(pack.mount[k], theta, pack.element_length[k] * pack.elements[k], tip_at, out[pack.index[k]])
+        length = pack.element_length[k] * pack.elements[k]
+        displacement_in_reference(ctx, F, x, pack.chains[k, 0], pack.chains[k, 1], length, x[tip:tip + 3],
+                                  out[pack.index[k]])
+
+
+def ancf_bandwidth(system, layout) -> int:
+    """Half-bandwidth of the ANCF beams' blocks: 15 (16 x 16 element blocks; the clamp rows reach
+    12 ahead), or what the clamp needs to reach its frame's coordinates outside the border (a
+    joint angle, a parent beam's tip); 1 without ANCF beams."""
+    width = 1
+    zx = layout.z_of_x
+    for k, b in enumerate(system.beams):
+        if not isinstance(b, AncfPart):
+            continue
+        width = max(width, BANDWIDTH)
+        own = [zx[layout.beam_x(k).start + j] for j in range(ROOT_COORDINATES)] + list(
+            layout.z_of_lambda[layout.clamp_lambda(k)])
+        frame = [zx[c] for c in system.frames.chain(system.frames.root(k)).coordinates if zx[c] >= layout.border]
+        every = own + frame
+        width = max(width, max(every) - min(every))
+    return width
 
 
 KIND = terms.register(AncfBeams, pack_ancf_beams, ancf_equations, ancf_energies, ancf_power, ancf_tips,
-                      bandwidth=lambda system: BANDWIDTH if any(isinstance(b, AncfPart) for b in system.beams) else 1)
+                      bandwidth=ancf_bandwidth, momenta=ancf_momenta)

@@ -123,7 +123,7 @@ def add_entry(ab, brow, bcol, bb, ku, i, j, value):
 def bordered_factor(ab, bw, ipiv, brow, bcol, bb, Y, schur):
     """Factorise the bordered matrix [[bb, brow], [bcol, B]] (B banded in ``ab``, overwritten
     by its LU): B^-1 bcol into the rows of ``Y`` (border x n), and the inverse of the Schur
-    complement bb - brow B^-1 bcol (border x border, 1 or 2) into ``schur``. Returns 0, or
+    complement bb - brow B^-1 bcol (border x border) into ``schur``. Returns 0, or
     j > 0 when B's pivot j is zero, or -1 when the Schur complement is singular."""
     info = band_factor(ab, bw, bw, ipiv)
     nb = bb.shape[0]
@@ -146,13 +146,50 @@ def bordered_factor(ab, bw, ipiv, brow, bcol, bb, Y, schur):
             return -1
         schur[0, 0] = 1.0 / S[0, 0]
         return 0
-    det = S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]
-    if det == 0.0 or not np.isfinite(det):
-        return -1
-    schur[0, 0] = S[1, 1] / det
-    schur[0, 1] = -S[0, 1] / det
-    schur[1, 0] = -S[1, 0] / det
-    schur[1, 1] = S[0, 0] / det
+    if nb == 2:
+        det = S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]
+        if det == 0.0 or not np.isfinite(det):
+            return -1
+        schur[0, 0] = S[1, 1] / det
+        schur[0, 1] = -S[0, 1] / det
+        schur[1, 0] = -S[1, 0] / det
+        schur[1, 1] = S[0, 0] / det
+        return 0
+    return _invert(S, schur)
+
+
+@njit(cache=True)
+def _invert(S, out):
+    """out = S^-1 by Gauss-Jordan elimination with partial pivoting (S is overwritten); -1 when
+    S is singular (a zero or non-finite pivot), else 0. For the border's Schur complement
+    (a moving base's coordinates and constraints with the hub's: up to about 17 unknowns)."""
+    n = S.shape[0]
+    for i in range(n):
+        for j in range(n):
+            out[i, j] = 1.0 if i == j else 0.0
+    for c in range(n):
+        p = c
+        for i in range(c + 1, n):
+            if abs(S[i, c]) > abs(S[p, c]):
+                p = i
+        pivot = S[p, c]
+        if pivot == 0.0 or not np.isfinite(pivot):
+            return -1
+        if p != c:
+            for j in range(n):
+                S[c, j], S[p, j] = S[p, j], S[c, j]
+                out[c, j], out[p, j] = out[p, j], out[c, j]
+        inv = 1.0 / pivot
+        for j in range(n):
+            S[c, j] *= inv
+            out[c, j] *= inv
+        for i in range(n):
+            if i != c:
+                f = S[i, c]
+                if f != 0.0:
+                    for j in range(n):
+                        S[i, j] -= f * S[c, j]
+                        out[i, j] -= f * out[c, j]
     return 0
 
 
@@ -184,7 +221,7 @@ def bordered_solve(ab, bw, ipiv, brow, Y, schur, r):
 
 class BorderedBandMatrix:
     """A square matrix [[bb, brow], [bcol, B]] whose leading ``border`` rows and columns are
-    dense (the hub angle and the drive multiplier, which couple to every beam) and whose rest
+    dense (the frames' coordinates and constraints, which couple to every beam) and whose rest
     B is banded with kl = ku = ``bandwidth`` (LAPACK gbtrf storage in ``ab``: A[i, j] at
     ab[2 bw + i - j, j]). Solved by band LU of B and the Schur complement on the border."""
 
@@ -214,7 +251,7 @@ class BorderedBandMatrix:
         schur = np.empty((self.border, self.border))
         info = bordered_factor(lu, bw, piv, self.brow, self.bcol, self.bb, Y, schur)
         if info != 0:
-            where = "the hub's border (Schur complement)" if info < 0 else f"column {info} of the band"
+            where = "the border of the frames' coordinates (Schur complement)" if info < 0 else f"column {info} of the band"
             raise np.linalg.LinAlgError(f"singular matrix (zero pivot in {where})")
 
         def solve(rhs):

@@ -119,14 +119,19 @@ class AncfBeam:
         return slice(NODE_DOFS * node, NODE_DOFS * (node + 1))
 
     # ---------------------------------------------------------------- states
-    def straight_state(self, root: np.ndarray, frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def straight_state(self, root: np.ndarray, frame: np.ndarray, reference: np.ndarray | None = None
+                       ) -> tuple[np.ndarray, np.ndarray]:
         """Undeformed straight beam from ``root`` along frame[:, 0] with root section frame ``frame``
         (and the pretwist along the span: the stress-free state).
 
-        Returns (q, F): the coordinates and a chart whose director is the beam axis.
+        Returns (q, F): the coordinates and a chart whose director is the beam axis, its other
+        axes chosen in the ``reference`` axes (3 x 3 rotation; default the global axes) as
+        :func:`~hubbeam.elements.ancf.chart.frame_from_director` chooses them in the global
+        ones: a model turned as a whole gets the turned chart.
         """
         frame = np.asarray(frame, dtype=float)
-        F = frame_from_director(frame[:, 0])
+        Q = np.eye(3) if reference is None else np.asarray(reference, dtype=float)
+        F = Q @ frame_from_director(Q.T @ frame[:, 0])
         T, m, n = section_frame(F.T @ frame[:, 0], 0.0)
         m_g = F @ m
         theta = np.arctan2(np.dot(frame[:, 1], F @ n), np.dot(frame[:, 1], m_g))
@@ -326,6 +331,9 @@ class AncfBeam:
                 cnt[node] += 1
         return acc / cnt[:, None]
 
-    def better_chart(self, q: np.ndarray) -> np.ndarray:
-        """A chart whose director keeps every current tangent as far as possible from -d."""
-        return frame_from_director(choose_director(self.gauss_tangents(q)))
+    def better_chart(self, q: np.ndarray, reference: np.ndarray | None = None) -> np.ndarray:
+        """A chart whose director keeps every current tangent as far as possible from -d, its
+        candidates and axes chosen in the ``reference`` axes (default the global ones; see
+        :meth:`straight_state`)."""
+        Q = np.eye(3) if reference is None else np.asarray(reference, dtype=float)
+        return Q @ frame_from_director(choose_director(self.gauss_tangents(q) @ Q))

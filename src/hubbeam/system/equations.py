@@ -1,18 +1,18 @@
-"""Compiled equations of motion of a hub and its parts (paper Eq. 77), residual and Newton
-matrix in one call, for any number of ANCF and FFR beams, tip bodies and hub laws.
+"""Compiled equations of motion of a system (paper Eq. 77), residual and Newton matrix in one
+call, for any number of ANCF and FFR beams, tip bodies, rigid bodies and coordinate laws.
 
-The unknowns are placed by :class:`hubbeam.system.layout.Layout`: z = [theta, mu_drive,
-(mu_clamp_k, q_k) for each beam]; lambda = scale mu / coef_k. The Newton matrix is
-stored bordered (:class:`hubbeam.system.assembly.BorderedBandMatrix`): the border (theta
-and the drive multiplier) as dense rows, columns and corner, the rest -- block-diagonal
-over the beams, each block banded -- in LAPACK band storage.
+The unknowns are placed by :class:`hubbeam.system.layout.Layout`: z = [the frames'
+coordinates and constraints, (joint angles, clamp multipliers, q_k) for each beam]; lambda =
+scale mu / coef_k. The Newton matrix is stored bordered
+(:class:`hubbeam.system.assembly.BorderedBandMatrix`): the border (the frames' coordinates
+and constraints) as dense rows, columns and corner, the rest -- block-diagonal over the
+beams, each block banded -- in LAPACK band storage.
 
-This module holds the hub (its inertia, its drive constraint and torque law,
-:mod:`hubbeam.system.laws`) and adds up the terms of the parts: each kind of part (ANCF
-beams, FFR beams, tip bodies, ...) registers its pack and compiled terms in
-:mod:`hubbeam.system.terms`, and :class:`SystemModel` holds the packs of the kinds present
-in a system, which every function here iterates over (``numba.literal_unroll``): a kind
-absent from a system is not compiled for it.
+This module only adds up: every kind of part (ANCF beams, FFR beams, tip bodies, the hub's
+rotor and the base as rigid bodies, the hub's law, ...) registers its pack and compiled
+terms in :mod:`hubbeam.system.terms`, and :class:`SystemModel` holds the packs of the kinds
+present in a system, which every function here iterates over (``numba.literal_unroll``): a
+kind absent from a system is not compiled for it.
 """
 
 from __future__ import annotations
@@ -26,72 +26,47 @@ from numba import literal_unroll, njit
 
 from hubbeam.elements.ancf import kernels
 from hubbeam.elements.ancf.strain import strain_measures
-from hubbeam.system.assembly import add_entry
-from hubbeam.system.laws import drive_values, torque_values
-from hubbeam.system.layout import Layout
-from hubbeam.system.terms import CHART_SINGULAR, Context, part_energies, part_equations, part_power, part_tips
-
-#: the hub angle's place in x (the layout's)
-THETA = Layout.theta
+from hubbeam.system.terms import (CHART_SINGULAR, Context, part_drive_power, part_energies, part_equations,
+                                  part_momenta, part_power, part_tips)
 
 
 class SystemModel(NamedTuple):
-    """Everything constant that the compiled equations need (SI units): the hub, ``parts``,
-    the packs of the kinds of part present (:func:`hubbeam.system.terms.packs`), and the
-    ``context`` they all see (the layout's places of the unknowns, the environment)."""
+    """Everything constant that the compiled equations need (SI units): ``parts``, the packs of
+    the kinds present (:func:`hubbeam.system.terms.packs`), and the ``context`` they all see
+    (the layout's places of the unknowns, the frames, the environment)."""
 
-    held: bool
-    drive_lambda: int  # the drive multiplier's place in lambda (the layout's; -1 for a free hub)
-    hub_inertia: float  # kg m^2
-    drive: tuple  # CompiledDrive of hubbeam.system.laws
-    torque: tuple  # CompiledTorque of hubbeam.system.laws
     parts: tuple  # the packs of the kinds of part present
     context: Context  # what the parts' terms see (:func:`context`)
     bandwidth: int
 
 
-def context(layout, bandwidth: int, gravity, drag) -> Context:
-    """The :class:`~hubbeam.system.terms.Context` of a system placed by ``layout``."""
+def context(layout, bandwidth: int, gravity, drag, chains) -> Context:
+    """The :class:`~hubbeam.system.terms.Context` of a system placed by ``layout`` with the frames ``chains``."""
     g0, g1, g2 = (float(g) for g in gravity)
     c1, c2 = (float(c) for c in drag)
-    return Context(layout.border, layout.z_of_x, layout.z_of_lambda, 2 * bandwidth, THETA, (g0, g1, g2), (c1, c2))
-
-
-@njit(cache=True, inline="always")
-def drive_angle(drive, t):
-    """theta_p(t) of the driving constraint (a fixed hub has the profile 'rest')."""
-    return drive_values(drive[0], drive[1], drive[2], drive[3], t)[0]
-
-
-@njit(cache=True, inline="always")
-def applied_torque(torque, t, theta, omega):
-    """(T, dT/dtheta, dT/domega) of the hub's torque law (N m)."""
-    tq = torque
-    return torque_values(tq[0], tq[1], tq[2], tq[3], tq[4], tq[5], tq[6], tq[7], t, theta, omega)
+    return Context(layout.border, layout.z_of_x, layout.z_of_lambda, 2 * bandwidth, layout.theta, (g0, g1, g2),
+                   (c1, c2), chains)
 
 
 @njit(cache=True)
 def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
                      want_matrix, res, ab, brow, bcol, bb):
-    """Scaled residual and (when ``want_matrix``) Newton matrix of the hub and its parts.
+    """Scaled residual and (when ``want_matrix``) Newton matrix of the system.
 
-    Force rows: coef_k (M(q) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda) on each part's
-    coordinates, coef_k (J theta'' - T + Phi_theta^T lambda) on theta; constraint rows: scale
-    Phi(x, t). ``load_factor`` scales the applied loads (gravity, tip loads, the hub torque)
-    for load stepping; ``exact_stiffness`` asks the parts for the stiffness of every load
-    (statics and modes). The matrix coef_m M + coef_c C + coef_k (K - dQ/dx + lambda . d2 Phi),
-    with the constraint Jacobian scaled by ``scale`` in its rows and columns, is written into
-    the bordered storage (``bb`` border x border, ``brow`` border rows, ``bcol`` border columns,
-    ``ab`` the band of the rest in gbtrf layout with kl = ku = model.bandwidth). ``F`` holds
-    every beam's chart. The parts' terms: :mod:`hubbeam.system.terms`.
+    Force rows: coef_k (M(x) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda) on every
+    coordinate; constraint rows: scale Phi(x, t). ``load_factor`` scales the applied loads
+    (gravity, tip loads, applied torques) for load stepping; ``exact_stiffness`` asks the
+    parts for the stiffness of every load (statics and modes). The matrix coef_m M + coef_c C
+    + coef_k (K - dQ/dx + lambda . d2 Phi), with the constraint Jacobian scaled by ``scale``
+    in its rows and columns, is written into the bordered storage (``bb`` border x border,
+    ``brow`` border rows, ``bcol`` border columns, ``ab`` the band of the rest in gbtrf layout
+    with kl = ku = model.bandwidth). ``F`` holds every beam's chart. The parts' terms:
+    :mod:`hubbeam.system.terms`.
 
     Returns (chart margin min(1 + d.tau) over all Gauss points, dissipated power W). A margin
     at or below :data:`CHART_SINGULAR` means the residual is not valid.
     """
     ctx = model.context
-    zx = ctx.z_of_x
-    zl = ctx.z_of_lambda
-    ku = ctx.ku
     for i in range(res.shape[0]):
         res[i] = 0.0
     if want_matrix:
@@ -99,34 +74,15 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
         brow[:, :] = 0.0
         bcol[:, :] = 0.0
         bb[:, :] = 0.0
-    # ---------------------------------------------------------------- hub
-    z_theta = zx[THETA]
-    theta, omega = x[THETA], v[THETA]
-    torque, d_theta, d_omega = applied_torque(model.torque, t, theta, omega)
-    hub_row = model.hub_inertia * acc[THETA] - load_factor * torque
-    if model.held:
-        z_drive = zl[model.drive_lambda]
-        hub_row += lam[model.drive_lambda]
-        res[z_drive] = scale * (theta - drive_angle(model.drive, t))
-    if want_matrix:
-        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta,
-                  coef_m * model.hub_inertia - load_factor * (coef_k * d_theta + coef_c * d_omega))
-        if model.held:
-            add_entry(ab, brow, bcol, bb, ku, z_theta, z_drive, scale)
-            add_entry(ab, brow, bcol, bb, ku, z_drive, z_theta, scale)
-    # ---------------------------------------------------------------- the parts
     margin = 2.0
     power = 0.0
     for pack in literal_unroll(model.parts):
-        hub_force, part_margin, part_power_ = part_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k,
-                                                             scale, load_factor, exact_stiffness, want_matrix, res,
-                                                             ab, brow, bcol, bb)
+        part_margin, part_power_ = part_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
+                                                  load_factor, exact_stiffness, want_matrix, res, ab, brow, bcol, bb)
         margin = min(margin, part_margin)
         if not margin > CHART_SINGULAR:
             return margin, 0.0
-        hub_row += hub_force
         power += part_power_
-    res[z_theta] = coef_k * hub_row
     return margin, power
 
 
@@ -134,28 +90,27 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
 def step_powers(model, F, t, x, v, lam):
     """(dissipated, drive) power at the state (t, x, v, lambda) in the charts F (W): the power
     of the drag of Eq. 37 and of the structural damping of every part (>= 0), and the power of
-    the drive reaction and the applied torque on the hub, (T_applied - lambda_drive) theta'.
-    One function for both, called after every step, and inlined into its compiled callers:
-    each compiled call that takes the model pays for passing it (reference counts of its
-    arrays; about 0.5 us on exp1)."""
+    the applied torques and the prescribed motions (the hub's drive reaction and torque law,
+    ...). One function for both, called after every step, and inlined into its compiled
+    callers: each compiled call that takes the model pays for passing it (reference counts of
+    its arrays; about 0.5 us on exp1)."""
     ctx = model.context
     dissipated = 0.0
+    drive = 0.0
     for pack in literal_unroll(model.parts):
         dissipated += part_power(pack, ctx, F, x, v)
-    torque = applied_torque(model.torque, t, x[THETA], v[THETA])[0]
-    if model.held:
-        torque -= lam[model.drive_lambda]
-    return dissipated, torque * v[THETA]
+        drive += part_drive_power(pack, ctx, t, x, v, lam)
+    return dissipated, drive
 
 
 @njit(cache=True)
 def beam_energies(model, F, x, v, beams, hub):
     """Kinetic, strain and gravity energy (J) at (x, v) in the charts F: beams[k] = (T, U, V)
     of beam k (its place among all beams; tip bodies in their beam's row), hub = (T, U, V)
-    of the hub (J theta'^2 / 2) and of every part's energy that belongs to no beam."""
+    of every part's energy that belongs to no beam (the hub's rotor, the base)."""
     ctx = model.context
     beams[:, :] = 0.0
-    hub[0] = 0.5 * model.hub_inertia * v[THETA] * v[THETA]
+    hub[0] = 0.0
     hub[1] = 0.0
     hub[2] = 0.0
     for pack in literal_unroll(model.parts):
@@ -166,13 +121,24 @@ def beam_energies(model, F, x, v, beams, hub):
 
 
 @njit(cache=True)
-def tip_displacements(model, x, out):
-    """Each beam's tip centroid displacement from its undeformed place along its own hub
-    frame i_k (radial), j0 (vertical), k_k (tangential) at x (m): out[k] for beam k (its place
-    among all beams)."""
+def tip_displacements(model, F, x, out):
+    """Each beam's tip centroid displacement from its undeformed place along its reference
+    frame's axes at x (m; radial, along the hub axis, tangential): out[k] for beam k (its
+    place among all beams)."""
     ctx = model.context
     for pack in literal_unroll(model.parts):
-        part_tips(pack, ctx, x, out)
+        part_tips(pack, ctx, F, x, out)
+
+
+@njit(cache=True)
+def system_momenta(model, F, x, v, out):
+    """out (10,) = the system's mass (kg), first moment m r_cm (kg m), linear momentum (N s) and
+    angular momentum about the global origin (N m s) at (x, v)."""
+    ctx = model.context
+    for i in range(out.shape[0]):
+        out[i] = 0.0
+    for pack in literal_unroll(model.parts):
+        part_momenta(pack, ctx, F, x, v, out)
 
 
 @njit(cache=True)
@@ -182,7 +148,7 @@ def gauge_strains(F, x, gauges, out):
     the beam's chart in F and where its gauge's element's coordinates start in x; S, dS, d2S
     (n, 4): the Hermite functions at the gauge's station and their derivatives (1/m, 1/m^2);
     section (n, 6): y, z (m) and the stress-free strains (eps0, kappa1, kappa2, kappa3) there)
-    (:meth:`HubSystem.gauge_table`)."""
+    (:meth:`MultibodySystem.gauge_table`)."""
     where, S, dS, d2S, section = gauges
     w1 = np.empty(16)
     w2 = np.empty(16)
@@ -205,12 +171,13 @@ def record_measures(model, F, xs, vs, count, energies, gauges, hub, beams, tips,
     for r in range(count):
         if energies:
             beam_energies(model, F, xs[r], vs[r], beams[r], hub[r])
-        tip_displacements(model, xs[r], tips[r])
+        tip_displacements(model, F, xs[r], tips[r])
         gauge_strains(F, xs[r], gauges, strains[r])
 
 
 #: the functions here that take the model, which holds the parts' packs
-MODEL_FUNCTIONS = ("system_equations", "step_powers", "beam_energies", "tip_displacements", "record_measures")
+MODEL_FUNCTIONS = ("system_equations", "step_powers", "beam_energies", "tip_displacements", "system_momenta",
+                   "record_measures")
 
 
 class Compiled(NamedTuple):
@@ -220,6 +187,7 @@ class Compiled(NamedTuple):
     step_powers: object
     beam_energies: object
     tip_displacements: object
+    system_momenta: object
     record_measures: object
 
 

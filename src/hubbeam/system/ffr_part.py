@@ -1,64 +1,57 @@
-"""An FFR beam on the hub (paper Secs. 3 and 4).
+"""An FFR beam on its frame (paper Secs. 3 and 4), in minimal coordinates.
 
-Coordinates q = [r_C (3), Theta (3), p]: body-frame origin (at the root A), 2-3-1 Cardan
-angles of the body frame (:mod:`hubbeam.elements.ffr.cardan`) and the deformation
-coordinates of nodes 1..n (the root node is clamped to the body frame).
+The floating frame of reference of an FFR beam is the frame it hangs on: its root section
+frame (:mod:`hubbeam.system.frames`: the hub, its mount, joint angles, the base, a parent's
+tip), so the beam's own coordinates are its elastic coordinates p alone (nodal, or N modes:
+modal reduction, :mod:`hubbeam.elements.ffr.modal`). No reference coordinates of its own, no
+clamp multipliers: the body's inertia couples to the frame's coordinates c exactly.
 
-**Clamp.** The paper couples the body frame to the hub by Eqs. 73 and 76. As printed,
-Eq. 73 fixes five of the six freedoms. hubbeam uses the full clamp
-A0 = A_h(theta + psi) R_z(p) R_x(-beta) (the mount frame of :mod:`hubbeam.system.mount`),
-which in 2-3-1 Cardan angles (A_h(theta) = R_y(-theta), Eq. 74) is *linear*:
+**Equations** (Eqs. 65-72). With the frame's origin r_C (the root A), axes A0, velocity
+Jacobians Jr, Jw and velocity products h_r, h_w (:func:`~hubbeam.system.frames.frame_motion`),
+the body's v-space rates and accelerations are
 
-    r_C - R i_k(theta) = 0,   Theta1 + theta + psi = 0,   Theta2 - p = 0,   Theta3 + beta = 0.
+    v    = [r_C', omega^b, p']              = H [c', p'],   H = [[Jr, 0], [A0^T Jw, 0], [0, I]]
+    vdot = [Jr c'' + h_r, A0^T (Jw c'' + h_w), p'']
 
-It is better conditioned than Eq. 73 and keeps the Cardan angles away from their
-singularity (Theta2 = precone, limited well below 90 deg).
-
-**Equations** (Eqs. 65-72): with v = H q' (v = [r_C', omega^b, p'], omega^b = D Theta'),
-M = H^T M_v H and Q = H^T (Q_g + Q_f + Q_d + Q_v + Q_tip) - H^T M_v h. The beam's block of
-the Newton matrix is dense (the body's reference coordinates couple to every deformation
-coordinate). The dynamic iteration matrix is coef_m M + coef_c H^T C_v H + coef_k K_elastic;
-the inertia forces' derivatives are left out (O((omega h)^2) against the mass term; they
-only slow Newton); statics and modes add the exact load stiffness. A tip body is part of the
-body's inertia invariants (:class:`hubbeam.elements.ffr.body.FfrBeam`), modal reduction a
-basis of its elastic coordinates.
+and its generalized force on [c, p] is H^T (M_v vdot - Q) with M_v and Q of
+:func:`~hubbeam.elements.ffr.kernels.ffr_vspace_terms` (inertia, gravity, tip loads, drag,
+elastic force with geometric stiffening, structural damping; a tip body in the inertia
+invariants, :class:`hubbeam.elements.ffr.body.FfrBeam`). The dynamic iteration matrix is
+coef_m H^T M_v H + coef_c (H^T C_v H + C_struct) + coef_k K_el (the inertia forces'
+derivatives left out: O((omega h)^2) against the mass term, they only slow Newton). Statics
+and modes ask for the exact stiffness (``exact_stiffness``): K_el (exact) plus central
+differences of the rest of the beam's force over its columns [c, p] at fixed rates and
+accelerations, which holds every load's, frame's and steady rotation's dependence (steady
+rotation moves p at zero rate).
 
 The equations are evaluated in compiled code: the kind "FFR beams" (:data:`KIND`,
-:mod:`hubbeam.system.terms`) packs every FFR beam of a system (:class:`FfrBeams`) and gives
-the compiled equations the body terms of :mod:`hubbeam.elements.ffr.kernels` (a dense block
-inside the band) and the linear clamp above (:func:`ffr_clamp`). :meth:`FfrPart.forces` and
-:meth:`FfrPart.stiffness` below are their Python reference: the same formulas written with
-numpy, and the stiffness by central differences, which the tests hold the kernels against.
+:mod:`hubbeam.system.terms`) packs every FFR beam of a system (:class:`FfrBeams`).
+:meth:`FfrPart.vspace_forces` is their Python reference: the same formulas in v-space
+written with numpy, which the tests hold the kernel against.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
 from hubbeam.elements.ffr.body import FfrBeam
-from hubbeam.elements.ffr.cardan import angular_velocity_matrix, angular_velocity_matrix_rate, rotation_matrix
-from hubbeam.elements.ffr.kernels import (cardan, ffr_body_terms, ffr_dissipated_power, ffr_energies,
-                                          ffr_load_stiffness, tip_lever)
+from hubbeam.elements.ffr.kernels import ffr_dissipated_power, ffr_energies, ffr_momentum, ffr_vspace_terms, tip_lever
 from hubbeam.elements.ffr.kernels import pack as ffr_constants
-from hubbeam.numerics import central_difference_jacobian, relative_steps
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.clamp import add_clamp_jacobian, clamp_residual
-from hubbeam.system.mount import Mount, tip_from_mount
+from hubbeam.system.frames import chain_columns, chain_kinematics, displacement_in_reference, frame_motion, gather
+from hubbeam.system.mount import Mount
 from hubbeam.system.parts import BeamPart
-
-R_C, ANGLES, BODY = slice(0, 3), slice(3, 6), 6
-#: the hub's axis j0 (global)
-AXIS = np.array([0.0, 1.0, 0.0])
 
 
 @dataclass(eq=False)
 class FfrPart(BeamPart):
-    """An FFR beam (:class:`~hubbeam.elements.ffr.body.FfrBeam`) on its mount."""
+    """An FFR beam (:class:`~hubbeam.elements.ffr.body.FfrBeam`) on its mount; its coordinates
+    are its elastic coordinates p, its floating frame its root section frame."""
 
     beam: FfrBeam
     mount: Mount = field(default_factory=Mount)
@@ -67,7 +60,8 @@ class FfrPart(BeamPart):
     name: str = "beam1"
 
     formulation = "ffr"
-    root_dofs = 6  # r_C, Theta
+    root_dofs = 0  # no clamp: the root frame is the body frame
+    clamped = False
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -77,115 +71,46 @@ class FfrPart(BeamPart):
 
     @property
     def ndof(self) -> int:
-        return BODY + self.beam.ndof
+        return self.beam.ndof
 
     @property
     def tip_body(self):
         return self.beam.tip_body
 
     # ------------------------------------------------------------ states
-    def initial_state(self, theta: float) -> tuple[np.ndarray, np.ndarray]:
-        """Undeformed beam clamped at hub angle theta; the chart is unused by FFR (identity)."""
-        m = self.mount
-        q = np.zeros(self.ndof)
-        q[R_C] = m.root(theta)
-        q[ANGLES] = [-(theta + m.azimuth), m.precone, -m.twist]
-        return q, np.eye(3)
+    def initial_state(self, root, frame, reference) -> tuple[np.ndarray, np.ndarray]:
+        """Undeformed: p = 0; the chart is unused by FFR (identity)."""
+        return np.zeros(self.ndof), np.eye(3)
 
-    def _body(self, q):
-        angles = q[ANGLES]
-        return rotation_matrix(angles), angular_velocity_matrix(angles)
-
-    def _H(self, D):
-        H = np.eye(self.ndof)
-        H[3:6, 3:6] = D
-        return H
-
-    def steady_rotation_rates(self, q, chart, omega: float):
-        """Rates of a rigid rotation with the hub at theta' = omega (w = -omega j0):
-        r_C' = w x r_C, Theta' = D^-1 A0^T w, p' = 0; accelerations r_C'' = w x (w x r_C),
-        Theta'' = -D^-1 D' Theta' (omega^b = A0^T w is constant), p'' = 0."""
-        A0, D = self._body(q)
-        w = -omega * AXIS
-        v = np.zeros(self.ndof)
-        a = np.zeros(self.ndof)
-        v[R_C] = np.cross(w, q[R_C])
-        v[ANGLES] = np.linalg.solve(D, A0.T @ w)
-        a[R_C] = np.cross(w, v[R_C])
-        a[ANGLES] = -np.linalg.solve(D, angular_velocity_matrix_rate(q[ANGLES], v[ANGLES]))
-        return v, a
-
-    # ------------------------------------------------------------ constraints
-    def clamp(self, q, chart, theta):
-        """Phi (6), its Jacobian on [theta, r_C, Theta] (6 x 7) and the multiplier-weighted
-        Hessian on them (7 x 7); p does not enter."""
-        m = self.mount
-        a = theta + m.azimuth
-        c, s = np.cos(a), np.sin(a)
-        phi = np.zeros(6)
-        jac = np.zeros((6, 7))
-        phi[0:3] = q[R_C] - m.radius * np.array([c, 0.0, s])
-        phi[3] = q[3] + a
-        phi[4] = q[4] - m.precone
-        phi[5] = q[5] + m.twist
-        jac[0:3, 1:4] = np.eye(3)
-        jac[0:3, 0] = -m.radius * np.array([-s, 0.0, c])
-        jac[3, 4] = jac[3, 0] = 1.0
-        jac[4, 5] = 1.0
-        jac[5, 6] = 1.0
-
-        def hess(lam):
-            H = np.zeros((7, 7))
-            H[0, 0] = m.radius * (lam[0] * c + lam[2] * s)
-            return H
-
-        return phi, jac, hess
+    def rigid_rates(self, q, chart, velocity, w, origin, acceleration=None):
+        """A rigid motion of the frame leaves p at rest: (0, 0)."""
+        return np.zeros(self.ndof), np.zeros(self.ndof)
 
     # ------------------------------------------------------------ generalized forces
-    def forces(self, q, v, acc, gravity, damping, tangent: bool, factor: float = 1.0):
-        """M q'' - Q on q (everything but the constraints), and the pieces of the iteration
-        matrix: M, H^T C_v H + c K on p (drag and structural damping), the elastic tangent on p.
-        ``factor`` scales the applied loads (gravity, tip force and moment). The Python reference
-        of the compiled kernel."""
+    def vspace_forces(self, A0, p, vb, vdot, gravity, damping, tangent: bool, factor: float = 1.0):
+        """M_v vdot - Q on v = [r_C', omega^b, p'] (everything but the frame's projection), and
+        the pieces of the iteration matrix: M_v, C_v + c K on p (drag and structural damping),
+        the elastic tangent on p. ``factor`` scales the applied loads (gravity, tip force and
+        moment). The Python reference of the compiled kernel."""
         beam = self.beam
         nf = beam.ndof
-        A0, D = self._body(q)
-        H = self._H(D)
-        p, pd = q[BODY:], v[BODY:]
-        vb = H @ v
+        pd = vb[6:]
         omega = vb[3:6]
-        h = np.zeros(6 + nf)
-        h[3:6] = angular_velocity_matrix_rate(q[ANGLES], v[ANGLES])
         Mv = beam.mass_matrix(p, A0)
         _, f_el, K_el = beam.elastic(p)
         Q = beam.quadratic_velocity(p, pd, omega, A0) + factor * (beam.gravity(p, A0, gravity) + self._tip_load(A0, p))
         Q[6:] -= f_el + beam.damping_matrix @ pd
-        Qd, Cv = self._drag(q, vb, A0, damping, tangent)
+        Qd, Cv = self._drag(p, vb, A0, damping, tangent)
         Q += Qd
-        vdot = H @ acc + h
-        force = H.T @ (Mv @ vdot - Q)
+        force = Mv @ vdot - Q
         if not tangent:
             return force, None
-        M = H.T @ Mv @ H
-        C = H.T @ Cv @ H
+        C = np.array(Cv)
         C[6:, 6:] += beam.damping_matrix
-        K = np.zeros_like(M)
+        K = np.zeros_like(Mv)
         K[6:, 6:] = K_el
-        return force, (M, C, K)
-
-    def stiffness(self, q, gravity, damping, factor: float = 1.0, spin: float = 0.0) -> np.ndarray:
-        """d(forces)/dq at rest (or in steady rotation at ``spin`` rad/s, its rates following q)
-        by central differences: the static and modal stiffness with every load's dependence
-        (the reference for the compiled load and spin stiffness)."""
-        def forces(qq):
-            if spin:
-                vel, acc = self.steady_rotation_rates(qq, None, spin)
-                vel, acc = factor**0.5 * vel, factor * acc
-            else:
-                vel = acc = np.zeros_like(qq)
-            return self.forces(qq, vel, acc, gravity, damping, tangent=False, factor=factor)[0]
-
-        return central_difference_jacobian(forces, q, relative_steps(q))
+        assert K.shape == (6 + nf, 6 + nf)
+        return force, (Mv, C, K)
 
     def _tip_load(self, A0, p):
         """Virtual work of the tip force and moment (global, constant) on v: the force acts at
@@ -204,7 +129,7 @@ class FfrPart(BeamPart):
             Q[6:] += self._tip_rotation_rows.T @ mb
         return Q
 
-    def _drag(self, q, vb, A0, damping, tangent: bool):
+    def _drag(self, p, vb, A0, damping, tangent: bool):
         """Eq. 64 on the centre line (frontal width b): Q_d and its velocity Jacobian C_v
         (d(-Q_d)/dv)."""
         c1, c2 = damping
@@ -212,7 +137,6 @@ class FfrPart(BeamPart):
         if c1 == 0.0 and c2 == 0.0:
             return np.zeros(n), np.zeros((n, n))
         t = self.beam.centre_line_table
-        p = q[BODY:]
         r = np.column_stack([t["x"], np.zeros((t["x"].shape[0], 2))]) + t["N"] @ p  # body frame
         S = np.empty((r.shape[0], 3, n))
         S[:, :, 0:3] = np.eye(3)
@@ -233,100 +157,87 @@ class FfrPart(BeamPart):
         C = S.reshape(-1, n).T @ GS.reshape(-1, n)
         return Q, C
 
-    def dissipated_power(self, q, v, damping) -> float:
+    def dissipated_power(self, A0, p, vb, damping) -> float:
         """Power of the drag and the structural damping (W, >= 0): the Python reference of the
         compiled one."""
-        pd = v[BODY:]
+        pd = vb[6:]
         power = float(pd @ self.beam.damping_matrix @ pd)
         c1, c2 = damping
         if c1 == 0.0 and c2 == 0.0:
             return power
-        A0, D = self._body(q)
-        vb = self._H(D) @ v
-        Qd, _ = self._drag(q, vb, A0, damping, tangent=False)
+        Qd, _ = self._drag(p, vb, A0, damping, tangent=False)
         return power + float(-Qd @ vb)
 
-    # ------------------------------------------------------------ inertia and energies
-    def mass_matrix(self, q, chart=None) -> np.ndarray:
-        A0, D = self._body(q)
-        H = self._H(D)
-        return H.T @ self.beam.mass_matrix(q[BODY:], A0) @ H
-
-    def apply_mass(self, q, chart, u) -> np.ndarray:
-        return self.mass_matrix(q) @ u
-
-    def energies(self, q, v, chart, gravity) -> dict[str, float]:
-        A0, D = self._body(q)
-        vb = self._H(D) @ v
-        p = q[BODY:]
+    def energies(self, r_C, A0, p, vb, gravity) -> dict[str, float]:
+        """Kinetic, strain and gravity energy (J) in v-space (the Python reference)."""
         kinetic = 0.5 * vb @ self.beam.mass_matrix(p, A0) @ vb
         strain = self.beam.elastic(p)[0]
         inv = self.beam.invariants
-        grav = -np.asarray(gravity) @ (inv["m"] * q[R_C] + A0 @ self.beam.first_moment(p))
+        grav = -np.asarray(gravity) @ (inv["m"] * np.asarray(r_C) + A0 @ self.beam.first_moment(p))
         return {"kinetic": float(kinetic), "strain": float(strain), "gravity": float(grav)}
 
     # ------------------------------------------------------------ measured quantities
-    def point_position(self, q, station: float, y: float = 0.0, z: float = 0.0) -> np.ndarray:
-        """Global position of the material point (station, y, z) (Eq. 42); (y, z) (m) on the local
-        section axes of the station (turned by the pretwist, :meth:`FfrBeam.body_point`)."""
-        A0, _ = self._body(q)
+    def point_position(self, q, frame, station: float, y: float = 0.0, z: float = 0.0) -> np.ndarray:
+        """Global position of the material point (station, y, z) (Eq. 42) for the body frame
+        ``frame`` = (r_C, A0); (y, z) (m) on the local section axes of the station (turned by the
+        pretwist, :meth:`FfrBeam.body_point`)."""
+        r_C, A0 = frame
         yb, zb = self.beam.body_point(station, y, z)
-        u = self.beam.displacement_row(station, yb, zb) @ q[BODY:]
-        return q[R_C] + A0 @ (np.array([station, yb, zb]) + u)
+        u = self.beam.displacement_row(station, yb, zb) @ q
+        return np.asarray(r_C) + np.asarray(A0) @ (np.array([station, yb, zb]) + u)
 
-    def tip_position(self, q) -> np.ndarray:
-        return self.point_position(q, self.beam.length)
+    def tip_position(self, q, frame) -> np.ndarray:
+        return self.point_position(q, frame, self.beam.length)
 
     def surface_strain(self, q, chart, station, y, z) -> float:
         """Fibre strain at the section point (y, z) on the local section axes of the station
         (:meth:`FfrBeam.surface_strain`)."""
-        return self.beam.surface_strain(q[BODY:], station, y, z)
+        return self.beam.surface_strain(q, station, y, z)
 
     def surface_strains_of_states(self, Q, chart, station, y, z) -> np.ndarray:
         """:meth:`surface_strain` for each row of Q in one product (:meth:`FfrBeam.surface_strains_of_states`)."""
-        return self.beam.surface_strains_of_states(Q[:, BODY:], station, y, z)
+        return self.beam.surface_strains_of_states(Q, station, y, z)
 
-    def section_motion(self, q, chart, u, stations):
-        """FFR's kinematics (Eq. 42) at the station's centre point, r = r_C + A0 (rho0 + N p):
-        velocity r_C' + A0 (omega^b x (rho0 + N p) + N p'), omega^b = D Theta'; the section turns
-        by the body rotation and its small rotation phi = Phi p (:meth:`FfrBeam.rotation_row`):
-        frame A0 exp([phi]x) P(x) (the body frame's axes are the undeformed root section's, P the
-        pretwist's turn of the section axes), angular
-        velocity A0 (omega^b + Phi p') (to first order in phi, as FFR's kinematics)."""
+    def section_motion(self, q, chart, u, stations, frame, frame_rate):
+        """FFR's kinematics (Eq. 42) at the station's centre point, r = r_C + A0 (rho0 + N p), for
+        the body frame ``frame`` = (r_C, A0) moving at ``frame_rate`` = (r_C', w) (global; w the
+        frame's angular velocity) and p at the rate u: velocity r_C' + w x A0 (rho0 + N p) + A0 N u;
+        the section turns by the body rotation and its small rotation phi = Phi p
+        (:meth:`FfrBeam.rotation_row`): frame A0 exp([phi]x) P(x) (the body frame's axes are the
+        undeformed root section's, P the pretwist's turn of the section axes), angular velocity
+        w + A0 Phi u (to first order in phi, as FFR's kinematics)."""
         beam = self.beam
-        A0, D = self._body(q)
-        p, w_b, pd = q[BODY:], D @ u[ANGLES], u[BODY:]
+        r_C, A0 = (np.asarray(a, dtype=float) for a in frame)
+        v_C, w = (np.asarray(a) for a in frame_rate)
         n = len(stations)
-        frames, vel, omega = np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3))
+        frames = np.empty((n, 3, 3))
+        vel = np.empty((n, 3), dtype=np.result_type(u, v_C, w))
+        omega = np.empty((n, 3), dtype=vel.dtype)
         for i, x in enumerate(stations):
             N, Phi = beam.displacement_row(x), beam.rotation_row(x)
-            r = np.array([x, 0.0, 0.0]) + N @ p
-            vel[i] = u[R_C] + A0 @ (np.cross(w_b, r) + N @ pd)
-            omega[i] = A0 @ (w_b + Phi @ pd)
-            frames[i] = A0 @ rotations_about(Phi @ p)[0] @ self._pretwisted_axes([x])[0]
+            r = A0 @ (np.array([x, 0.0, 0.0]) + N @ q)
+            vel[i] = v_C + np.cross(w, r) + A0 @ (N @ u)
+            omega[i] = w + A0 @ (Phi @ u)
+            frames[i] = A0 @ rotations_about(Phi @ q)[0] @ self._pretwisted_axes([x])[0]
         return frames, vel, omega
 
-    def centre_line_at(self, q, chart, stations) -> np.ndarray:
-        """Eq. 42 at (x, 0, 0) of every station."""
-        A0, _ = self._body(q)
+    def centre_line_at(self, q, chart, stations, frame) -> np.ndarray:
+        """Eq. 42 at (x, 0, 0) of every station, for the body frame ``frame`` = (r_C, A0)."""
+        r_C, A0 = frame
         xs = np.asarray(stations, dtype=float)
         rows = np.array([self.beam.displacement_row(s) for s in xs]).reshape(xs.size, 3, -1)
-        local = rows @ q[BODY:]
+        local = rows @ q
         local[:, 0] += xs
-        return q[R_C] + local @ A0.T
+        return np.asarray(r_C) + local @ np.asarray(A0).T
 
-    def frame_at(self, q, chart, station) -> np.ndarray:
-        """Section frame [tau m n] (3x3, global) at the station (m from the root)."""
-        return self.frames_at(q, chart, [station])[0]
-
-    def frames_at(self, q, chart, stations) -> np.ndarray:
+    def frames_at(self, q, chart, stations, frame) -> np.ndarray:
         """Section frames at the stations: the body frame turned by each section's rotation
         phi (:meth:`~hubbeam.elements.ffr.body.FfrBeam.rotation_row`). FFR's kinematics are
         linear in phi (u = phi x (0, y, z)); the frame turns by the rotation vector phi
         (Rodrigues), which agrees with them to first order and stays orthonormal."""
-        A0, _ = self._body(q)
+        _, A0 = frame
         rows = np.array([self.beam.rotation_row(s) for s in stations]).reshape(len(stations), 3, -1)
-        return A0 @ rotations_about(rows @ q[BODY:]) @ self._pretwisted_axes(stations)
+        return np.asarray(A0) @ rotations_about(rows @ q) @ self._pretwisted_axes(stations)
 
     def _pretwisted_axes(self, stations) -> np.ndarray:
         """The undeformed section axes [tau m n] at the stations over the body frame (n x 3 x 3):
@@ -363,7 +274,7 @@ FFR_GROUPS = {"scalars": ("m", "stiffening", "damped", "length"),
 #: the constants of FfrArrays that FfrBeams holds one array each
 FFR_SINGLE = ("I0", "J", "II", "EAl", "mean_stretch", "mean_slope2", "N_pts")
 #: the columns of :attr:`FfrBeams.places`
-INDEX, X0, LAMBDA0, NF = 0, 1, 2, 3
+INDEX, X0, NF = 0, 1, 2
 
 
 class FfrBeams(NamedTuple):
@@ -371,9 +282,9 @@ class FfrBeams(NamedTuple):
     beam, zero-padded to the largest beam (the kernels read the leading nf entries); fields of
     equal shape grouped (:data:`FFR_GROUPS`, slots as listed there; :func:`ffr_arguments`)."""
 
-    places: np.ndarray  # int64 (nb, 4): the beam's place among all beams (INDEX), where q_k starts in x (X0),
-    #                     where its clamp multipliers start in lambda (LAMBDA0), its elastic coordinates (NF)
-    mount: np.ndarray  # (nb, 4) radius, twist, azimuth, precone
+    places: np.ndarray  # int64 (nb, 3): the beam's place among all beams (INDEX), where p starts in x (X0),
+    #                     its elastic coordinates (NF)
+    chains: np.ndarray  # int64 (nb, 2): its root section frame's chain (the body frame) and its reference frame's
     scalars: np.ndarray  # (nb, 4): m (kg), stiffening, damped, length (m)
     vectors: np.ndarray  # (nb, 3, 3): c0, tip_force, tip_moment
     rows: np.ndarray  # (nb, 3, 3, nf): Sbar, tip_rows, tip_rotation_rows
@@ -408,16 +319,26 @@ def pack_ffr_beams(system, layout) -> FfrBeams | None:
     fields = {group: _stacked([_stacked([getattr(p, name) for name in names]) for p in packs])
               for group, names in FFR_GROUPS.items()}
     fields.update({name: _stacked([getattr(p, name) for p in packs]) for name in FFR_SINGLE})
-    ints = lambda values: np.array(values, dtype=np.int64)  # noqa: E731
-    places = np.array([(k, layout.beam_x(k).start, layout.clamp_lambda(k).start, b.beam.ndof) for k, b in ffr],
-                      dtype=np.int64).reshape(len(ffr), 4)
-    return FfrBeams(places, np.array([b.mount.params() for _, b in ffr], dtype=float).reshape(len(ffr), 4), **fields)
+    places = np.array([(k, layout.beam_x(k).start, b.beam.ndof) for k, b in ffr], dtype=np.int64).reshape(len(ffr), 3)
+    chains = np.array([(system.frames.root(k), system.frames.reference(k)) for k, _ in ffr],
+                      dtype=np.int64).reshape(len(ffr), 2)
+    return FfrBeams(places, chains, **fields)
 
 
-def ffr_bandwidth(system) -> int:
-    """Half-bandwidth an FFR beam's whole block needs (its six clamp rows and 6 + nf
-    coordinates); 1 without FFR beams."""
-    return max([11 + b.beam.ndof for b in system.beams if isinstance(b, FfrPart)], default=1)
+def ffr_bandwidth(system, layout) -> int:
+    """Half-bandwidth an FFR beam's block needs: its elastic coordinates and its frame's
+    coordinates outside the border (a joint angle, a parent's tip; the hub angle when the
+    border is empty); 1 without FFR beams."""
+    width = 1
+    zx = layout.z_of_x
+    for k, b in enumerate(system.beams):
+        if not isinstance(b, FfrPart):
+            continue
+        own = list(zx[layout.beam_x(k)])
+        frame = [zx[c] for c in system.frames.chain(system.frames.root(k)).coordinates if zx[c] >= layout.border]
+        every = own + frame
+        width = max(width, max(every) - min(every))
+    return width
 
 
 @njit(cache=True, inline="always")
@@ -440,92 +361,177 @@ def ffr_arguments(pack, k, drag_c):
 
 
 @njit(cache=True)
-def ffr_clamp(mount, theta, q, lam, phi, jac):
-    """The six clamp equations of an FFR body frame (see :mod:`hubbeam.system.ffr_part`):
-    r_C - R i_k(theta) = 0, Theta1 + theta + psi = 0, Theta2 - p = 0, Theta3 + beta = 0, with
-    their Jacobian on [theta, r_C, Theta] (6 x 7, written into the leading columns of ``jac``).
-    Returns the multiplier-weighted Hessian's only entry, d2/dtheta2 of the position rows."""
-    radius, twist, azimuth, precone = mount[0], mount[1], mount[2], mount[3]
-    a = theta + azimuth
-    c, s = np.cos(a), np.sin(a)
-    for i in range(6):
-        for j in range(7):
-            jac[i, j] = 0.0
-    phi[0] = q[0] - radius * c
-    phi[1] = q[1]
-    phi[2] = q[2] - radius * s
-    phi[3] = q[3] + a
-    phi[4] = q[4] - precone
-    phi[5] = q[5] + twist
+def _frame_state(pack, ctx, F, k, x, order):
+    """(columns, r, R, Jr, Jw, Hr, Hw) of FFR beam k's body frame at x."""
+    chain = pack.chains[k, 0]
+    cols = chain_columns(ctx.chains, chain)
+    nc = cols.shape[0]
+    r, R = np.empty(3), np.empty((3, 3))
+    Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
+    Hr, Hw = np.empty((3, nc, nc)), np.empty((3, nc, nc))
+    chain_kinematics(ctx.chains, chain, x, F, order, r, R, Jr, Jw, Hr, Hw)
+    return cols, r, R, Jr, Jw, Hr, Hw
+
+
+@njit(cache=True)
+def _vspace_rates(R, Jr, Jw, Hr, Hw, cd, cdd, pd, pdd, vb, vdot):
+    """vb = H [c', p'] and vdot = H [c'', p''] + [h_r, A0^T h_w, 0] (module docstring)."""
+    vel, w, a, alpha = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
+    frame_motion(Jr, Jw, Hr, Hw, cd, cdd, vel, w, a, alpha)
     for i in range(3):
-        jac[i, 1 + i] = 1.0
-    jac[0, 0] = radius * s
-    jac[2, 0] = -radius * c
-    jac[3, 0] = 1.0
-    jac[3, 4] = 1.0
-    jac[4, 5] = 1.0
-    jac[5, 6] = 1.0
-    return radius * (lam[0] * c + lam[2] * s)
+        vb[i] = vel[i]
+        vdot[i] = a[i]
+        vb[3 + i] = R[0, i] * w[0] + R[1, i] * w[1] + R[2, i] * w[2]
+        vdot[3 + i] = R[0, i] * alpha[0] + R[1, i] * alpha[1] + R[2, i] * alpha[2]
+    for f in range(pd.shape[0]):
+        vb[6 + f] = pd[f]
+        vdot[6 + f] = pdd[f]
+
+
+@njit(cache=True)
+def ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el, elastic=True):
+    """FFR beam k's generalized force on its columns [c (the frame's nc), p (nf)] into ``force``
+    (nc + nf; module docstring), its projection H ((6 + nf) x (nc + nf)) and, when
+    ``want_matrix``, M_v, C_v and K_el (:func:`ffr_vspace_terms`; ``elastic`` False leaves the
+    elastic force out). Returns (the frame's columns (x indices), the dissipated power (W))."""
+    nf = pack.places[k, NF]
+    x0 = pack.places[k, X0]
+    n = 6 + nf
+    cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 2)
+    nc = cols.shape[0]
+    p = x[x0:x0 + nf]
+    vb, vdot = np.empty(n), np.empty(n)
+    _vspace_rates(R, Jr, Jw, Hr, Hw, gather(v, cols), gather(acc, cols), v[x0:x0 + nf], acc[x0:x0 + nf], vb, vdot)
+    inv, tip, drag = ffr_arguments(pack, k, ctx.drag)
+    fv = np.empty(n)
+    power = ffr_vspace_terms(inv, R, p, vb, vdot, ctx.gravity, tip, drag, load_factor, want_matrix, fv, Mv, Cv, K_el,
+                             elastic)
+    m = nc + nf
+    for i in range(n):
+        for j in range(m):
+            H[i, j] = 0.0
+    for j in range(nc):
+        for a in range(3):
+            H[a, j] = Jr[a, j]
+            H[3 + a, j] = R[0, a] * Jw[0, j] + R[1, a] * Jw[1, j] + R[2, a] * Jw[2, j]
+    for f in range(nf):
+        H[6 + f, nc + f] = 1.0
+    for j in range(nc):
+        s = 0.0
+        for i in range(6):
+            s += H[i, j] * fv[i]
+        force[j] = s
+    for f in range(nf):
+        force[nc + f] = fv[6 + f]
+    return cols, power
 
 
 def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
                   want_matrix, res, ab, brow, bcol, bb):
-    """Every FFR beam's rows (:mod:`hubbeam.system.terms`): the body terms of
-    :func:`~hubbeam.elements.ffr.kernels.ffr_body_terms` and the clamp :func:`ffr_clamp`;
-    ``exact_stiffness`` adds the load stiffness (statics and modes)."""
-    zx, zl, ku = ctx.z_of_x, ctx.z_of_lambda, ctx.ku
-    z_theta = zx[ctx.theta]
-    theta = x[ctx.theta]
+    """Every FFR beam's rows (:mod:`hubbeam.system.terms`): H^T (M_v vdot - Q) on its frame's
+    coordinates and its own; the matrix coef_m H^T M_v H + coef_c (H^T C_v H + C_struct) +
+    coef_k K_el, or with ``exact_stiffness`` the stiffness by central differences of the force
+    (statics and modes)."""
+    zx, ku = ctx.z_of_x, ctx.ku
     power = 0.0
-    hub_force = 0.0
-    phi = np.empty(6)  # the clamp's Phi, Jacobian (on [theta, r_C, Theta]) and multipliers
-    jac = np.empty((6, 7))
-    lam_k = np.empty(6)
     places = pack.places
     for k in range(places.shape[0]):
-        n = 6 + places[k, NF]
+        nf = places[k, NF]
         x0 = places[k, X0]
-        l0 = places[k, LAMBDA0]
-        q = x[x0 : x0 + n]
-        force = np.empty(n)
-        nbk = n if want_matrix else 0
-        block = np.empty((nbk, nbk))  # ffr_body_terms overwrites it
-        inv, tip, drag = ffr_arguments(pack, k, ctx.drag)
-        power += ffr_body_terms(inv, q, v[x0 : x0 + n], acc[x0 : x0 + n], ctx.gravity, tip, drag, coef_m, coef_c,
-                                coef_k, load_factor, want_matrix, force, block)
-        for i in range(6):
-            lam_k[i] = lam[l0 + i]
-        hess = ffr_clamp(pack.mount[k], theta, q, lam_k, phi, jac)
-        hub_force += clamp_residual(lam_k, phi, jac, 6, scale, zl, l0, force, res)
-        for j in range(n):
-            res[zx[x0 + j]] += coef_k * force[j]
+        n = 6 + nf
+        nc = ctx.chains.column_start[pack.chains[k, 0] + 1] - ctx.chains.column_start[pack.chains[k, 0]]
+        m = nc + nf
+        force = np.empty(m)
+        H = np.empty((n, m))
+        nm = n if want_matrix else 0
+        Mv, Cv, K_el = np.empty((n, n)), np.empty((nm, nm)), np.empty((nf, nf))
+        cols, pk = ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el)
+        power += pk
+        rows = np.empty(m, dtype=np.int64)
+        for j in range(nc):
+            rows[j] = zx[cols[j]]
+        for f in range(nf):
+            rows[nc + f] = zx[x0 + f]
+        for j in range(m):
+            res[rows[j]] += coef_k * force[j]
         if not want_matrix:
             continue
-        if exact_stiffness:
-            load = np.empty((n, n))
-            ffr_load_stiffness(inv, q, ctx.gravity, tip, load_factor, load)
-            for i in range(n):
-                for j in range(n):
-                    block[i, j] += coef_k * load[i, j]
-        q_start = zx[x0]
+        # coef_m H^T M_v H + coef_c H^T C_v H: B = (coef_m M_v + coef_c C_v) H, then H^T B
+        B = np.empty((n, m))
         for i in range(n):
-            for j in range(n):
-                add_entry(ab, brow, bcol, bb, ku, q_start + i, q_start + j, block[i, j])
-        add_clamp_jacobian(ab, brow, bcol, bb, ku, jac, 6, scale, zl, l0, q_start, z_theta)
-        add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta, coef_k * hess)
-    return hub_force, 2.0, power
+            for j in range(m):
+                s = 0.0
+                for a in range(n):
+                    s += (coef_m * Mv[i, a] + coef_c * Cv[i, a]) * H[a, j]
+                B[i, j] = s
+        block = np.empty((m, m))
+        for i in range(m):
+            for j in range(m):
+                s = 0.0
+                for a in range(n):
+                    s += H[a, i] * B[a, j]
+                block[i, j] = s
+        Cs = pack.squares[k, 2]
+        damped = pack.scalars[k, 2] != 0.0
+        for f in range(nf):
+            for g in range(nf):
+                block[nc + f, nc + g] += coef_k * K_el[f, g] + (coef_c * Cs[f, g] if damped else 0.0)
+        if exact_stiffness and coef_k != 0.0:
+            # the stiffness of everything but the elastic force (K_el, exact, is in already) by
+            # central differences of the force over [c, p]
+            xp = x.copy()
+            fp, fm = np.empty(m), np.empty(m)
+            H2 = np.empty((n, m))
+            M2, C2, K2 = np.empty((n, n)), np.empty((0, 0)), np.empty((nf, nf))
+            for j in range(m):
+                c = cols[j] if j < nc else x0 + j - nc
+                h = 1e-6 * max(1.0, abs(x[c]))
+                xp[c] = x[c] + h
+                ffr_beam_terms(pack, ctx, F, k, xp, v, acc, load_factor, False, fp, H2, M2, C2, K2, False)
+                xp[c] = x[c] - h
+                ffr_beam_terms(pack, ctx, F, k, xp, v, acc, load_factor, False, fm, H2, M2, C2, K2, False)
+                xp[c] = x[c]
+                for i in range(m):
+                    block[i, j] += coef_k * (fp[i] - fm[i]) / (2.0 * h)
+        for i in range(m):
+            for j in range(m):
+                if block[i, j] != 0.0:
+                    add_entry(ab, brow, bcol, bb, ku, rows[i], rows[j], block[i, j])
+    return 2.0, power
 
 
 def ffr_beam_energies(pack, ctx, F, x, v, beams):
     """Kinetic, strain and gravity energy of every FFR beam, tip body included (J)."""
     places = pack.places
     for k in range(places.shape[0]):
-        n = 6 + places[k, NF]
+        nf = places[k, NF]
         x0 = places[k, X0]
+        n = 6 + nf
+        cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 1)
+        vb, vdot = np.empty(n), np.empty(n)
+        zero = np.zeros(cols.shape[0])
+        _vspace_rates(R, Jr, Jw, np.zeros((3, cols.shape[0], cols.shape[0])), np.zeros((3, cols.shape[0], cols.shape[0])),
+                      gather(v, cols), zero, v[x0:x0 + nf], np.zeros(nf), vb, vdot)
         inv, _, _ = ffr_arguments(pack, k, ctx.drag)
-        kinetic, strain, potential = ffr_energies(inv, x[x0 : x0 + n], v[x0 : x0 + n], ctx.gravity)
+        kinetic, strain, potential = ffr_energies(inv, R, r, x[x0:x0 + nf], vb, ctx.gravity)
         terms.add_beam_energy(beams, places[k, INDEX], kinetic, strain, potential)
     return 0.0, 0.0, 0.0
+
+
+def ffr_momenta(pack, ctx, F, x, v, out):
+    """Every FFR beam's mass, first moment and momenta (:func:`~hubbeam.elements.ffr.kernels.ffr_momentum`)."""
+    places = pack.places
+    for k in range(places.shape[0]):
+        nf = places[k, NF]
+        x0 = places[k, X0]
+        n = 6 + nf
+        cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 1)
+        nc = cols.shape[0]
+        vb, vdot = np.empty(n), np.empty(n)
+        _vspace_rates(R, Jr, Jw, np.zeros((3, nc, nc)), np.zeros((3, nc, nc)), gather(v, cols), np.zeros(nc),
+                      v[x0:x0 + nf], np.zeros(nf), vb, vdot)
+        inv, _, _ = ffr_arguments(pack, k, ctx.drag)
+        ffr_momentum(inv, R, r, x[x0:x0 + nf], vb, out)
 
 
 def ffr_power(pack, ctx, F, x, v):
@@ -536,29 +542,34 @@ def ffr_power(pack, ctx, F, x, v):
     for k in range(places.shape[0]):
         if still and pack.scalars[k, 2] == 0.0:  # neither drag nor structural damping: no views to build
             continue
-        n = 6 + places[k, NF]
+        nf = places[k, NF]
         x0 = places[k, X0]
-        power += ffr_dissipated_power(x[x0 : x0 + n], v[x0 : x0 + n], pack.squares[k, 2], pack.scalars[k, 2],
+        n = 6 + nf
+        cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 1)
+        nc = cols.shape[0]
+        vb, vdot = np.empty(n), np.empty(n)
+        _vspace_rates(R, Jr, Jw, np.zeros((3, nc, nc)), np.zeros((3, nc, nc)), gather(v, cols), np.zeros(nc),
+                      v[x0:x0 + nf], np.zeros(nf), vb, vdot)
+        power += ffr_dissipated_power(R, x[x0:x0 + nf], vb, pack.squares[k, 2], pack.scalars[k, 2],
                                       ffr_drag_arguments(pack, k, ctx.drag))
     return power
 
 
-def ffr_tips(pack, ctx, x, out):
-    """Each FFR beam's tip centroid displacement in its hub frame (m)."""
-    theta = x[ctx.theta]
-    A = np.empty((3, 3))
-    D = np.empty((3, 3))
+def ffr_tips(pack, ctx, F, x, out):
+    """Each FFR beam's tip centroid displacement along its reference frame's axes (m)."""
+    r, R = np.empty(3), np.empty((3, 3))
     tip_at = np.empty(3)
     places = pack.places
     for k in range(places.shape[0]):
         x0 = places[k, X0]
-        cardan(x[x0 + 3], x[x0 + 4], x[x0 + 5], A, D)
+        cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 1)
         length = pack.scalars[k, 3]
-        local = tip_lever(pack.rows[k, 1], length, x[x0 + 6 : x0 + 6 + places[k, NF]])
+        local = tip_lever(pack.rows[k, 1], length, x[x0:x0 + places[k, NF]])
         for i in range(3):
-            tip_at[i] = x[x0 + i] + A[i, 0] * local[0] + A[i, 1] * local[1] + A[i, 2] * local[2]
-        tip_from_mount(pack.mount[k], theta, length, tip_at, out[places[k, INDEX]])
+            tip_at[i] = r[i] + R[i, 0] * local[0] + R[i, 1] * local[1] + R[i, 2] * local[2]
+        displacement_in_reference(ctx, F, x, pack.chains[k, 0], pack.chains[k, 1], length, tip_at,
+                                  out[places[k, INDEX]])
 
 
 KIND = terms.register(FfrBeams, pack_ffr_beams, ffr_equations, ffr_beam_energies, ffr_power, ffr_tips,
-                      bandwidth=ffr_bandwidth)
+                      bandwidth=ffr_bandwidth, momenta=ffr_momenta)

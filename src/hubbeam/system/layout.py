@@ -1,39 +1,68 @@
-"""Where every unknown of a hub-beam system lives: the one owner of offsets.
+"""Where every unknown of a system lives: the one owner of offsets.
 
-Parts declare how many coordinates they have (the hub: its angle theta; beam k: the
-n_k coordinates of its formulation) and how many constraints they bring (each beam's
-clamp: six; a held hub: the drive theta = theta_p(t)). :class:`Layout` places them:
+Parts declare how many coordinates they have and how many constraints they bring;
+:class:`Layout` places them:
 
-- coordinates  x = [theta, q_1, q_2, ...]
-- multipliers  lambda = [lambda_drive (held hub only), lambda_clamp_1 (6), lambda_clamp_2 (6), ...]
-- Newton unknowns z = [theta, mu_drive, (mu_clamp_1, q_1), (mu_clamp_2, q_2), ...]
+- coordinates  x = [base (0 or 7), theta, (psi_1, q_1), (psi_2, q_2), ...]: the base's
+  position and Euler parameters (a free base, or one that follows a table), the hub angle,
+  then for every beam its joint angles psi_k (0 to 3) and its own coordinates q_k;
+- multipliers  lambda = [norm (1), base (6), drive (1), clamp_1 (6), clamp_2 (6), ...]: the
+  Euler parameters' norm (a base with coordinates), the base's six driving constraints (a
+  base that follows a table, or a free base held for statics), the hub's drive (a held
+  hub), and the clamp of every beam whose formulation is clamped to its root frame by
+  constraints (ANCF; an FFR beam uses its root frame as its floating frame and has none);
+- Newton unknowns z = [base, theta, mu_norm, mu_base, mu_drive, (psi_1, mu_clamp_1, q_1), ...].
 
-Theta and, for a held hub, the drive multiplier couple to every beam; the rest of the
-Newton matrix is block-diagonal over the beams, each block banded for an ANCF beam. With
-several beams these leading entries are the *border*, eliminated by a Schur complement
-(:class:`hubbeam.system.assembly.BorderedBandMatrix`); with one beam they fit in the band
-(theta reaches the root coordinates 14 entries on) and the border is empty. Nothing else in the package computes
-an offset into x, lambda or z: it asks the layout (``z_of_x``, ``z_of_lambda`` map every
-entry of x and lambda to its place in z).
+The leading entries (the base, theta and the multipliers of their constraints) couple to
+every beam; the rest of the Newton matrix is block-diagonal over the beams (a beam that
+hangs on another's tip couples to its parent's block), each block banded for an ANCF beam.
+With several beams, or a base with coordinates, the leading entries are the *border*,
+eliminated by a Schur complement (:class:`hubbeam.system.assembly.BorderedBandMatrix`); a
+single beam on a fixed base keeps them in the band (theta reaches the root coordinates 14
+entries on) and the border is empty. Nothing else in the package computes an offset into x,
+lambda or z: it asks the layout (``z_of_x``, ``z_of_lambda`` map every entry of x and
+lambda to its place in z).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-#: equations of the clamp of a beam root to the hub (position 3, tangent 2, twist 1)
+#: equations of the clamp of a beam root to its frame (position 3, tangent 2, twist 1)
 CLAMP_EQUATIONS = 6
+#: coordinates of a base that moves: its position (3) and Euler parameters (4)
+BASE_COORDINATES = 7
+#: driving constraints of a base held or following a table: position (3) and rotation (3)
+BASE_DRIVES = 6
 
 
 @dataclass(frozen=True)
 class Layout:
-    """The unknowns of a hub carrying beams with ``beam_dofs[k]`` coordinates each; ``held``:
-    the hub angle is prescribed (or fixed) by a driving constraint."""
+    """The unknowns of a system: ``beam_dofs[k]`` coordinates of beam k, ``joint_dofs[k]`` joint
+    angles at its root and ``clamped[k]`` (its six clamp multipliers); ``held``: the hub angle
+    is prescribed (or fixed) by a driving constraint; ``base_moves``: the base has coordinates
+    (free or following a table); ``base_held``: those coordinates are driven by six constraints
+    (a table, or a free base held for statics)."""
 
     beam_dofs: tuple[int, ...]
     held: bool
+    joint_dofs: tuple[int, ...] | None = None
+    clamped: tuple[bool, ...] | None = None
+    base_moves: bool = False
+    base_held: bool = False
+
+    def __post_init__(self) -> None:
+        n = len(self.beam_dofs)
+        if self.joint_dofs is None:
+            object.__setattr__(self, "joint_dofs", (0,) * n)
+        if self.clamped is None:
+            object.__setattr__(self, "clamped", (True,) * n)
+        if len(self.joint_dofs) != n or len(self.clamped) != n:
+            raise ValueError("one joint count and one clamp flag per beam")
+        if self.base_held and not self.base_moves:
+            raise ValueError("a base without coordinates cannot be held by constraints")
 
     # ------------------------------------------------------------ sizes
     @property
@@ -41,14 +70,33 @@ class Layout:
         return len(self.beam_dofs)
 
     @property
+    def base_dofs(self) -> int:
+        """Coordinates of the base: 7 when it moves, else 0."""
+        return BASE_COORDINATES if self.base_moves else 0
+
+    @property
+    def frame_dofs(self) -> int:
+        """Coordinates of the frames every beam hangs on: the base's and the hub angle."""
+        return self.base_dofs + 1
+
+    @property
+    def border_constraints(self) -> int:
+        """Constraints on the frames' coordinates: the norm, the base's drives, the hub's drive."""
+        return int(self.base_moves) + BASE_DRIVES * int(self.base_held) + int(self.held)
+
+    def block_size(self, k: int) -> int:
+        """Beam k's entries in z: its joint angles, clamp multipliers and coordinates."""
+        return self.joint_dofs[k] + CLAMP_EQUATIONS * int(self.clamped[k]) + self.beam_dofs[k]
+
+    @property
     def nx(self) -> int:
-        """Coordinates: the hub angle and every beam's."""
-        return 1 + sum(self.beam_dofs)
+        """Coordinates: the frames' and every beam's (joint angles included)."""
+        return self.frame_dofs + sum(self.joint_dofs) + sum(self.beam_dofs)
 
     @property
     def n_lambda(self) -> int:
-        """Constraints: every beam's clamp and, for a held hub, the drive."""
-        return int(self.held) + CLAMP_EQUATIONS * self.beams
+        """Constraints: the frames' and every clamped beam's."""
+        return self.border_constraints + CLAMP_EQUATIONS * sum(self.clamped)
 
     @property
     def nz(self) -> int:
@@ -56,60 +104,90 @@ class Layout:
 
     @property
     def leading(self) -> int:
-        """Entries of z before the beams' blocks: theta and, for a held hub, the drive multiplier."""
-        return 1 + int(self.held)
+        """Entries of z before the beams' blocks: the frames' coordinates and constraints."""
+        return self.frame_dofs + self.border_constraints
 
     @property
     def border(self) -> int:
-        """Leading entries of z kept out of the band: theta and the drive multiplier when
-        several beams share them; none for one beam (the band holds them)."""
-        return 0 if self.beams == 1 else self.leading
+        """Leading entries of z kept out of the band: all of them when several beams share
+        them or the base moves (or there is no beam); none for one beam on a fixed base (the
+        band holds them)."""
+        return 0 if (self.beams == 1 and not self.base_moves) else self.leading
 
     # ------------------------------------------------------------ where things are
-    #: the hub angle in x
-    theta = 0
-    #: every beam coordinate in x
-    beams_x = slice(1, None)
+    @property
+    def theta(self) -> int:
+        """The hub angle in x."""
+        return self.base_dofs
+
+    @property
+    def base_x(self) -> slice:
+        """The base's coordinates in x (empty when it does not move): position, then Euler parameters."""
+        return slice(0, self.base_dofs)
+
+    @property
+    def beams_x(self) -> slice:
+        """Every beam's coordinates and joint angles in x."""
+        return slice(self.frame_dofs, None)
+
+    def joint_x(self, k: int) -> slice:
+        """Beam k's joint angles in x."""
+        start = self.frame_dofs + sum(self.joint_dofs[j] + self.beam_dofs[j] for j in range(k))
+        return slice(start, start + self.joint_dofs[k])
 
     def beam_x(self, k: int) -> slice:
         """Beam k's coordinates in x."""
-        start = 1 + sum(self.beam_dofs[:k])
+        start = self.joint_x(k).stop
         return slice(start, start + self.beam_dofs[k])
 
-    def clamp_lambda(self, k: int) -> slice:
-        """Beam k's clamp multipliers in lambda."""
-        start = int(self.held) + CLAMP_EQUATIONS * k
-        return slice(start, start + CLAMP_EQUATIONS)
+    @property
+    def norm_lambda(self) -> int | None:
+        """The Euler parameters' norm constraint in lambda (None for a fixed base)."""
+        return 0 if self.base_moves else None
+
+    @property
+    def base_lambda(self) -> slice | None:
+        """The base's six driving constraints in lambda (None when not held)."""
+        return slice(1, 1 + BASE_DRIVES) if self.base_held else None
 
     @property
     def drive_lambda(self) -> int | None:
-        """Index of the drive multiplier in lambda (None for a free hub)."""
-        return 0 if self.held else None
+        """Index of the hub's drive multiplier in lambda (None for a free hub)."""
+        return self.border_constraints - 1 if self.held else None
+
+    def clamp_lambda(self, k: int) -> slice:
+        """Beam k's clamp multipliers in lambda (empty for an unclamped beam)."""
+        start = self.border_constraints + CLAMP_EQUATIONS * sum(self.clamped[:k])
+        return slice(start, start + CLAMP_EQUATIONS * int(self.clamped[k]))
 
     def beam_z(self, k: int) -> slice:
-        """Beam k's block in z: its clamp multipliers, then its coordinates."""
-        start = self.leading + sum(CLAMP_EQUATIONS + n for n in self.beam_dofs[:k])
-        return slice(start, start + CLAMP_EQUATIONS + self.beam_dofs[k])
+        """Beam k's block in z: its joint angles, clamp multipliers, then its coordinates."""
+        start = self.leading + sum(self.block_size(j) for j in range(k))
+        return slice(start, start + self.block_size(k))
 
     @property
     def z_of_x(self) -> np.ndarray:
         """z index of every entry of x."""
         out = np.empty(self.nx, dtype=np.int64)
-        out[0] = 0
+        out[: self.frame_dofs] = np.arange(self.frame_dofs)
         for k in range(self.beams):
-            z = self.beam_z(k)
-            out[self.beam_x(k)] = np.arange(z.start + CLAMP_EQUATIONS, z.stop)
+            z = self.beam_z(k).start
+            nj = self.joint_dofs[k]
+            out[self.joint_x(k)] = np.arange(z, z + nj)
+            q0 = z + nj + CLAMP_EQUATIONS * int(self.clamped[k])
+            out[self.beam_x(k)] = np.arange(q0, q0 + self.beam_dofs[k])
         return out
 
     @property
     def z_of_lambda(self) -> np.ndarray:
         """z index of every entry of lambda."""
         out = np.empty(self.n_lambda, dtype=np.int64)
-        if self.held:
-            out[0] = 1
+        nb = self.border_constraints
+        out[:nb] = np.arange(self.frame_dofs, self.frame_dofs + nb)
         for k in range(self.beams):
-            z = self.beam_z(k)
-            out[self.clamp_lambda(k)] = np.arange(z.start, z.start + CLAMP_EQUATIONS)
+            z = self.beam_z(k).start + self.joint_dofs[k]
+            sl = self.clamp_lambda(k)
+            out[sl] = np.arange(z, z + sl.stop - sl.start)
         return out
 
     # ------------------------------------------------------------ moving between x, lambda and z
@@ -124,5 +202,21 @@ class Layout:
         """(x part, lambda part) of a z-shaped vector."""
         return z[self.z_of_x], z[self.z_of_lambda]
 
-    def with_held(self, held: bool) -> "Layout":
-        return Layout(self.beam_dofs, held)
+    def with_held(self, held: bool, base_held: bool | None = None) -> "Layout":
+        """The same unknowns with the hub (and the base) held or not."""
+        return replace(self, held=held, base_held=self.base_held if base_held is None else base_held)
+
+    def lambda_in(self, other: "Layout", lam: np.ndarray) -> np.ndarray:
+        """Multipliers ``lam`` of this layout moved to ``other`` (the same beams): the clamps'
+        and the norm's carried over, constraints ``other`` lacks dropped, ones it adds zero."""
+        lam = np.asarray(lam, dtype=float)
+        out = np.zeros(other.n_lambda)
+        for k in range(self.beams):
+            out[other.clamp_lambda(k)] = lam[self.clamp_lambda(k)]
+        if self.norm_lambda is not None and other.norm_lambda is not None:
+            out[other.norm_lambda] = lam[self.norm_lambda]
+        if self.base_lambda is not None and other.base_lambda is not None:
+            out[other.base_lambda] = lam[self.base_lambda]
+        if self.drive_lambda is not None and other.drive_lambda is not None:
+            out[other.drive_lambda] = lam[self.drive_lambda]
+        return out

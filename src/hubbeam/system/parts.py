@@ -1,9 +1,12 @@
-"""What a beam must provide to sit on the hub: the formulation protocol of the system layer.
+"""What a beam must provide to sit on its frame: the formulation protocol of the system layer.
 
 A beam part owns its coordinates q_k (the layout places them in x), its mount (where its
 root sits, :mod:`hubbeam.system.mount`), an optional tip body and its tip loads. The
-system (:mod:`hubbeam.system.hub_system`) adds the hub, places every part with the layout
-and sums the parts' terms; the solvers see only the system.
+system (:mod:`hubbeam.system.multibody`) adds the base, the hub and the frames, places every
+part with the layout and sums the parts' terms; the solvers see only the system. Where a
+part's geometry depends on its frame (an FFR beam floats on it), the system passes the root
+frame's pose ``frame`` = (origin, axes) and, for a motion, its ``rate`` = (origin velocity,
+angular velocity); an ANCF beam's absolute coordinates need neither.
 
 The *chart* of a part is part of its state (one 3 x 3 array per beam, the identity for a
 formulation that does not use one). Formulations whose rotation parametrisation has a
@@ -20,7 +23,7 @@ import numpy as np
 
 from hubbeam.elements.hermite import gauss_legendre
 from hubbeam.elements.section import COLUMN, span_properties
-from hubbeam.system.mount import Mount, axis_frame
+from hubbeam.system.mount import Mount
 
 #: the parts of a beam's kinetic energy (:meth:`BeamPart.kinetic_energy_split`), in the order
 #: a label joins them
@@ -62,20 +65,17 @@ class BeamPart(ABC):
         return self.beam.section
 
     @abstractmethod
-    def initial_state(self, theta: float) -> tuple[np.ndarray, np.ndarray]:
-        """Undeformed, straight beam clamped to the hub at angle theta: (q, chart)."""
+    def initial_state(self, root: np.ndarray, frame: np.ndarray, reference: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Undeformed, straight beam on its root frame (origin ``root``, section axes ``frame``):
+        (q, chart), a chart chosen in the ``reference`` axes (the hub's at theta = 0)."""
 
     @abstractmethod
-    def clamp(self, q: np.ndarray, chart: np.ndarray, theta: float):
-        """The six clamp equations: (Phi (6), dPhi/d[theta, q_root] (6 x (1 + root_dofs)),
-        lambda -> lambda . d2 Phi / d[theta, q_root]^2)."""
+    def rigid_rates(self, q: np.ndarray, chart: np.ndarray, velocity, w, origin, acceleration=None):
+        """(q', q'') when the beam moves rigidly with its frame: its points at velocity + w x
+        (r - origin); ``acceleration`` not None: a steady rotation about the axis through origin."""
 
     @abstractmethod
-    def steady_rotation_rates(self, q: np.ndarray, chart: np.ndarray, omega: float):
-        """(q', q'') when the beam turns rigidly with the hub at theta' = omega (rad/s)."""
-
-    @abstractmethod
-    def tip_position(self, q: np.ndarray) -> np.ndarray:
+    def tip_position(self, q: np.ndarray, frame=None) -> np.ndarray:
         """Global position of the tip centroid (m)."""
 
     def tip_node(self) -> slice | None:
@@ -96,11 +96,11 @@ class BeamPart(ABC):
         return replace(self, beam=replace(self.beam, structural_damping=0.0))
 
     @abstractmethod
-    def centre_line_at(self, q: np.ndarray, chart: np.ndarray, stations) -> np.ndarray:
+    def centre_line_at(self, q: np.ndarray, chart: np.ndarray, stations, frame=None) -> np.ndarray:
         """Centre-line points (n x 3, global, m) of the stations (m from the root along the undeformed beam)."""
 
     @abstractmethod
-    def frames_at(self, q: np.ndarray, chart: np.ndarray, stations) -> np.ndarray:
+    def frames_at(self, q: np.ndarray, chart: np.ndarray, stations, frame=None) -> np.ndarray:
         """Section frames [tau m n] (n x 3 x 3, unit columns, global) of the stations (m from the root)."""
 
     def surface_strains(self, q: np.ndarray, chart: np.ndarray, stations, y, z) -> np.ndarray:
@@ -130,14 +130,15 @@ class BeamPart(ABC):
         root; scalar or array), from the beam's span-wise table when it has one."""
         return span_properties(self.section, self.beam.sections, stations)
 
-    def centre_line(self, q: np.ndarray, chart: np.ndarray, points_per_element: int = 8) -> np.ndarray:
+    def centre_line(self, q: np.ndarray, chart: np.ndarray, points_per_element: int = 8, frame=None) -> np.ndarray:
         """Points of the deformed centre line (global, m), root to tip, at :meth:`stations`."""
-        return self.centre_line_at(q, chart, self.stations(points_per_element))
+        return self.centre_line_at(q, chart, self.stations(points_per_element), frame)
 
     @abstractmethod
-    def section_motion(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, stations: np.ndarray):
+    def section_motion(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, stations: np.ndarray, frame=None,
+                       rate=None):
         """The sections at the stations x (m from the root) of the configuration q moved at the
-        coordinate rate u: (frames (n, 3, 3): the section frames [tau m n] at q, global;
+        coordinate rate u (and the root frame ``frame`` at ``rate``): (frames (n, 3, 3): the section frames [tau m n] at q, global;
         velocity (n, 3): the centre line's velocity (m/s per unit of u); omega (n, 3): the
         section's angular velocity (rad/s), global). Both are linear in u; with u a mode shape
         they are the centre line's displacement and the section's small rotation."""
@@ -150,11 +151,12 @@ class BeamPart(ABC):
         e = np.arange(self.beam.elements)[:, None]
         return ((e + xi[None, :]) * le).ravel(), np.tile(w * le, self.beam.elements)
 
-    def kinetic_energy_split(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, theta: float) -> dict[str, float]:
+    def kinetic_energy_split(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, axes: np.ndarray, frame=None,
+                             rate=None) -> dict[str, float]:
         """The kinetic energy (J) of the beam and its tip body moving at the coordinate rate u
         about the configuration q (u complex: the sum of its real and imaginary parts' energies),
-        split by direction in the beam's undeformed axis frame (a_1 the axis, a_2, a_3 = k_k;
-        with no precone a_1 = i_k and a_2 = j0):
+        split by direction in the beam's undeformed axis frame ``axes`` (a_1 the axis, a_2, a_3 =
+        k_k; with no precone a_1 = i_k and a_2 = j_h; on a joint, turned by the joint):
 
         - ``flap``: centre-line motion along a_2 and section rotation about a_3 (the slope of
           the flap deflection);
@@ -168,11 +170,12 @@ class BeamPart(ABC):
         (v_cm = v + omega x (R c), c its offset) and omega . J_b omega / 2 the same way."""
         u = np.asarray(u)
         if np.iscomplexobj(u):
-            re, im = (self.kinetic_energy_split(q, chart, part, theta) for part in (u.real, u.imag))
+            rates = (None, None) if rate is None else (tuple(np.real(r) for r in rate), tuple(np.imag(r) for r in rate))
+            re, im = (self.kinetic_energy_split(q, chart, part, axes, frame, rt) for part, rt in zip((u.real, u.imag), rates))
             return {k: re[k] + im[k] for k in BEAM_MOTIONS}
-        a = axis_frame(self.mount.params(), float(theta))
+        a = np.asarray(axes, dtype=float)
         x, w = self.span_quadrature(self.beam.gauss_points)  # the beam's own rule: its mass matrix's quadrature
-        frames, vel, omega = self.section_motion(q, chart, u, x)
+        frames, vel, omega = self.section_motion(q, chart, u, x, frame, rate)
         props = self.properties(x)  # the local section: rho A (kg/m), rotary inertias about (tau, m, n) (kg m)
         J = props[:, [COLUMN["I_tau"], COLUMN["I_m"], COLUMN["I_n"]]]
         J_omega = np.einsum("nij,nj,nkj,nk->ni", frames, J, frames, omega)  # R J R^T omega
@@ -180,7 +183,7 @@ class BeamPart(ABC):
         rot = 0.5 * np.einsum("n,ni->i", w, (omega @ a) * (J_omega @ a))
         body = self.tip_body
         if body is not None:
-            R, v, om = (arr[0] for arr in self.section_motion(q, chart, u, np.array([self.length])))
+            R, v, om = (arr[0] for arr in self.section_motion(q, chart, u, np.array([self.length]), frame, rate))
             v_cm = v + np.cross(om, R @ np.array(body.offset))
             trans = trans + 0.5 * body.mass * (v_cm @ a) ** 2
             Jb_omega = R @ (np.array(body.inertia) * (R.T @ om))
@@ -188,27 +191,19 @@ class BeamPart(ABC):
         return {"flap": float(trans[1] + rot[2]), "lag": float(trans[2] + rot[1]), "axial": float(trans[0]),
                 "torsion": float(rot[0])}
 
-    def span_shape(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, theta: float, stations: np.ndarray):
+    def span_shape(self, q: np.ndarray, chart: np.ndarray, u: np.ndarray, axes: np.ndarray, stations: np.ndarray,
+                   frame=None, rate=None):
         """The centre-line displacement (n, 3) along (a_1, a_2, a_3) = (axial, flap, lag) (m per
         unit of u) and the section rotation about the beam axis a_1 (twist, rad per unit of u) at
         the stations (m from the root) for the coordinate change u about q (complex u: complex)."""
         u = np.asarray(u)
         if np.iscomplexobj(u):
-            re, im = (self.span_shape(q, chart, part, theta, stations) for part in (u.real, u.imag))
+            rates = (None, None) if rate is None else (tuple(np.real(r) for r in rate), tuple(np.imag(r) for r in rate))
+            re, im = (self.span_shape(q, chart, part, axes, stations, frame, rt) for part, rt in zip((u.real, u.imag), rates))
             return re[0] + 1j * im[0], re[1] + 1j * im[1]
-        a = axis_frame(self.mount.params(), float(theta))
-        _, disp, rot = self.section_motion(q, chart, u, np.asarray(stations, dtype=float))
+        a = np.asarray(axes, dtype=float)
+        _, disp, rot = self.section_motion(q, chart, u, np.asarray(stations, dtype=float), frame, rate)
         return disp @ a, rot @ a[:, 0]
-
-    def tip_displacement(self, q: np.ndarray, theta: float) -> dict[str, float]:
-        """Tip centroid displacement from its undeformed place, along the beam's own hub frame
-        i_k (radial), j0 (vertical), k_k (tangential) (m)."""
-        A = self.mount.hub_frame(theta)
-        undeformed = self.mount.root(theta) + self.length * self.mount.frame(theta)[:, 0]
-        disp = self.tip_position(q) - undeformed
-        return {"radial": float(disp @ A[:, 0]), "vertical": float(disp @ A[:, 1]),
-                "tangential": float(disp @ A[:, 2])}
-
 
 class ChartedBeamPart(BeamPart):
     """A beam whose rotation chart must be replaced before a tangent reaches its singular direction."""
@@ -218,13 +213,14 @@ class ChartedBeamPart(BeamPart):
         """min(1 + d.tau): 2 best, 0 singular."""
 
     @abstractmethod
-    def better_chart(self, q: np.ndarray) -> np.ndarray:
-        """A chart that keeps every current tangent far from its singular direction."""
+    def better_chart(self, q: np.ndarray, reference: np.ndarray | None = None) -> np.ndarray:
+        """A chart that keeps every current tangent far from its singular direction (chosen in the
+        ``reference`` axes)."""
 
     @abstractmethod
     def remap(self, q: np.ndarray, chart: np.ndarray, new_chart: np.ndarray) -> np.ndarray:
         """q re-expressed in ``new_chart`` (the same configuration)."""
 
     @abstractmethod
-    def axis_chart(self) -> np.ndarray:
-        """The chart in which a rigid rotation about the hub axis is exact (director -j0)."""
+    def axis_chart(self, axis, hint) -> np.ndarray:
+        """The chart in which a rigid rotation about the hub axis ``axis`` is exact (director -axis)."""

@@ -403,7 +403,7 @@ def tip_body_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, 
             for i in range(8):
                 for j in range(8):
                     add_entry(ab, brow, bcol, bb, ctx.ku, zx[x0 + i], zx[x0 + j], block8[i, j])
-    return 0.0, 2.0, 0.0
+    return 2.0, 0.0
 
 
 def tip_body_energies(pack, ctx, F, x, v, beams):
@@ -420,5 +420,41 @@ def tip_body_energies(pack, ctx, F, x, v, beams):
     return 0.0, 0.0, 0.0
 
 
+def tip_body_momenta(pack, ctx, F, x, v, out):
+    """Each tip body's mass, first moment m r_cm, linear momentum m v_cm and angular momentum
+    about the origin r_cm x m v_cm + R J omega (:mod:`hubbeam.system.terms`)."""
+    Z = np.empty(8)
+    e = np.empty(4)
+    G = np.empty((4, 8))
+    H = np.empty((4, 8, 8))
+    Rg = np.empty((3, 3))
+    r_cm, v_cm, wc, Jw = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
+    for k in range(pack.index.shape[0]):
+        x0 = pack.x0[k]
+        prm = pack.params[k]
+        m = prm[0]
+        tip_kinematics(F[pack.index[k]], x[x0:x0 + 8], v[x0:x0 + 8], Z, e, G, H, False, Rg)
+        om0, om1, om2 = e[1], e[2], e[3]
+        c0, c1, c2 = prm[4], prm[5], prm[6]
+        wc[0] = om1 * c2 - om2 * c1
+        wc[1] = om2 * c0 - om0 * c2
+        wc[2] = om0 * c1 - om1 * c0
+        Jw[0] = prm[1] * om0
+        Jw[1] = prm[2] * om1
+        Jw[2] = prm[3] * om2
+        for i in range(3):
+            r_cm[i] = x[x0 + i] + Rg[i, 0] * c0 + Rg[i, 1] * c1 + Rg[i, 2] * c2
+            v_cm[i] = v[x0 + i] + Rg[i, 0] * wc[0] + Rg[i, 1] * wc[1] + Rg[i, 2] * wc[2]
+        out[0] += m
+        for i in range(3):
+            out[1 + i] += m * r_cm[i]
+            out[4 + i] += m * v_cm[i]
+            out[7 + i] += Rg[i, 0] * Jw[0] + Rg[i, 1] * Jw[1] + Rg[i, 2] * Jw[2]
+        out[7] += m * (r_cm[1] * v_cm[2] - r_cm[2] * v_cm[1])
+        out[8] += m * (r_cm[2] * v_cm[0] - r_cm[0] * v_cm[2])
+        out[9] += m * (r_cm[0] * v_cm[1] - r_cm[1] * v_cm[0])
+
+
 KIND = terms.register(TipBodies, pack_tip_bodies, tip_body_equations, tip_body_energies,
-                      bandwidth=lambda system: 7)  # the tip node's 8 x 8 block
+                      bandwidth=lambda system, layout: 7,  # the tip node's 8 x 8 block
+                      momenta=tip_body_momenta)

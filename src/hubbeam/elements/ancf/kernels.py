@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from hubbeam.elements.ancf.frame import block_to_global
+from hubbeam.elements.ancf.frame import block_to_global, section_frame
 from hubbeam.elements.ancf.strain import PHI, PSI, strain_jet
 
 NODE_DOFS = 8
@@ -577,6 +577,38 @@ def rotary_inertia_kernel(q, qdot, acc, F, length, S, dS, w, inertia, scale, for
         if want_matrix:
             _add_symmetric(blocks, el, Ke)
     return energy
+
+
+@njit(cache=True, error_model="numpy")
+def rotary_momentum(q, qdot, F, length, S, dS, w, inertia, out):
+    """out += int R J omega dx (N m s, global): the sections' own angular momentum (their
+    rotary inertia J at the Gauss points; omega as in :func:`rotary_inertia_kernel`)."""
+    n_el = (q.shape[0] - NODE_DOFS) // NODE_DOFS
+    Y = np.empty(8)
+    Z = np.empty(8)
+    Xq, Xv = np.empty(3), np.empty(3)
+    e = np.empty(4)
+    G = np.empty((4, 8))
+    H = np.empty((0, 0, 0))
+    for el in range(n_el):
+        o = NODE_DOFS * el
+        for g in range(w.shape[0]):
+            _gather_slopes(q, o, dS, S, g, F, Y, Xq)
+            Z[6] = Y[6]
+            _gather_slopes(qdot, o, dS, S, g, F, Y, Xv)
+            Z[7] = Y[6]
+            for i in range(3):
+                Z[i] = Xq[i]
+                Z[3 + i] = Xv[i]
+            strain_jet(Z, e, G, H, False)
+            J = inertia[el, g]
+            T, m, n = section_frame(Xq, Z[6])
+            jw = w[g] * length
+            for a in range(3):  # R (J omega), R = F [T m n]
+                loc = (T[0] * J[0] * e[1] + m[0] * J[1] * e[2] + n[0] * J[2] * e[3],
+                       T[1] * J[0] * e[1] + m[1] * J[1] * e[2] + n[1] * J[2] * e[3],
+                       T[2] * J[0] * e[1] + m[2] * J[1] * e[2] + n[2] * J[2] * e[3])
+                out[a] += jw * (F[a, 0] * loc[0] + F[a, 1] * loc[1] + F[a, 2] * loc[2])
 
 
 @njit(cache=True, error_model="numpy")

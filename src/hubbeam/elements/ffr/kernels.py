@@ -1,12 +1,13 @@
-"""Compiled equations of one FFR beam (:class:`hubbeam.system.ffr_part.FfrPart`).
+"""Compiled equations of one FFR body (:class:`hubbeam.system.ffr_part.FfrPart`), in v-space.
 
-:func:`ffr_body_terms` computes what :meth:`FfrPart.forces <hubbeam.system.ffr_part.FfrPart.forces>`
-computes (the same formulas; equal to round-off), :func:`ffr_load_stiffness` and
-:func:`ffr_spin_stiffness` the exact load and steady-rotation stiffness that
-:meth:`FfrPart.stiffness <hubbeam.system.ffr_part.FfrPart.stiffness>` obtains by central
-differences (:func:`static_stiffness` sums them with the elastic tangent). Coordinates of one beam: q = [r_C (3), Theta (3), p (nf)] (2-3-1
-Cardan angles, :mod:`hubbeam.elements.ffr.cardan`), v = H q' = [r_C', omega^b, p'],
-H = blockdiag(I, D(Theta), I).
+The body frame's origin r_C (the root A) and axes A0 are a frame of the system (its root
+section's, :mod:`hubbeam.system.frames`); the body's rates are v = [r_C' (global), omega^b
+(body axes), p'] with p the elastic coordinates. :func:`ffr_vspace_terms` computes the
+equations of motion on v (Eqs. 65-72: M_v vdot - Q and M_v, the drag's velocity matrix and
+the elastic tangent), as :meth:`FfrPart.vspace_forces <hubbeam.system.ffr_part.FfrPart.vspace_forces>`
+does with numpy (the tests hold them equal); the system projects them on the frame's
+coordinates and p. :func:`ffr_energies`, :func:`ffr_momentum` and
+:func:`ffr_dissipated_power` take the same v-space state.
 
 **Argument groups** (plain tuples of float64 arrays and floats, built by :func:`pack`):
 
@@ -23,7 +24,7 @@ element-mean strain with the element integrals EAl = int_e EA dx (N m),
 the structural damping (Kelvin-Voigt on the material stiffness, :attr:`FfrBeam.damping_matrix
 <hubbeam.elements.ffr.body.FfrBeam.damping_matrix>`), read when ``damped``; width is the drag's
 frontal width at each centre-line point (m).
-nf is taken from q (nf = q.shape[0] - 6): the arrays may be larger (zero-padded, for
+nf is taken from p (nf = p.shape[0]): the arrays may be larger (zero-padded, for
 stacking beams of different meshes); only their leading nf entries are read, and padded
 elements (zero rows of mean_stretch / mean_slope2) or Gauss points (zero weights) add
 nothing.
@@ -33,7 +34,6 @@ II[l, k, g, f] (so one contraction of II with p serves both of its last indices)
 mean_slope2[e] is a sum of outer products (a zero diagonal entry means a zero row: element e
 only touches the coordinates with a nonzero diagonal or mean_stretch entry); the drag's
 N[k] rows vanish outside the point's element (the damping matrix skips zero columns).
-The Cardan derivatives dA0/dTheta_i and dD/dTheta_i are analytic (:func:`cardan_derivatives`).
 """
 
 from __future__ import annotations
@@ -43,78 +43,6 @@ from typing import NamedTuple
 
 import numpy as np
 from numba import njit
-
-
-# ---------------------------------------------------------------------------- Cardan angles
-@njit(cache=True, error_model="numpy")
-def cardan(t1, t2, t3, A, D):
-    """A0 = R_y(t1) R_z(t2) R_x(t3) (body to global) and D with omega^b = D Theta'."""
-    c1, s1 = math.cos(t1), math.sin(t1)
-    c2, s2 = math.cos(t2), math.sin(t2)
-    c3, s3 = math.cos(t3), math.sin(t3)
-    # R_y R_z
-    a00, a01, a02 = c1 * c2, -c1 * s2, s1
-    a10, a11, a12 = s2, c2, 0.0
-    a20, a21, a22 = -s1 * c2, s1 * s2, c1
-    # times R_x = [[1, 0, 0], [0, c3, -s3], [0, s3, c3]]
-    A[0, 0], A[0, 1], A[0, 2] = a00, a01 * c3 + a02 * s3, -a01 * s3 + a02 * c3
-    A[1, 0], A[1, 1], A[1, 2] = a10, a11 * c3 + a12 * s3, -a11 * s3 + a12 * c3
-    A[2, 0], A[2, 1], A[2, 2] = a20, a21 * c3 + a22 * s3, -a21 * s3 + a22 * c3
-    D[0, 0], D[0, 1], D[0, 2] = s2, 0.0, 1.0
-    D[1, 0], D[1, 1], D[1, 2] = c2 * c3, s3, 0.0
-    D[2, 0], D[2, 1], D[2, 2] = -c2 * s3, c3, 0.0
-
-
-@njit(cache=True, error_model="numpy")
-def _mat3(out, m00, m01, m02, m10, m11, m12, m20, m21, m22):
-    out[0, 0], out[0, 1], out[0, 2] = m00, m01, m02
-    out[1, 0], out[1, 1], out[1, 2] = m10, m11, m12
-    out[2, 0], out[2, 1], out[2, 2] = m20, m21, m22
-
-
-@njit(cache=True, error_model="numpy")
-def _triple(out, X, Y, Z):
-    """out = X Y Z for 3 x 3 matrices given as 9-tuples (row-major)."""
-    P = np.empty((3, 3))
-    for i in range(3):
-        for j in range(3):
-            P[i, j] = X[3 * i] * Y[j] + X[3 * i + 1] * Y[3 + j] + X[3 * i + 2] * Y[6 + j]
-    for i in range(3):
-        for j in range(3):
-            out[i, j] = P[i, 0] * Z[j] + P[i, 1] * Z[3 + j] + P[i, 2] * Z[6 + j]
-
-
-@njit(cache=True, error_model="numpy")
-def cardan_derivatives(t1, t2, t3, dA, dD):
-    """dA[i] = dA0/dTheta_i and dD[i] = dD/dTheta_i (3, 3, 3 each), analytic:
-    A0 = R_y(t1) R_z(t2) R_x(t3), so dA0/dt1 = R_y' R_z R_x etc."""
-    c1, s1 = math.cos(t1), math.sin(t1)
-    c2, s2 = math.cos(t2), math.sin(t2)
-    c3, s3 = math.cos(t3), math.sin(t3)
-    Ry = (c1, 0.0, s1, 0.0, 1.0, 0.0, -s1, 0.0, c1)
-    dRy = (-s1, 0.0, c1, 0.0, 0.0, 0.0, -c1, 0.0, -s1)
-    Rz = (c2, -s2, 0.0, s2, c2, 0.0, 0.0, 0.0, 1.0)
-    dRz = (-s2, -c2, 0.0, c2, -s2, 0.0, 0.0, 0.0, 0.0)
-    Rx = (1.0, 0.0, 0.0, 0.0, c3, -s3, 0.0, s3, c3)
-    dRx = (0.0, 0.0, 0.0, 0.0, -s3, -c3, 0.0, c3, -s3)
-    _triple(dA[0], dRy, Rz, Rx)
-    _triple(dA[1], Ry, dRz, Rx)
-    _triple(dA[2], Ry, Rz, dRx)
-    # D = [[s2, 0, 1], [c2 c3, s3, 0], [-c2 s3, c3, 0]]
-    _mat3(dD[0], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    _mat3(dD[1], c2, 0.0, 0.0, -s2 * c3, 0.0, 0.0, s2 * s3, 0.0, 0.0)
-    _mat3(dD[2], 0.0, 0.0, 0.0, -c2 * s3, c3, 0.0, -c2 * c3, -s3, 0.0)
-
-
-@njit(cache=True, error_model="numpy")
-def cardan_rate(c2, s2, c3, s3, r1, r2, r3):
-    """h = D'(Theta, Theta') Theta' (Eq. 70; rad/s^2, a 3-tuple), as
-    :func:`~hubbeam.elements.ffr.cardan.angular_velocity_matrix_rate`, from the cosines and
-    sines of Theta2, Theta3 (D of :func:`cardan` holds s2 = D[0, 0], s3 = D[1, 1], c3 = D[2, 1])
-    and the rates Theta' = (r1, r2, r3)."""
-    return (r1 * (c2 * r2),
-            r1 * (-s2 * r2 * c3 - c2 * s3 * r3) + r2 * (c3 * r3),
-            r1 * (s2 * r2 * s3 - c2 * c3 * r3) + r2 * (-s3 * r3))
 
 
 # ---------------------------------------------------------------------------- shared pieces
@@ -298,22 +226,6 @@ def _mass_matrix(m, Sbar, J, Mff, nf, A, St, Q2, R2, Mv):
     return n
 
 
-@njit(cache=True, error_model="numpy")
-def _to_q(block, D, n):
-    """block <- H^T block H in place (H = blockdiag(I, D, I)), on the leading n x n."""
-    t = np.empty(3)
-    for j in range(n):
-        for a in range(3):
-            t[a] = block[3 + a, j]
-        for i in range(3):
-            block[3 + i, j] = D[0, i] * t[0] + D[1, i] * t[1] + D[2, i] * t[2]
-    for i in range(n):
-        for a in range(3):
-            t[a] = block[i, 3 + a]
-        for j in range(3):
-            block[i, 3 + j] = t[0] * D[0, j] + t[1] * D[1, j] + t[2] * D[2, j]
-
-
 # ---------------------------------------------------------------------------- the equations
 @njit(cache=True, error_model="numpy")
 def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
@@ -335,22 +247,6 @@ def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
     ub[2] += w0 * rb[1] - w1 * rb[0]
     for i in range(3):
         rd[i] = vb[i] + A[i, 0] * ub[0] + A[i, 1] * ub[1] + A[i, 2] * ub[2]
-
-
-@njit(cache=True, error_model="numpy")
-def _frame_and_rates(q, v, n):
-    """(A, D, vb): the body frame A0 and the Cardan rate matrix D at q, and the first n of the
-    v-space rates vb = H q' = [r_C', omega^b = D Theta', p'] (n = 6: the frame's only)."""
-    A = np.empty((3, 3))
-    D = np.empty((3, 3))
-    vb = np.empty(n)
-    cardan(q[3], q[4], q[5], A, D)
-    for i in range(3):
-        vb[i] = v[i]
-        vb[3 + i] = D[i, 0] * v[3] + D[i, 1] * v[4] + D[i, 2] * v[5]
-    for f in range(6, vb.shape[0]):
-        vb[f] = v[f]
-    return A, D, vb
 
 
 @njit(cache=True, error_model="numpy")
@@ -435,25 +331,26 @@ def _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
 
 
 @njit(cache=True, error_model="numpy")
-def ffr_dissipated_power(q, v, Cs, damped, drag):
-    """The power dissipated by the drag (Eq. 64) and the structural damping at (q, q'),
-    -Q_d . v + p'^T C_struct p' (W, >= 0): what :func:`ffr_body_terms` returns, without the
+def ffr_dissipated_power(A, p, vb, Cs, damped, drag):
+    """The power dissipated by the drag (Eq. 64) and the structural damping at the body frame
+    A (3 x 3), the elastic coordinates p and the v-space rates vb = [r_C', omega^b, p']:
+    -Q_d . vb + p'^T C_struct p' (W, >= 0): what :func:`ffr_vspace_terms` returns, without the
     body's other terms (for the energy balance after each step). Cs = C_struct and ``damped``
     of the invariants, ``drag`` the drag group (module docstring): only these, so that the
     caller builds no views of the other invariants."""
     power = 0.0
+    nf = p.shape[0]
+    pd = vb[6:6 + nf]
     if damped != 0.0:
-        nf = q.shape[0] - 6
         for f in range(nf):
             s = 0.0
             for g in range(nf):
-                s += Cs[f, g] * v[6 + g]
-            power += v[6 + f] * s
+                s += Cs[f, g] * pd[g]
+            power += pd[f] * s
     Npts, xpts, wpts, width, dc1, dc2 = drag
     if dc1 == 0.0 and dc2 == 0.0:
         return power
-    A, _, vb = _frame_and_rates(q, v, 6)
-    return power + _drag_loop(Npts, xpts, wpts, width, dc1, dc2, q[6:], v[6:], A, vb, np.empty(0), False)
+    return power + _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, np.empty(0), False)
 
 
 @njit(cache=True, error_model="numpy")
@@ -527,15 +424,14 @@ def _half_square(M, u, n):
 
 
 @njit(cache=True, error_model="numpy")
-def ffr_energies(inv, q, v, gravity):
-    """(kinetic, strain, gravity) energy of the FFR body (J) at the coordinates q and rates v
-    (6 + nf; a tip body is in the invariants): v^T H^T M_v H v / 2 (Eq. 66), the strain energy
-    of :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>` (p^T K p / 2, plus
-    (int_e EA dx) eps_e^2 / 2 per element with geometric stiffening) and -g . (m r_C + A0 S_t)."""
-    n = q.shape[0]
-    nf = n - 6
-    A, D, vb = _frame_and_rates(q, v, n)
-    p = q[6:]
+def ffr_energies(inv, A, r_C, p, vb, gravity):
+    """(kinetic, strain, gravity) energy of the FFR body (J) with its frame at r_C (m) and A
+    (3 x 3), elastic coordinates p and v-space rates vb = [r_C', omega^b, p'] (a tip body is in
+    the invariants): vb^T M_v vb / 2 (Eq. 66), the strain energy of :meth:`FfrBeam.elastic
+    <hubbeam.elements.ffr.body.FfrBeam.elastic>` (p^T K p / 2, plus (int_e EA dx) eps_e^2 / 2
+    per element with geometric stiffening) and -g . (m r_C + A0 S_t)."""
+    nf = p.shape[0]
+    n = 6 + nf
     St = np.empty(3)
     Q2 = np.empty((3, 3, nf))
     R2 = np.empty((3, 3))
@@ -556,37 +452,63 @@ def ffr_energies(inv, q, v, gravity):
             strain += 0.5 * EAl[e] * eps * eps
     potential = 0.0
     for i in range(3):
-        potential -= gravity[i] * (inv[0] * q[i] + A[i, 0] * St[0] + A[i, 1] * St[1] + A[i, 2] * St[2])
+        potential -= gravity[i] * (inv[0] * r_C[i] + A[i, 0] * St[0] + A[i, 1] * St[1] + A[i, 2] * St[2])
     return kinetic, strain, potential
 
 
 @njit(cache=True, error_model="numpy")
-def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, load_factor, want_matrix,
-                   force, block):
-    """The FFR beam's generalized force and iteration matrix (what FfrPart.forces computes).
+def ffr_momentum(inv, A, r_C, p, vb, out):
+    """The body's mass, first moment and momenta added into out (10,) as
+    :func:`hubbeam.system.terms.part_momenta` asks: the generalized momenta M_v vb conjugate to
+    r_C' and omega^b are its linear momentum (global) and its angular momentum about r_C (body
+    axes)."""
+    nf = p.shape[0]
+    n = 6 + nf
+    St = np.empty(3)
+    Q2 = np.empty((3, 3, nf))
+    R2 = np.empty((3, 3))
+    _moments(inv[1], inv[2], inv[3], inv[4], inv[5], p, p, False, nf, St, Q2, Q2, R2)
+    Mv = np.empty((n, n))
+    _mass_matrix(inv[0], inv[2], inv[4], inv[6], nf, A, St, Q2, R2, Mv)
+    mv = np.empty(6)
+    for i in range(6):
+        s = 0.0
+        for j in range(n):
+            s += Mv[i, j] * vb[j]
+        mv[i] = s
+    m = inv[0]
+    out[0] += m
+    for i in range(3):
+        out[1 + i] += m * r_C[i] + A[i, 0] * St[0] + A[i, 1] * St[1] + A[i, 2] * St[2]
+        out[4 + i] += mv[i]
+    h = np.empty(3)  # angular momentum about r_C, global
+    for i in range(3):
+        h[i] = A[i, 0] * mv[3] + A[i, 1] * mv[4] + A[i, 2] * mv[5]
+    out[7] += h[0] + r_C[1] * mv[2] - r_C[2] * mv[1]
+    out[8] += h[1] + r_C[2] * mv[0] - r_C[0] * mv[2]
+    out[9] += h[2] + r_C[0] * mv[1] - r_C[1] * mv[0]
 
-    q, v, acc: (6 + nf) coordinates, rates q' and accelerations q''; gravity (3,) m/s^2;
-    inv, tip, drag: see the module docstring. Writes ``force`` (6 + nf) =
-    H^T (M_v vdot - Q), vdot = H q'' + h, Q = Q_v + load_factor (Q_g + Q_tip) + Q_d
-    - [0, 0, f_elastic + C_struct p']; and, when ``want_matrix``, overwrites the leading (6 + nf)
-    square of ``block`` with coef_m H^T M_v H + coef_c (H^T C_v H + C_struct) + coef_k K_el
-    (K_el and C_struct on the p block: the elastic tangent with geometric stiffening;
-    C_v = -dQ_d/dv). Returns the power dissipated by the drag and the structural damping,
-    -Q_d . v + p'^T C_struct p' (W)."""
+
+@njit(cache=True, error_model="numpy")
+def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_matrix, fv, Mv, Cv, K_el,
+                     elastic=True):
+    """The FFR body's equations in v-space (v = [r_C', omega^b, p']): writes ``fv`` (6 + nf) =
+    M_v vdot - Q, Q = Q_v + load_factor (Q_g + Q_tip) + Q_d - [0, 0, f_elastic + C_struct p']
+    (Eqs. 65-72), and ``Mv`` = M_v (Eq. 66); when ``want_matrix`` also ``Cv`` = -dQ_d/dv (the
+    drag's velocity matrix, zero without drag) and ``K_el`` (nf, nf) the elastic tangent with
+    geometric stiffening. A (3 x 3) is the body frame (its axes the undeformed root section's),
+    p the elastic coordinates, vb and vdot the v-space rates and accelerations; inv, tip, drag:
+    the module docstring. The frame's own motion enters through vb and vdot alone: the caller
+    projects on its coordinates (:mod:`hubbeam.system.ffr_part`). ``elastic`` False leaves the
+    elastic force out of fv (the exact stiffness then takes it from K_el, and differences only
+    the rest). Returns the power dissipated by the drag and the structural damping,
+    -Q_d . vb + p'^T C_struct p' (W)."""
     Sbar, J = inv[2], inv[4]
     Npts, xpts, wpts, width, dc1, dc2 = drag
     Cs, damped = inv[12], inv[13]
-    n = q.shape[0]
-    nf = n - 6
-    # v-space rates and accelerations
-    A, D, vb = _frame_and_rates(q, v, n)
-    # vdot = H q'' + h: q'' but for omega^b' = D Theta'' + h
-    h0, h1, h2 = cardan_rate(math.cos(q[4]), D[0, 0], D[2, 1], D[1, 1], v[3], v[4], v[5])
-    wd0 = D[0, 0] * acc[3] + D[0, 1] * acc[4] + D[0, 2] * acc[5] + h0
-    wd1 = D[1, 0] * acc[3] + D[1, 1] * acc[4] + D[1, 2] * acc[5] + h1
-    wd2 = D[2, 0] * acc[3] + D[2, 1] * acc[4] + D[2, 2] * acc[5] + h2
-    p = q[6:]
-    pd = v[6:]
+    nf = p.shape[0]
+    n = 6 + nf
+    pd = vb[6:n]
     w0, w1, w2 = vb[3], vb[4], vb[5]
 
     # body moments and the mass matrix
@@ -595,7 +517,6 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     Q2d = np.empty((3, 3, nf))
     R2 = np.empty((3, 3))
     _moments(inv[1], Sbar, inv[3], J, inv[5], p, pd, True, nf, St, Q2, Q2d, R2)
-    Mv = np.empty((n, n))
     _mass_matrix(inv[0], inv[2], inv[4], inv[6], nf, A, St, Q2, R2, Mv)
 
     # Q_v (Eq. 67), with W = [omega^b]x and WW = W W as scalars (the same products as the
@@ -665,10 +586,10 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     F, Mo, T, R, length = tip
     _applied_loads(inv[0], Sbar, F, Mo, T, R, length, nf, A, St, p, gravity, load_factor, Q)
     f_el = np.empty(nf)
-    K_el = np.empty((nf, nf))
     _elastic(inv[7], inv[8], inv[9], inv[10], inv[11], p, nf, want_matrix, f_el, K_el)
-    for f in range(nf):
-        Q[6 + f] -= f_el[f]
+    if elastic:
+        for f in range(nf):
+            Q[6 + f] -= f_el[f]
     # structural damping c K p'
     power = 0.0
     if damped != 0.0:
@@ -682,7 +603,7 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
     if want_matrix:
         for i in range(n):
             for j in range(n):
-                block[i, j] = coef_m * Mv[i, j]
+                Cv[i, j] = 0.0
 
     # drag (Eq. 64) on the centre line
     if dc1 != 0.0 or dc2 != 0.0:
@@ -690,273 +611,15 @@ def ffr_body_terms(inv, q, v, acc, gravity, tip, drag, coef_m, coef_c, coef_k, l
         power += _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, True)
         for i in range(n):
             Q[i] += Qd[i]
-        if want_matrix and coef_c != 0.0:
-            _drag_matrix(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, coef_c, block)
+        if want_matrix:
+            _drag_matrix(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, 1.0, Cv)
 
-    # force = H^T (M_v vdot - Q)
     for i in range(n):
-        s = Mv[i, 0] * acc[0] + Mv[i, 1] * acc[1] + Mv[i, 2] * acc[2]
-        s += Mv[i, 3] * wd0
-        s += Mv[i, 4] * wd1
-        s += Mv[i, 5] * wd2
-        for j in range(6, n):
-            s += Mv[i, j] * acc[j]
-        force[i] = s - Q[i]
-    r3, r4, r5 = force[3], force[4], force[5]
-    for i in range(3):
-        force[3 + i] = D[0, i] * r3 + D[1, i] * r4 + D[2, i] * r5
-
-    if want_matrix:
-        _to_q(block, D, n)
-        if coef_k != 0.0:
-            for f in range(nf):
-                for g in range(nf):
-                    block[6 + f, 6 + g] += coef_k * K_el[f, g]
-        if coef_c != 0.0 and damped != 0.0:
-            for f in range(nf):
-                for g in range(nf):
-                    block[6 + f, 6 + g] += coef_c * Cs[f, g]
-    return power
-
-
-@njit(cache=True, error_model="numpy")
-def _frame_and_derivatives(q):
-    """A0, D and their derivatives dA0/dTheta_i, dD/dTheta_i at the Cardan angles q[3:6]."""
-    A = np.empty((3, 3))
-    D = np.empty((3, 3))
-    dA = np.empty((3, 3, 3))
-    dD = np.empty((3, 3, 3))
-    cardan(q[3], q[4], q[5], A, D)
-    cardan_derivatives(q[3], q[4], q[5], dA, dD)
-    return A, D, dA, dD
-
-
-@njit(cache=True, error_model="numpy")
-def ffr_load_stiffness(inv, q, gravity, tip, load_factor, out):
-    """The load stiffness at rest: overwrites the leading (6 + nf) square of ``out`` with
-    d/dq [-load_factor H(Theta)^T (Q_g + Q_tip)] (Q_g and Q_tip depend on Theta through A0,
-    Q_g on p through St; H^T on Theta through D). K_el + this is the exact static stiffness
-    (FfrPart.stiffness at rest without drag)."""
-    Sbar = inv[2]
-    F, Mo, T, R, length = tip
-    n = q.shape[0]
-    nf = n - 6
-    p = q[6:]
-    A, D, dA, dD = _frame_and_derivatives(q)
-    St = np.empty(3)
-    for k in range(3):
         s = 0.0
-        for f in range(nf):
-            s += Sbar[k, f] * p[f]
-        St[k] = inv[1][k] + s
-    Qa = np.zeros(n)
-    _applied_loads(inv[0], Sbar, F, Mo, T, R, length, nf, A, St, p, gravity, 1.0, Qa)
-    gb = np.empty(3)
-    fb = np.empty(3)
-    for i in range(3):
-        gb[i] = A[0, i] * gravity[0] + A[1, i] * gravity[1] + A[2, i] * gravity[2]
-        fb[i] = A[0, i] * F[0] + A[1, i] * F[1] + A[2, i] * F[2]
-    r = tip_lever(T, length, p)
-    for i in range(n):
         for j in range(n):
-            out[i, j] = 0.0
-    s = -load_factor
-    dg = np.empty(3)
-    dfb = np.empty(3)
-    dmb = np.empty(3)
-    d3 = np.empty(3)
-    for c in range(3):  # d/dTheta_c
-        for i in range(3):
-            dg[i] = dA[c, 0, i] * gravity[0] + dA[c, 1, i] * gravity[1] + dA[c, 2, i] * gravity[2]
-            dfb[i] = dA[c, 0, i] * F[0] + dA[c, 1, i] * F[1] + dA[c, 2, i] * F[2]
-            dmb[i] = dA[c, 0, i] * Mo[0] + dA[c, 1, i] * Mo[1] + dA[c, 2, i] * Mo[2]
-        d3[0] = St[1] * dg[2] - St[2] * dg[1] + r[1] * dfb[2] - r[2] * dfb[1] + dmb[0]
-        d3[1] = St[2] * dg[0] - St[0] * dg[2] + r[2] * dfb[0] - r[0] * dfb[2] + dmb[1]
-        d3[2] = St[0] * dg[1] - St[1] * dg[0] + r[0] * dfb[1] - r[1] * dfb[0] + dmb[2]
-        for i in range(3):
-            out[3 + i, 3 + c] = s * (dD[c, 0, i] * Qa[3] + dD[c, 1, i] * Qa[4] + dD[c, 2, i] * Qa[5]
-                                     + D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2])
-        for f in range(nf):
-            out[6 + f, 3 + c] = s * (Sbar[0, f] * dg[0] + Sbar[1, f] * dg[1] + Sbar[2, f] * dg[2]
-                                     + T[0, f] * dfb[0] + T[1, f] * dfb[1] + T[2, f] * dfb[2]
-                                     + R[0, f] * dmb[0] + R[1, f] * dmb[1] + R[2, f] * dmb[2])
-    for g in range(nf):  # d/dp_g: Sbar_g x gb + T_g x fb in the moment rows
-        d3[0] = Sbar[1, g] * gb[2] - Sbar[2, g] * gb[1] + T[1, g] * fb[2] - T[2, g] * fb[1]
-        d3[1] = Sbar[2, g] * gb[0] - Sbar[0, g] * gb[2] + T[2, g] * fb[0] - T[0, g] * fb[2]
-        d3[2] = Sbar[0, g] * gb[1] - Sbar[1, g] * gb[0] + T[0, g] * fb[1] - T[1, g] * fb[0]
-        for i in range(3):
-            out[3 + i, 6 + g] = s * (D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2])
-
-
-@njit(cache=True, error_model="numpy")
-def _cross(a0, a1, a2, b0, b1, b2, out):
-    out[0] = a1 * b2 - a2 * b1
-    out[1] = a2 * b0 - a0 * b2
-    out[2] = a0 * b1 - a1 * b0
-
-
-@njit(cache=True, error_model="numpy")
-def _skew_and_square(v):
-    """[v]x and [v]x [v]x (3 x 3)."""
-    W = np.empty((3, 3))
-    W[0, 0], W[0, 1], W[0, 2] = 0.0, -v[2], v[1]
-    W[1, 0], W[1, 1], W[1, 2] = v[2], 0.0, -v[0]
-    W[2, 0], W[2, 1], W[2, 2] = -v[1], v[0], 0.0
-    WW = np.empty((3, 3))
-    for i in range(3):
-        for j in range(3):
-            WW[i, j] = W[i, 0] * W[0, j] + W[i, 1] * W[1, j] + W[i, 2] * W[2, j]
-    return W, WW
-
-
-@njit(cache=True, error_model="numpy")
-def ffr_spin_stiffness(inv, q, w, out):
-    """The spin stiffness: overwrites the leading (6 + nf) square of ``out`` with d/dq of the
-    inertia force rows H^T (M_v vdot - Q_v) in steady rigid rotation at the global angular
-    velocity ``w`` (3,), the rates following q as in FfrPart.steady_rotation_rates:
-    v = [w x r_C, A0^T w, 0], vdot = [w x (w x r_C), 0, 0]. The force rows are then
-
-        g0 = [w]x^2 (m r_C + A0 St),   g3 = St x (W W b) + omega x (I(p) omega),
-        g6 = Sbar^T W W b + Nr(p, omega)
-
-    (omega = A0^T w, W = [omega]x, b = A0^T r_C, I = tr(R2) 1 - R2, Nr_f = sum_kl (W W)_kl
-    int rho N_kf r_l), and force = [g0, D^T g3, g6]. Drag is not included. With the hub turning
-    at ``spin`` and the load factor ``factor``, w = -sqrt(factor) spin j0, and
-    K_el + load stiffness + this = FfrPart.stiffness(q, gravity, (0, 0), factor, spin)."""
-    m, Sbar, J, II = inv[0], inv[2], inv[4], inv[5]
-    n = q.shape[0]
-    nf = n - 6
-    p = q[6:]
-    A, D, dA, dD = _frame_and_derivatives(q)
-    St = np.empty(3)
-    Q2 = np.empty((3, 3, nf))
-    R2 = np.empty((3, 3))
-    _moments(inv[1], inv[2], inv[3], inv[4], inv[5], p, p, False, nf, St, Q2, Q2, R2)
-    for i in range(n):
-        for j in range(n):
-            out[i, j] = 0.0
-    _, WWg = _skew_and_square(w)  # global (w x)^2
-    om = np.empty(3)
-    b = np.empty(3)
-    for i in range(3):
-        om[i] = A[0, i] * w[0] + A[1, i] * w[1] + A[2, i] * w[2]
-        b[i] = A[0, i] * q[0] + A[1, i] * q[1] + A[2, i] * q[2]
-    W, WW = _skew_and_square(om)
-    cvec = np.empty(3)  # W W b = A0^T (w x (w x r_C))
-    for i in range(3):
-        cvec[i] = WW[i, 0] * b[0] + WW[i, 1] * b[1] + WW[i, 2] * b[2]
-    tr = R2[0, 0] + R2[1, 1] + R2[2, 2]
-    Iw = np.empty(3)
-    for i in range(3):
-        Iw[i] = tr * om[i] - (R2[i, 0] * om[0] + R2[i, 1] * om[1] + R2[i, 2] * om[2])
-    g3 = np.empty(3)
-    t1 = np.empty(3)
-    t2 = np.empty(3)
-    _cross(St[0], St[1], St[2], cvec[0], cvec[1], cvec[2], t1)
-    _cross(om[0], om[1], om[2], Iw[0], Iw[1], Iw[2], t2)
-    for i in range(3):
-        g3[i] = t1[i] + t2[i]
-    # below, int rho r_l N_kf = J[l, k, f] + sum_g II[k, l, f, g] p_g = J[l, k, f] + Q2[l, k, f]
-    # (II[k, l, f, g] = II[l, k, g, f])
-    d3 = np.empty(3)
-    AS = np.empty(3)
-
-    # ---- d/dr_C (columns 0..2)
-    for j in range(3):
-        for i in range(3):
-            out[i, j] = m * WWg[i, j]
-        # A0^T e_j = row j of A0; e = W W A0^T e_j
-        e0 = WW[0, 0] * A[j, 0] + WW[0, 1] * A[j, 1] + WW[0, 2] * A[j, 2]
-        e1 = WW[1, 0] * A[j, 0] + WW[1, 1] * A[j, 1] + WW[1, 2] * A[j, 2]
-        e2 = WW[2, 0] * A[j, 0] + WW[2, 1] * A[j, 1] + WW[2, 2] * A[j, 2]
-        _cross(St[0], St[1], St[2], e0, e1, e2, d3)
-        for i in range(3):
-            out[3 + i, j] = D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2]
-        for f in range(nf):
-            out[6 + f, j] = Sbar[0, f] * e0 + Sbar[1, f] * e1 + Sbar[2, f] * e2
-
-    # ---- d/dTheta_c (columns 3..5)
-    dom = np.empty(3)
-    db = np.empty(3)
-    dc = np.empty(3)
-    dIw = np.empty(3)
-    dWW = np.empty((3, 3))
-    dW = np.empty((3, 3))
-    tmp = np.empty(3)
-    for c in range(3):
-        for i in range(3):
-            dom[i] = dA[c, 0, i] * w[0] + dA[c, 1, i] * w[1] + dA[c, 2, i] * w[2]
-            db[i] = dA[c, 0, i] * q[0] + dA[c, 1, i] * q[1] + dA[c, 2, i] * q[2]
-        # row 0: WWg dA_c St
-        for i in range(3):
-            AS[i] = dA[c, i, 0] * St[0] + dA[c, i, 1] * St[1] + dA[c, i, 2] * St[2]
-        for i in range(3):
-            out[i, 3 + c] = WWg[i, 0] * AS[0] + WWg[i, 1] * AS[1] + WWg[i, 2] * AS[2]
-        # dc = dom x (om x b) + om x (dom x b) + om x (om x db)
-        _cross(om[0], om[1], om[2], b[0], b[1], b[2], t1)
-        _cross(dom[0], dom[1], dom[2], t1[0], t1[1], t1[2], dc)
-        _cross(dom[0], dom[1], dom[2], b[0], b[1], b[2], t1)
-        _cross(om[0], om[1], om[2], t1[0], t1[1], t1[2], t2)
-        for i in range(3):
-            dc[i] += t2[i]
-        for i in range(3):
-            tmp[i] = WW[i, 0] * db[0] + WW[i, 1] * db[1] + WW[i, 2] * db[2]
-            dc[i] += tmp[i]
-        # d g3 = St x dc + dom x I om + om x I dom
-        for i in range(3):
-            dIw[i] = tr * dom[i] - (R2[i, 0] * dom[0] + R2[i, 1] * dom[1] + R2[i, 2] * dom[2])
-        _cross(St[0], St[1], St[2], dc[0], dc[1], dc[2], d3)
-        _cross(dom[0], dom[1], dom[2], Iw[0], Iw[1], Iw[2], t1)
-        _cross(om[0], om[1], om[2], dIw[0], dIw[1], dIw[2], t2)
-        for i in range(3):
-            d3[i] += t1[i] + t2[i]
-        for i in range(3):
-            out[3 + i, 3 + c] = (dD[c, 0, i] * g3[0] + dD[c, 1, i] * g3[1] + dD[c, 2, i] * g3[2]
-                                 + D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2])
-        # row 6: Sbar^T dc + sum_kl dWW_kl P2[k, l, f]
-        dW[0, 0], dW[0, 1], dW[0, 2] = 0.0, -dom[2], dom[1]
-        dW[1, 0], dW[1, 1], dW[1, 2] = dom[2], 0.0, -dom[0]
-        dW[2, 0], dW[2, 1], dW[2, 2] = -dom[1], dom[0], 0.0
-        for i in range(3):
-            for j in range(3):
-                dWW[i, j] = (dW[i, 0] * W[0, j] + dW[i, 1] * W[1, j] + dW[i, 2] * W[2, j]
-                             + W[i, 0] * dW[0, j] + W[i, 1] * dW[1, j] + W[i, 2] * dW[2, j])
-        for f in range(nf):
-            s = Sbar[0, f] * dc[0] + Sbar[1, f] * dc[1] + Sbar[2, f] * dc[2]
-            for k in range(3):
-                for l in range(3):
-                    s += dWW[k, l] * (J[l, k, f] + Q2[l, k, f])
-            out[6 + f, 3 + c] = s
-
-    # ---- d/dp_g (columns 6..)
-    dR2 = np.empty((3, 3))
-    for g in range(nf):
-        # row 0: WWg A0 Sbar_g
-        for i in range(3):
-            AS[i] = A[i, 0] * Sbar[0, g] + A[i, 1] * Sbar[1, g] + A[i, 2] * Sbar[2, g]
-        for i in range(3):
-            out[i, 6 + g] = WWg[i, 0] * AS[0] + WWg[i, 1] * AS[1] + WWg[i, 2] * AS[2]
-        # row 3: D^T (Sbar_g x c + om x (dI_g om)); dR2_g = J_g + J_g^T + d(p II p)/dp_g
-        for k in range(3):
-            for l in range(3):
-                dR2[k, l] = J[k, l, g] + J[l, k, g] + Q2[l, k, g] + Q2[k, l, g]
-        dtr = dR2[0, 0] + dR2[1, 1] + dR2[2, 2]
-        for i in range(3):
-            dIw[i] = dtr * om[i] - (dR2[i, 0] * om[0] + dR2[i, 1] * om[1] + dR2[i, 2] * om[2])
-        _cross(Sbar[0, g], Sbar[1, g], Sbar[2, g], cvec[0], cvec[1], cvec[2], t1)
-        _cross(om[0], om[1], om[2], dIw[0], dIw[1], dIw[2], t2)
-        for i in range(3):
-            d3[i] = t1[i] + t2[i]
-        for i in range(3):
-            out[3 + i, 6 + g] = D[0, i] * d3[0] + D[1, i] * d3[1] + D[2, i] * d3[2]
-    # row 6, d/dp: sum_kl WW_kl II[k, l, f, g]
-    for k in range(3):
-        for l in range(3):
-            wkl = WW[k, l]
-            if wkl != 0.0:
-                for f in range(nf):
-                    for g in range(nf):
-                        out[6 + f, 6 + g] += wkl * II[k, l, f, g]
+            s += Mv[i, j] * vdot[j]
+        fv[i] = s - Q[i]
+    return power
 
 
 # ---------------------------------------------------------------------------- packing
@@ -1023,42 +686,3 @@ def pack(part) -> FfrArrays:
         length=float(beam.length), N_pts=_f64(t["N"]), x_pts=_f64(t["x"]), w_pts=_f64(t["w"]),
         width=_f64(t["b"]),
     )
-
-
-# ---------------------------------------------------------------------------- Python front ends
-def forces(arrays: FfrArrays, q, v, acc, gravity, damping=(0.0, 0.0), tangent: bool = True, factor: float = 1.0):
-    """FfrPart.forces through the kernel: (force, (M, C, K) or None, dissipated power)."""
-    q, v, acc, g = (_f64(a) for a in (q, v, acc, gravity))
-    n = q.shape[0]
-    force = np.empty(n)
-    drag = arrays.drag(damping)
-    if not tangent:
-        power = ffr_body_terms(arrays.inv, q, v, acc, g, arrays.tip, drag, 0.0, 0.0, 0.0, float(factor), False,
-                               force, np.empty((0, 0)))
-        return force, None, power
-    mats = []
-    for cm, cc, ck in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)):
-        block = np.empty((n, n))
-        power = ffr_body_terms(arrays.inv, q, v, acc, g, arrays.tip, drag, cm, cc, ck, float(factor), True,
-                               force, block)
-        mats.append(block)
-    return force, tuple(mats), power
-
-
-def static_stiffness(arrays: FfrArrays, q, gravity, factor: float = 1.0, spin: float = 0.0,
-                     axis=(0.0, 1.0, 0.0)) -> np.ndarray:
-    """K_el + load stiffness (+ spin stiffness at ``spin`` rad/s about -axis, the hub's sense):
-    the exact FfrPart.stiffness(q, gravity, (0, 0), factor, spin)."""
-    q = _f64(q)
-    n = q.shape[0]
-    K = np.empty((n, n))
-    z = np.zeros(n)
-    ffr_body_terms(arrays.inv, q, z, z, _f64(gravity), arrays.tip, arrays.drag(), 0.0, 0.0, 1.0, float(factor),
-                   True, np.empty(n), K)
-    L = np.empty((n, n))
-    ffr_load_stiffness(arrays.inv, q, _f64(gravity), arrays.tip, float(factor), L)
-    K += L
-    if spin:
-        ffr_spin_stiffness(arrays.inv, q, -np.sqrt(factor) * spin * _f64(axis), L)
-        K += L
-    return K

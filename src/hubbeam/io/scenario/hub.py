@@ -13,7 +13,7 @@ from pydantic import (
     model_validator,
 )
 
-from hubbeam.io.scenario.common import NonNegative, Positive, KeyedChoice, StrictTable
+from hubbeam.io.scenario.common import KeyedChoice, NonNegative, Positive, StrictTable, Vector3
 
 
 #: drive profile -> (its keys besides `profile`, the required ones)
@@ -98,6 +98,8 @@ class Hub(StrictTable):
     inertia: Positive = 1.0  # kg m^2
     torque: TorqueSpec = 0.0  # N m, or a law
     drive: Drive | None = None
+    orientation: Vector3 = [0.0, 0.0, 0.0]  # deg: rotation vector turning the base axes into the hub's at theta = 0
+    position: Vector3 = [0.0, 0.0, 0.0]  # m, base axes: the hub origin O on its axis
 
     @model_validator(mode="before")
     @classmethod
@@ -125,7 +127,7 @@ class Hub(StrictTable):
     @model_serializer(mode="wrap")
     def _dump(self, handler):
         out = handler(self)
-        for key in ("inertia", "torque"):
+        for key in ("inertia", "torque", "orientation", "position"):
             if key not in self.model_fields_set:
                 out.pop(key, None)
         return out

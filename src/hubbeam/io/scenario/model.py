@@ -19,11 +19,12 @@ from pydantic import ValidationError
 
 from hubbeam.errors import ScenarioError
 from hubbeam.io.scenario.analysis import Analysis, Damping, Environment, Loads
+from hubbeam.io.scenario.base import Base
 from hubbeam.io.scenario.beams import (MAX_BEAMS, Beam, ResolvedBeam, ResolvedTipBody, beam_names_of, copy_azimuth,
                                        span_sections)
 from hubbeam.io.scenario.common import STEP_TOLERANCE, StrictTable
 from hubbeam.io.scenario.hub import Hub, HubTorque
-from hubbeam.io.scenario.sensors import Sensor
+from hubbeam.io.scenario.sensors import BEAM_SENSORS, Sensor
 
 
 class Scenario(StrictTable):
@@ -31,6 +32,7 @@ class Scenario(StrictTable):
     single_beam: Beam | None = Field(default=None, alias="beam")  # a [beam] table
     beams: Annotated[list[Beam], Field(min_length=1, max_length=100)] | None = None  # [[beams]] tables
     hub: Hub = Hub()
+    base: Base = Base()
     environment: Environment = Environment()
     damping: Damping = Damping()
     loads: Loads = Loads()
@@ -168,8 +170,9 @@ def _cross_checks(s: Scenario) -> None:
         raise ScenarioError("name: must not contain control characters (NUL, tab, line breaks, ...)")
     if s.single_beam is not None and s.beams is not None:
         raise ScenarioError("beams: give one [beam] table or [[beams]] tables, not both")
-    if s.single_beam is None and s.beams is None:
-        raise ScenarioError("beam: required key is missing (a [beam] table, or [[beams]] tables for several beams)")
+    if s.single_beam is None and s.beams is None and s.base.motion != "free":
+        raise ScenarioError("beam: required key is missing (a [beam] table, or [[beams]] tables for several beams; "
+                            "only a free base may carry no beam)")
     tables, names, places = s.beam_tables, s.beam_names, s.beam_places
     where = "beam" if s.single_beam is not None else "beams"
     if s.single_beam is not None and s.single_beam.copies is not None:
@@ -189,8 +192,15 @@ def _cross_checks(s: Scenario) -> None:
     hub = s.hub
     if hub.motion == "prescribed" and hub.drive is None:
         raise ScenarioError("hub.drive: required when hub.motion = 'prescribed'")
-    if hub.motion == "free" and "inertia" not in hub.model_fields_set:
-        raise ScenarioError("hub.inertia: required for motion = 'free' (kg m^2 about j0)")
+    if s.base.motion == "free":
+        if hub.motion == "fixed" and "inertia" in hub.model_fields_set:
+            raise ScenarioError("hub.inertia: a hub fixed to a free base is part of the base: include its inertia in "
+                                "base.inertia (and its mass in base.mass)")
+        if hub.motion != "fixed" and "inertia" not in hub.model_fields_set:
+            raise ScenarioError(f"hub.inertia: required for a {hub.motion} hub on a free base (kg m^2 about the hub's "
+                                "axis; its mass and its inertia across the axis belong to base.mass and base.inertia)")
+    elif hub.motion == "free" and "inertia" not in hub.model_fields_set:
+        raise ScenarioError("hub.inertia: required for motion = 'free' (kg m^2 about its axis)")
 
     if s.loads.beam is not None and s.loads.beam not in names:
         raise ScenarioError(f"loads.beam: no beam named {s.loads.beam!r} (beams: {listed})")
@@ -215,6 +225,8 @@ def _cross_checks(s: Scenario) -> None:
 
     columns: dict[str, int] = {}
     for i, sen in enumerate(s.sensors):
+        if sen.kind == "base_torque" and s.base.torque is None:
+            raise ScenarioError(f"sensors[{i}].kind: base_torque needs an attitude law ([base.torque] of a free base)")
         if sen.kind == "applied_torque" and hub.motion != "free":
             raise ScenarioError(f"sensors[{i}].kind: applied_torque needs hub.motion = 'free' "
                                 f"(motion is {hub.motion!r}; a prescribed hub's torque is hub_torque)")
@@ -230,6 +242,10 @@ def _cross_checks(s: Scenario) -> None:
             columns[col] = i
         if sen.beam is not None and sen.beam not in names:
             raise ScenarioError(f"sensors[{i}].beam: no beam named {sen.beam!r} (beams: {listed})")
+        if not tables:
+            if sen.kind in BEAM_SENSORS:
+                raise ScenarioError(f"sensors[{i}].kind: a {sen.kind} sensor needs a beam (the scenario has none)")
+            continue
         k = s.beam_index(sen.beam)
         b = tables[places[k][0]]
         of = f"{where}[{places[k][0]}]" if where == "beams" else "beam"
@@ -362,10 +378,12 @@ def validate(data: dict, base_dir: str | Path | None = None) -> Scenario:
 
 
 def table_files(s: Scenario) -> list[tuple[str, str, str]]:
-    """(kind "drive" or "torque", key, absolute path) of every CSV table the scenario reads:
-    its inputs, which no output of a command may overwrite."""
+    """(kind "drive", "torque" or "pose", key, absolute path) of every CSV table the scenario
+    reads: its inputs, which no output of a command may overwrite."""
     hub = s.hub
     tables = []
+    if s.base.file is not None:
+        tables.append(("pose", "base.file", s.base.file))
     if hub.drive is not None and hub.drive.profile == "table":
         tables.append(("drive", "hub.drive.file", hub.drive.file))
     torque = hub.torque if isinstance(hub.torque, HubTorque) else None
@@ -381,13 +399,14 @@ def _check_tables(s: Scenario) -> None:
     tables = table_files(s)
     if not tables:
         return
-    from hubbeam.io.tables import read_drive_table, read_torque_table
+    from hubbeam.io.tables import read_drive_table, read_pose_table, read_torque_table
 
+    readers = {"drive": read_drive_table, "torque": read_torque_table, "pose": read_pose_table}
     for what, key, path in tables:
         if what == "drive":
             drive = s.hub.drive if key == "hub.drive.file" else s.hub.torque.reference
             read_drive_table(path, key, interpolation=drive.interpolation, smoothing=drive.smoothing)
         else:
-            read_torque_table(path, key)
+            readers[what](path, key)
 
 

@@ -14,7 +14,13 @@ from hubbeam.io.scenario.common import Identifier, NonNegative, StrictTable
 SensorKind = Literal[
     "surface_strain", "hub_angle", "hub_angular_velocity", "hub_torque", "tip_deflection", "energy",
     "angular_momentum", "constraint_violation", "applied_torque",
+    "base_position", "base_rotation", "base_velocity", "base_angular_velocity", "centre_of_mass", "linear_momentum",
+    "system_angular_momentum", "base_torque",
 ]
+
+#: the sensors of a base and of the whole system in space: three components each
+VECTOR_SENSORS = ("base_position", "base_rotation", "base_velocity", "base_angular_velocity", "centre_of_mass",
+                  "linear_momentum", "system_angular_momentum", "base_torque")
 
 #: sensors that belong to one beam (``beam``: a beam name, default the first beam)
 BEAM_SENSORS = frozenset({"surface_strain", "tip_deflection"})
@@ -24,6 +30,7 @@ OPTIONAL_BEAM_SENSORS = frozenset({"energy"})
 SENSOR_PARTS: dict[str, tuple[str, ...]] = {
     "tip_deflection": ("radial", "vertical", "tangential"),
     "energy": ("kinetic", "strain", "gravity", "total", "dissipated", "drive"),
+    **{kind: ("x", "y", "z") for kind in VECTOR_SENSORS},
 }
 #: the parts of an energy sensor that names a beam (the work terms belong to the whole system)
 BEAM_ENERGY_PARTS = ("kinetic", "strain", "gravity", "total")

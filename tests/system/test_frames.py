@@ -1,0 +1,106 @@
+"""Frame chains (system/frames.py): every Jacobian and derivative against central differences of
+the pose, which is computed by products of plain rotation matrices (no derivative formulas)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hubbeam.elements.ancf.chart import frame_from_director
+from hubbeam.elements.ancf.frame import frame_global
+from hubbeam.system import frames as fr
+
+
+def _skew_axial(A):
+    """axial vector of the skew part of A."""
+    return 0.5 * np.array([A[2, 1] - A[1, 2], A[0, 2] - A[2, 0], A[1, 0] - A[0, 1]])
+
+
+def _random_rotation(rng):
+    return fr.rotation_vector_matrix(rng.normal(size=3))
+
+
+def _chains(rng):
+    """(name, chain, x, F): chains with every link kind, at random coordinates."""
+    x = rng.normal(size=40)
+    x[3:7] *= 1.7  # Euler parameters of any norm (the pose normalises them)
+    F = np.array([frame_from_director(rng.normal(size=3)), frame_from_director(rng.normal(size=3))])
+    # an ANCF node: position, slope away from the chart's singular direction, twist
+    x[20:23] = rng.normal(size=3)
+    x[23:26] = F[1][:, 0] * 1.1 + 0.3 * rng.normal(size=3)
+    const = lambda: fr.constant(rng.normal(size=3), _random_rotation(rng))  # noqa: E731
+    hub = fr.Chain((const(), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), const()))
+    base = fr.Chain((fr.free(0), const(), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), const(),
+                     fr.revolute(11, rng.normal(size=3)), fr.revolute(12, rng.normal(size=3)), const()))
+    tip = fr.Chain((fr.ancf_tip(20, 1), const(), fr.revolute(13, (1.0, 0.0, 0.0)), const()))
+    return [("hub", hub, x, F), ("base", base, x, F), ("ancf tip", tip, x, F)]
+
+
+def _pose(chain, x, F):
+    r, R, *_ = fr.chain_pose(fr.ChainTable.of([chain]), 0, x, F)
+    return r, R
+
+
+def _reference_pose(chain, x, F):
+    """The pose by plain matrix products (no code shared with chain_kinematics's derivatives)."""
+    r, R = np.zeros(3), np.eye(3)
+    for link in chain.links:
+        if link.kind == fr.LinkKind.CONSTANT:
+            r = r + R @ np.array(link.offset)
+            R = R @ np.array(link.rotation)
+        elif link.kind == fr.LinkKind.REVOLUTE:
+            axis = np.array(link.axis) / np.linalg.norm(link.axis)
+            R = R @ fr.rotation_vector_matrix(link.sign * x[link.coordinate] * axis)
+        elif link.kind == fr.LinkKind.FREE:
+            e = x[link.coordinate + 3 : link.coordinate + 7]
+            e = e / np.linalg.norm(e)
+            e0, v = e[0], e[1:]
+            V = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
+            r = x[link.coordinate : link.coordinate + 3].copy()
+            R = (e0 * e0 - v @ v) * np.eye(3) + 2 * np.outer(v, v) + 2 * e0 * V
+        else:
+            c = link.coordinate
+            r = x[c : c + 3].copy()
+            R = frame_global(F[link.chart], x[c + 3 : c + 6], x[c + 6])
+    return r, R
+
+
+@pytest.mark.parametrize("which", [0, 1, 2])
+def test_pose_jacobians_and_derivatives_against_differences(which):
+    rng = np.random.default_rng(7 + which)
+    name, chain, x, F = _chains(rng)[which]
+    table = fr.ChainTable.of([chain])
+    r, R, Jr, Jw, Hr, Hw = fr.chain_pose(table, 0, x, F, order=2)
+    r_ref, R_ref = _reference_pose(chain, x, F)
+    assert np.allclose(r, r_ref, atol=1e-13) and np.allclose(R, R_ref, atol=1e-13), name
+    assert np.allclose(R.T @ R, np.eye(3), atol=1e-13)
+    cols = chain.coordinates
+    h = 1e-6
+    for i, c in enumerate(cols):
+        xp, xm = x.copy(), x.copy()
+        xp[c] += h
+        xm[c] -= h
+        rp, Rp = _reference_pose(chain, xp, F)
+        rm, Rm = _reference_pose(chain, xm, F)
+        dR = (Rp - Rm) / (2 * h)
+        assert np.allclose((rp - rm) / (2 * h), Jr[:, i], atol=1e-8), (name, i)
+        w = _skew_axial(dR @ R.T)  # dR/dc = [w]x R
+        assert np.allclose(w, Jw[:, i], atol=1e-8), (name, i)
+        # derivatives of the Jacobians along this column
+        *_, Jrp, Jwp, _, _ = fr.chain_pose(table, 0, xp, F)
+        *_, Jrm, Jwm, _, _ = fr.chain_pose(table, 0, xm, F)
+        assert np.allclose((Jrp - Jrm) / (2 * h), Hr[:, :, i], atol=1e-7), (name, i)
+        assert np.allclose((Jwp - Jwm) / (2 * h), Hw[:, :, i], atol=1e-7), (name, i)
+
+
+def test_euler_parameters_and_rotation_vectors_round_trip():
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        phi = rng.normal(size=3)
+        phi *= rng.uniform(0, np.pi) / np.linalg.norm(phi)
+        R = fr.rotation_vector_matrix(phi)
+        assert np.allclose(fr.rotation_vector(R), phi, atol=1e-12)
+        e = fr.euler_parameters(R)
+        R2 = np.empty((3, 3))
+        fr.euler_rotation(e, R2)
+        assert np.allclose(R2, R, atol=1e-13)
