@@ -254,3 +254,20 @@ def test_one_stiffer_blade_splits_the_repeated_frequency_and_is_said():
     assert np.max(np.abs(np.diff(f, axis=0))) < 2 * 1.0 / (2 * np.pi)
     assert np.all(f[:, 2] > f[:, 1] * (1 + 1e-4))  # the split holds at every speed
     assert list(ds["branch_label"].values[0]) == ["flap"] * 6
+
+
+def test_what_makes_a_rotor_symmetric():
+    from hubbeam.studies.campbell import rotor_symmetry
+    from hubbeam.studies.variants import variant
+
+    psi, why = rotor_symmetry(rotor(3))
+    assert why == "" and np.allclose(np.degrees(psi), [0, 120, 240])
+    for overrides, reason in ((["hub.orientation=[10.0, 0.0, 0.0]"], "is not along the hub axis"),
+                              (["beams[*].copies=2"], "at least 3 identical beams (this rotor has 2)"),
+                              (["beams.blade3.azimuth=250.0"], "are not evenly spaced"),
+                              (["loads.tip_force=[0.0, 1.0, 0.0]"], "a tip load acts on blade1"),
+                              (["beams.blade1.tip_body.mass=0.06"], "blade2 differs from blade1 in tip_body")):
+        assert rotor_symmetry(variant(rotor(3), overrides))[0] is None
+        assert reason in rotor_symmetry(variant(rotor(3), overrides))[1]
+    # a tilted hub with gravity along its tilted axis, or without gravity, is symmetric
+    assert rotor_symmetry(variant(rotor(3, gravity="[0.0, 0.0, 0.0]"), ["hub.orientation=[10.0, 0.0, 0.0]"]))[1] == ""

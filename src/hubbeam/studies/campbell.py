@@ -49,14 +49,18 @@ def own_formulation(scenario: Scenario) -> str:
 def rotor_symmetry(scenario: Scenario) -> tuple[np.ndarray | None, str]:
     """(the beams' azimuths (rad), "") when the scenario's beams form a symmetric rotor: at least
     three beams, identical in everything but their name and azimuth, evenly spaced in their order,
-    no tip load, gravity along the hub axis; otherwise (None, the reason, naming the first
-    difference)."""
+    no tip load, a base at rest, gravity along the hub axis; otherwise (None, the reason, naming
+    the first difference)."""
     beams = scenario.resolved_beams()
     if len(beams) < 3:
         return None, f"multi-blade coordinates need at least 3 identical beams (this rotor has {len(beams)})"
-    g = scenario.environment.gravity
-    if g[0] != 0.0 or g[2] != 0.0:
-        return None, f"environment.gravity {list(g)} is not along the hub axis j0"
+    if scenario.base.motion != "fixed":
+        return None, (f"multi-blade coordinates need a base at rest (base.motion is {scenario.base.motion!r}: the "
+                      "base's motion couples the blades)")
+    g = np.asarray(scenario.environment.gravity, dtype=float)
+    axis = api.build_system(scenario).hub_axis_rotation[:, 1]
+    if np.linalg.norm(np.cross(g, axis)) > 1e-12 * max(np.linalg.norm(g), 1e-300):
+        return None, f"environment.gravity {g.tolist()} is not along the hub axis {axis.round(12).tolist()}"
     first = _signature(beams[0])
     for b in beams[1:]:
         other = _signature(b)
