@@ -55,22 +55,23 @@ def plausible_change(frequency_hz, step_hz: float):
 
 
 def energy_fractions(system, x, F, shape) -> dict[str, float]:
-    """The shares (summing to 1) of a mode's kinetic energy in each of :data:`MOTIONS`."""
+    """The shares (summing to 1) of a mode's kinetic energy in each of :data:`MOTIONS` the
+    system has (``base`` only with a moving base)."""
     split = system.kinetic_energy_split(x, F, shape)
     total = sum(split.values())
     if not total > 0.0:
         raise ValueError("a mode shape without kinetic energy has no energy split")
-    return {k: split.get(k, 0.0) / total for k in MOTIONS}
+    return {k: split[k] / total for k in MOTIONS if k in split}
 
 
 def mode_label(fractions: dict[str, float], dominant: float = DOMINANT) -> str:
     """The largest part's name, or the two largest joined by "+" (in the order of
-    :data:`MOTIONS`) when the largest is below ``dominant``; a part missing from ``fractions``
-    counts as 0."""
-    ranked = sorted(MOTIONS, key=lambda k: -fractions.get(k, 0.0))  # a part not given (no base): none
-    if fractions.get(ranked[0], 0.0) >= dominant:
+    :data:`MOTIONS`) when the largest is below ``dominant``."""
+    present = [k for k in MOTIONS if k in fractions]
+    ranked = sorted(present, key=lambda k: -fractions[k])
+    if fractions[ranked[0]] >= dominant:
         return ranked[0]
-    return "+".join(k for k in MOTIONS if k in ranked[:2])
+    return "+".join(k for k in present if k in ranked[:2])
 
 
 def mac_matrix(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -208,7 +208,7 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=None, harm
                 shares = [energy_fractions(system, steady.x, steady.chart, u) for u in shapes[:, :n].T]
                 freq[i, j, :n] = f[:n]
                 labels[i, j, :n] = [mode_label(s) for s in shares]
-                fractions[i, j, :n] = [[s[k] for k in MOTIONS] for s in shares]
+                fractions[i, j, :n] = [[s.get(k, 0.0) for k in MOTIONS] for s in shares]
                 if previous is None:
                     members = [(b[:, c], fs[c], s) for s, (b, fs, _) in enumerate(spaces) for c in range(b.shape[1])]
                     m = min(count, len(members))

@@ -293,7 +293,8 @@ def _explain(err: dict) -> str:
         bound = next(iter(ctx.values()))
         return f"must be {op} {bound} (got {value})"
     if kind == "literal_error":
-        return f"must be one of {ctx.get('expected')} (got {value!r})"
+        shown = repr(value)
+        return f"must be one of {ctx.get('expected')} (got {shown if len(shown) <= 30 else shown[:27] + '...'})"
     if kind in ("too_short", "too_long"):
         n = ctx.get("min_length") if kind == "too_short" else ctx.get("max_length")
         bound = "at least" if kind == "too_short" else "at most"
