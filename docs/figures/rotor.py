@@ -22,10 +22,10 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from hubbeam import api, plots  # noqa: E402
+from hubbeam.plots.style import figure, finish, paper_style  # noqa: E402
 from hubbeam.io.results import to_dataset  # noqa: E402
 from hubbeam.io.scenario import load_example  # noqa: E402
 from hubbeam.studies.campbell import campbell  # noqa: E402
@@ -76,25 +76,23 @@ def speed_log_figure():
     for label in list(runs)[1:]:
         print(f"  {label}: largest difference from the clean log's torque "
               f"{np.max(np.abs(runs[label]['drive_torque'].values - reference)):.3f} N m")
-    fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
-    t = runs["clean log"]["time"].values
-    axes[0].plot(rows, noisy, ".", ms=1.5, color="0.6", label="noisy log (100 Hz, 0.02 rad/s noise)")
-    axes[0].plot(t, runs["clean log"]["hub_omega"], "k-", lw=1.2, label="clean log")
-    axes[0].set_ylabel("hub speed (rad/s)")
-    for label, style, lw in (("noisy log, as it is", "C3-", 0.5), ("noisy log, interpolation = linear", "C1-", 0.6)):
-        axes[1].plot(t, runs[label]["drive_torque"], style, lw=lw, label=label)
-    axes[1].set_ylabel("drive torque (N m)")
-    for label, style, lw in (("clean log", "k-", 1.6), ("noisy log, smoothing = 2 Hz", "C0--", 1.4)):
-        axes[2].plot(t, runs[label]["drive_torque"], style, lw=lw, label=label)
-    axes[2].set_ylabel("drive torque (N m)")
-    axes[2].set_xlabel("time (s)")
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="upper right")
-    fig.suptitle("rotor3 driven by a measured speed log: Kane's spin-up to 6 rad/s in 8 s")
-    fig.tight_layout()
-    fig.savefig(OUT / "rotor_speed_log.png", dpi=110)
-    plt.close(fig)
+    with paper_style():
+        fig, axes = figure(3, 1, height=6.4, sharex=True)
+        axes = axes[:, 0]
+        t = runs["clean log"]["time"].values
+        axes[0].plot(rows, noisy, ".", ms=1.0, color="0.6", label="noisy log (100 Hz, 0.02 rad/s noise)")
+        axes[0].plot(t, runs["clean log"]["hub_omega"], "k-", label="clean log")
+        axes[0].set_ylabel("hub speed (rad/s)")
+        for label, style, lw in (("noisy log, as it is", "C3-", 0.4), ("noisy log, interpolation = linear", "C1-", 0.5)):
+            axes[1].plot(t, runs[label]["drive_torque"], style, lw=lw, label=label)
+        axes[1].set_ylabel("drive torque (N m)")
+        for label, style in (("clean log", "k-"), ("noisy log, smoothing = 2 Hz", "C0--")):
+            axes[2].plot(t, runs[label]["drive_torque"], style, label=label)
+        axes[2].set_ylabel("drive torque (N m)")
+        axes[2].set_xlabel("time (s)")
+        for ax in axes:
+            ax.legend(loc="upper right")
+        finish(fig, OUT / "rotor_speed_log.png", "rotor3 driven by a measured speed log: Kane's spin-up to 6 rad/s in 8 s")
     return runs
 
 
