@@ -98,7 +98,8 @@ def drive_profile(drive, key: str) -> DriveProfile:
     if drive.profile == "table":
         from hubbeam.io.tables import read_drive_table
 
-        return read_drive_table(drive.file, f"{key}.file")
+        return read_drive_table(drive.file, f"{key}.file", interpolation=drive.interpolation,
+                                smoothing=drive.smoothing)
     if drive.profile == "slew":
         return DriveProfile.slew(drive.angle, drive.T)
     return DriveProfile(drive.profile, drive.omega_s, drive.T, drive.t1)

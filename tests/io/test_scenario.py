@@ -21,7 +21,9 @@ from hubbeam.io.scenario import (
 )
 
 BASE = tomllib.loads(example_text("exp1"))
-ROTOR = tomllib.loads(example_text("rotor3"))
+ROTOR_COPIES = tomllib.loads(example_text("rotor3"))  # one [[beams]] table with copies = 3
+#: the same rotor with its three blades in three tables: a --set on each copy alone writes each out
+ROTOR = apply_overrides(ROTOR_COPIES, [f"beams[{k}].azimuth={120 * k}" for k in range(3)])
 SPACECRAFT = tomllib.loads(example_text("spacecraft"))
 
 BEAM = {"formulation": "ancf", "elements": 3, "length": 1.0, "width": 0.05, "thickness": 0.004, "density": 2700.0,
@@ -657,3 +659,90 @@ def test_control_characters_in_the_name():
     for name in ("a\x00b", "a\tb", "a\x7fb", "a\x85b", "two\nlines"):
         assert error_of(dict(BASE, name=name)).startswith("name: must not contain control")
     assert validate(dict(BASE, name="Rotor 3, été")).name == "Rotor 3, été"
+
+
+# ----------------------------------------------------------------------------- copies
+def test_copies_are_the_tables_written_out():
+    """rotor3 with copies = 3 is its three blades written out one table each: the same resolved
+    beams (names, azimuths 0, 120, 240 deg, every key), so the same model; to_dict keeps the
+    copies and gives the scenario back."""
+    with_copies, written = validate(ROTOR_COPIES), validate(ROTOR)
+    assert len(ROTOR_COPIES["beams"]) == 1 and len(ROTOR["beams"]) == 3
+    assert with_copies.resolved_beams() == written.resolved_beams()
+    assert with_copies.beam_names == ("blade1", "blade2", "blade3")
+    assert validate(with_copies.to_dict()) == with_copies and with_copies.to_dict()["beams"][0]["copies"] == 3
+
+
+def test_copies_names_azimuths_and_places():
+    data = copy.deepcopy(BASE)
+    blade = data.pop("beam")
+    data["beams"] = [{**blade, "copies": 4, "azimuth": 10.0}, {**blade, "name": "tail"}, blade]
+    sc = validate(data)
+    assert sc.beam_names == ("blade1", "blade2", "blade3", "blade4", "tail", "beam6")
+    assert [round(math.degrees(b.azimuth), 9) for b in sc.resolved_beams()] == [10, 100, 190, 280, 0, 0]
+    assert sc.beam_places == [(0, 0), (0, 1), (0, 2), (0, 3), (1, None), (2, None)]
+    assert sc.beam_key(2) == "beams[0] (copy 3 of 4)" and sc.beam_key(4) == "beams[1]"
+    data["beams"][0]["name"] = "rotor"
+    assert validate(data).beam_names[:4] == ("rotor1", "rotor2", "rotor3", "rotor4")
+
+
+def test_a_copy_addressed_alone_gets_a_table_of_its_own():
+    """--set on one copy (by name or index) writes the table's copies out, each with its name
+    and azimuth, and changes that copy only; beams[*] sets the shared table once; value_at reads a
+    copy's own name and azimuth."""
+    stiff = validate(apply_overrides(ROTOR_COPIES, ["beams.blade2.youngs_modulus=70.07e9"]))
+    assert [b.youngs_modulus for b in stiff.resolved_beams()] == [70e9, 70.07e9, 70e9]
+    assert [round(math.degrees(b.azimuth)) for b in stiff.resolved_beams()] == [0, 120, 240]
+    assert len(stiff.to_dict()["beams"]) == 3 and "copies" not in stiff.to_dict()["beams"][1]
+    heavy = validate(apply_overrides(ROTOR_COPIES, ["beams[2].tip_body.mass=0.2"]))
+    assert [b.tip_body.mass for b in heavy.resolved_beams()] == [0.0972, 0.0972, 0.2]
+    every = apply_overrides(ROTOR_COPIES, ["beams[*].elements=2"])
+    assert len(every["beams"]) == 1 and [b.elements for b in validate(every).resolved_beams()] == [2, 2, 2]
+    assert value_at(ROTOR_COPIES, "beams.blade3.azimuth") == 240.0 and value_at(ROTOR_COPIES, "beams[1].name") == "blade2"
+    assert value_at(ROTOR_COPIES, "beams[2].length") == 1.0
+
+
+@pytest.mark.parametrize("change, overrides, key, text", [
+    (lambda d: d["beams"][0].update(copies=1), [], "beams[0].copies", ">= 2"),
+    (lambda d: d["beams"][0].update(copies=101), [], "beams[0].copies", "<= 100"),
+    (lambda d: d["beams"][0].update(copies=2.5), [], "beams[0].copies", "an integer"),
+    (lambda d: d["beams"].append({**d["beams"][0], "copies": 98}), [], "beams", "101 beams in all"),
+    (lambda d: d["beams"].append({**d["beams"][0], "copies": 2, "name": None}), [], "beams[1].name",
+     "duplicate beam name 'blade1' (also beams[0] (copy 1 of 3))"),
+    (lambda d: None, ["beams[3].elements=2"], "--set beams[3].elements=2", "out of range (the scenario has 3 beams"),
+    (lambda d: None, ["beam.elements=2"], "--set beam.elements=2", "the scenario has 3 beams"),
+    (lambda d: None, ["sensors[0].beam='blade4'"], "sensors[0].beam", "(beams: blade1, blade2, blade3)"),
+])
+def test_copies_errors_name_their_key(change, overrides, key, text):
+    data = copy.deepcopy(ROTOR_COPIES)
+    change(data)
+    data["beams"] = [{k: v for k, v in b.items() if v is not None} for b in data["beams"]]
+    msg = error_of(data, overrides)
+    assert msg.startswith(key + ":") and text in msg, msg
+
+
+def test_a_single_beam_table_has_no_copies():
+    data = copy.deepcopy(BASE)
+    data["beam"]["copies"] = 3
+    assert error_of(data).startswith("beam.copies: a [beam] table is one beam; write [[beams]] with copies = N")
+
+
+# ----------------------------------------------------------------------------- drive table options
+def test_drive_table_options_belong_to_table_drives(tmp_path):
+    log = tmp_path / "log.csv"
+    log.write_text("time,omega\n0,0\n1,1\n2,2\n3,2\n4,2\n5,2\n")
+    data = copy.deepcopy(ROTOR_COPIES)
+    data["hub"]["drive"] = {"profile": "table", "file": str(log), "interpolation": "linear", "smoothing": 0.5}
+    drive = validate(data).hub.drive
+    assert (drive.interpolation, drive.smoothing) == ("linear", 0.5)
+    assert error_of(data, ["hub.drive.interpolation='cubic'"]).startswith("hub.drive.interpolation: must be one of")
+    assert error_of(data, ["hub.drive.smoothing=0"]).startswith("hub.drive.smoothing: must be > 0")
+    dropped = []
+    switched = validate(apply_overrides(data, ["hub.drive.profile='constant'", "hub.drive.omega_s=1.0"], dropped))
+    assert switched.hub.drive.profile == "constant" and "hub.drive.interpolation, hub.drive.smoothing" in dropped[0]
+    spin = copy.deepcopy(ROTOR_COPIES)
+    spin["hub"]["drive"]["smoothing"] = 1.0
+    assert error_of(spin).startswith("hub.drive.smoothing: not a key of profile 'spin_up'")
+    (tmp_path / "angle.csv").write_text("time,theta\n0,0\n1,1\n2,3\n")
+    data["hub"]["drive"] = {"profile": "table", "file": str(tmp_path / "angle.csv"), "interpolation": "linear"}
+    assert error_of(data).startswith("hub.drive.interpolation: 'linear' is for an omega table")

@@ -113,3 +113,15 @@ def test_drive_table_errors(tmp_path):
         read_drive_table(write(tmp_path, "time,omega\n1,1\n2,2\n3,3\n"), KEY)
     with pytest.raises(ScenarioError, match="first theta must be 0"):
         read_drive_table(write(tmp_path, "time,theta\n0,1\n1,2\n2,3\n"), KEY)
+
+
+def test_drive_table_options_name_their_key(tmp_path):
+    theta = write(tmp_path, "time,theta\n0,0\n1,0.5\n2,2\n3,4\n", "th.csv")
+    with pytest.raises(ScenarioError, match=r"^hub.drive.interpolation: 'linear' is for an omega table, and .*th.csv"):
+        read_drive_table(theta, "hub.drive.file", interpolation="linear")
+    short = write(tmp_path, "time,omega\n0,0\n1,1\n2,2\n3,3\n", "short.csv")
+    with pytest.raises(ScenarioError, match=r"^hub.torque.reference.smoothing: .*short.csv has 4 rows; smoothing needs at "
+                                            r"least 5"):
+        read_drive_table(short, "hub.torque.reference.file", smoothing=2.0)
+    d = read_drive_table(short, "hub.drive.file", interpolation="linear")
+    assert d.interpolation == "linear" and d(1.5)[1] == pytest.approx(1.5)

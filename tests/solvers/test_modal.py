@@ -134,3 +134,60 @@ def test_rotating_ffr_plain_does_not_stiffen_stiffened_follows_ancf():
     assert w**2 == pytest.approx(w0**2 - speed**2, rel=1e-5)
     assert np.max(np.abs(stiff / ancf - 1)) < 2e-3
     assert ancf[0] > 1.3 * rest[0]
+
+
+def _three_beams(omega=4.0):
+    """Three different beams (two ANCF, one FFR, one with a tip body) on a hub driven at omega,
+    under gravity: its steadily rotating state."""
+    from hubbeam.elements.ffr.body import FfrBeam
+    from hubbeam.system.ancf_part import AncfPart
+    from hubbeam.system.ffr_part import FfrPart
+    from hubbeam.system.multibody import Hub, MultibodySystem
+    from hubbeam.system.laws import DriveProfile
+    from hubbeam.system.mount import Mount
+    from hubbeam.system.tip_body import TipBody
+
+    parts = [AncfPart(AncfBeam(0.8, 3, plate()), Mount(0.2, np.pi / 2, 0.0, 0.0), name="a"),
+             FfrPart(FfrBeam(0.7, 3, plate(0.04, 0.003)), Mount(0.25, 0.3, 2.0, 0.1), name="b"),
+             AncfPart(AncfBeam(0.6, 2, plate()), Mount(0.2, 0.0, 4.0, 0.0), name="c",
+                      tip_body=TipBody(0.05, (1e-5, 1e-5, 1e-5), (0.01, 0.0, 0.0)))]
+    system = MultibodySystem(parts, Hub("prescribed", 0.5, drive=DriveProfile.constant(omega)), gravity=(0.0, -9.81, 0.0))
+    return system, solve_static(system, load_steps=3, spin=omega)
+
+
+def test_band_coloured_differences_equal_column_by_column_differences():
+    """The rotating-state stiffness and gyroscopic matrices by one pair of residuals per colour of
+    the band equal the column-by-column differences in every row but the hub's (the border,
+    which the held hub's modes do not use), for ANCF and FFR beams on one hub."""
+    from hubbeam.solvers.modal import rotating_matrices
+
+    system, steady = _three_beams()
+    full = rotating_matrices(system, steady.x, steady.multipliers, steady.chart, 4.0, hub_row=True)
+    coloured = rotating_matrices(system, steady.x, steady.multipliers, steady.chart, 4.0, hub_row=False)
+    for a, b in zip(full, coloured):
+        assert np.allclose(a[1:], b[1:], rtol=1e-9, atol=1e-9 * np.max(np.abs(a)))
+    assert np.all(coloured[1][0] == 0.0) and np.all(coloured[2][0] == 0.0)
+
+
+def test_block_by_block_modes_equal_the_whole_system_s():
+    """Solving each beam's block alone gives the frequencies and shapes of the quadratic
+    eigenproblem of the whole system on the null space of all its constraints (dense, one
+    block: the textbook state-space form, written out here)."""
+    from scipy.linalg import eig, null_space
+
+    from hubbeam.solvers.modal import rotating_matrices, rotating_modal_analysis
+
+    system, steady = _three_beams()
+    modes = rotating_modal_analysis(system, steady, 4.0, count=12)
+    M, G, K, A = rotating_matrices(system, steady.x, steady.multipliers, steady.chart, 4.0, hub_row=True)
+    N = null_space(A)
+    Mr, Gr, Kr = (N.T @ X @ N for X in (M, G, K))
+    n = Mr.shape[0]
+    s, V = eig(np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(Mr, Kr), -np.linalg.solve(Mr, Gr)]]))
+    f = np.sort(np.abs(s[s.imag > 1e-9].imag)) / (2 * np.pi)
+    assert np.allclose(modes.frequencies_hz, f[:12], rtol=1e-7)
+    # each shape solves the quadratic eigenproblem of the whole system: (K + i w G - w^2 M) u in the range of A^T
+    for w, u in zip(2 * np.pi * modes.frequencies_hz, modes.shapes.T):
+        r = N.T @ ((K + 1j * w * G - w**2 * M) @ u)
+        assert np.linalg.norm(r) < 1e-6 * np.linalg.norm(K @ u)
+        assert np.real(np.conj(u) @ M @ u) == pytest.approx(1.0)  # mass-normalised

@@ -6,7 +6,8 @@ import pytest
 
 from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.solvers.modal import modal_analysis
-from hubbeam.solvers.mode_shapes import energy_fractions, mac_matrix, match_modes, mode_label, span_shapes
+from hubbeam.solvers.mode_shapes import (CONFIDENT_MAC, eigenspaces, energy_fractions, follow, mac_matrix, match_modes,
+                                         mode_label, span_shapes, subspace_mac)
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.multibody import single_beam_system
@@ -112,3 +113,41 @@ def test_mac_and_matching_follow_shapes_not_order():
     index, mac = match_modes(Q[:, :3], B)
     assert list(index) == [1, 3, 0]
     assert np.all(mac > 0.9)
+
+
+def test_repeated_frequencies_form_one_eigenspace():
+    groups = eigenspaces([1.0, 1.0 + 1e-9, 1.0 - 0.0 + 2e-9, 1.5, 2.0, 2.0 * (1 + 1e-4)])
+    assert [list(g) for g in groups] == [[0, 1, 2], [3], [4], [5]]
+
+
+def test_a_branch_follows_its_eigenspace_in_any_basis_and_keeps_its_shape():
+    """Three branches in a three-fold eigenspace (identical blades) and one single mode: at the
+    next speed the solver returns the eigenspace in another basis (a random unitary mixture),
+    slightly perturbed. Single-vector MAC finds no good match for the branches (below 0.8); the
+    subspace MAC is 1 and the Procrustes turn gives back vectors within the perturbation of the
+    previous shapes, at the eigenspace's frequency."""
+    rng = np.random.default_rng(3)
+    Q, _ = np.linalg.qr(rng.standard_normal((20, 4)) + 1j * rng.standard_normal((20, 4)))
+    space, single = Q[:, :3], Q[:, 3:]
+    mix, _ = np.linalg.qr(rng.standard_normal((3, 3)) + 1j * rng.standard_normal((3, 3)))
+    turned = space @ mix + 1e-4 * rng.standard_normal((20, 3))
+    assert mac_matrix(space, turned).max(axis=1).min() < 0.8
+    shapes, freqs, macs, where = follow(np.hstack([space, single]), np.array([2.0, 2.0, 2.0, 3.0]),
+                                        [(single * 1j, np.array([3.01])), (turned, np.full(3, 2.02))], step_hz=0.1)
+    assert list(where) == [1, 1, 1, 0] and np.allclose(freqs, [2.02, 2.02, 2.02, 3.01])
+    assert np.all(macs > 1 - 1e-6)
+    assert np.allclose(np.abs(np.sum(np.conj(shapes) * np.hstack([space, single]), axis=0)), 1.0, atol=1e-6)
+
+
+def test_a_branch_does_not_jump_to_a_far_frequency_for_a_little_more_shape():
+    """Two candidates whose shapes are both poor matches (MAC 0.45 and 0.55): the one at the
+    plausible frequency wins over the one ten times higher, and the match is reported below
+    the confidence threshold."""
+    e = np.eye(3)
+    previous = (e[:, :1] + e[:, 1:2] + 0.2 * e[:, 2:]) / np.sqrt(2.04)
+    near, far = e[:, :1], (e[:, 1:2] + 0.3 * e[:, 2:])
+    shares = [subspace_mac(previous, near)[0], subspace_mac(previous, far)[0]]
+    assert shares[0] < shares[1] < CONFIDENT_MAC
+    _, freqs, macs, where = follow(previous, np.array([2.6]), [(near, np.array([2.62])), (far, np.array([26.9]))],
+                                   step_hz=0.08)
+    assert where[0] == 0 and freqs[0] == pytest.approx(2.62) and macs[0] < CONFIDENT_MAC

@@ -305,3 +305,72 @@ def test_a_callable_torque_law_takes_the_python_step_only_on_a_free_hub():
     assert not api.build_system(load_example("exp1"), law).compiled  # free hub
     with pytest.raises(ScenarioError, match="^torque: a torque law acts on a free hub only"):
         api.build_system(load_example("exp2"), law)
+
+
+# -- measured speed logs: linear interpolation and smoothing ---------------------------------------
+def test_a_linear_omega_table_passes_its_rows_and_integrates_them_by_trapezoids():
+    """omega piecewise linear through the rows, theta its integral: at the rows theta is the
+    trapezoidal sum of the rows before (scipy's cumulative_trapezoid), alpha the slope of each
+    interval (a step at every row), and after the last row the speed is held."""
+    from scipy.integrate import cumulative_trapezoid
+
+    rng = np.random.default_rng(4)
+    t = np.concatenate([[0.0], np.cumsum(rng.uniform(0.05, 0.3, 30))])
+    w = rng.normal(2.0, 1.0, t.size)
+    d = DriveProfile.table(t, w, interpolation="linear")
+    theta = cumulative_trapezoid(w, t, initial=0.0)
+    at_rows = np.array([d(x) for x in t])
+    assert np.allclose(at_rows[:, 0], theta, rtol=1e-13, atol=1e-13)
+    assert np.allclose(at_rows[:, 1], w, rtol=1e-13, atol=1e-13)
+    mid = 0.5 * (t[1:] + t[:-1])
+    assert np.allclose([d(x)[2] for x in mid], np.diff(w) / np.diff(t), rtol=1e-12)
+    assert np.allclose([d(x)[1] for x in mid], 0.5 * (w[1:] + w[:-1]), rtol=1e-12)
+    assert d(t[-1] + 2.0) == pytest.approx((theta[-1] + 2.0 * w[-1], w[-1], 0.0), rel=1e-13)
+    assert np.allclose(drive_values(*d.compiled(), 1.234), d(1.234), rtol=0, atol=0)
+
+
+@pytest.mark.parametrize("uneven", [False, True])
+def test_smoothing_is_the_filter_one_over_one_plus_f_over_F_to_the_fourth_without_phase(uneven):
+    """Sines through the smoothing at F = 1 Hz, away from the series' ends: the gain is
+    1 / (1 + (f/F)^4) (the Euler-Lagrange equation of the smoothing functional, f + lambda
+    f^(4) = y with lambda = (2 pi F)^-4) to 1e-5 and the phase is zero, on evenly and on
+    unevenly spaced rows; the first row's value is kept exactly."""
+    from hubbeam.system.laws import smooth_table
+
+    rng = np.random.default_rng(5)
+    t = np.sort(np.concatenate([[0.0], rng.uniform(0.0, 40.0, 4000)])) if uneven else np.linspace(0.0, 40.0, 4001)
+    middle = (t > 10.0) & (t < 30.0)
+    for f in (0.25, 0.5, 1.0, 2.0):
+        y = np.sin(2 * np.pi * f * t + 0.3)
+        s = smooth_table(t, y, 1.0)
+        assert s[0] == y[0]
+        basis = np.column_stack([np.sin(2 * np.pi * f * t[middle] + 0.3), np.cos(2 * np.pi * f * t[middle] + 0.3)])
+        in_phase, quadrature = np.linalg.lstsq(basis, s[middle], rcond=None)[0]
+        gain = 1.0 / (1.0 + f**4)
+        assert in_phase == pytest.approx(gain, abs=1e-5 if not uneven else 2e-3)
+        assert abs(quadrature) < (1e-6 if not uneven else 2e-3)
+
+
+def test_a_smoothed_table_keeps_its_rows_and_its_start():
+    t = np.arange(0.0, 3.0 + 1e-9, 0.01)
+    w = 2.0 * t + np.random.default_rng(6).normal(0.0, 0.05, t.size)
+    w[0] = 0.0
+    d = DriveProfile.table(t, w, smoothing=3.0)
+    assert d.values == tuple(w) and d.smoothing == 3.0 and "smoothing=3.0" in repr(d)
+    assert d(0.0)[:2] == (0.0, 0.0)
+    # a straight line passes the filter unchanged: the smoothed table is 2 t within the noise left
+    assert np.max(np.abs(np.array([d(x)[1] for x in t[50:-50]]) - 2.0 * t[50:-50])) < 0.05
+
+
+@pytest.mark.parametrize("make, match", [
+    (lambda: DriveProfile.table([0.0, 1.0, 2.0], [0.0, 1.0, 2.0], "theta", interpolation="linear"),
+     "'linear' is for an omega table"),
+    (lambda: DriveProfile.table([0.0, 1.0, 2.0], [0.0, 1.0, 2.0], interpolation="cubic"), "interpolation: must be"),
+    (lambda: DriveProfile.table([0.0, 1.0, 2.0, 3.0], [0.0, 1.0, 2.0, 2.0], smoothing=1.0), "at least 5 rows"),
+    (lambda: DriveProfile.table(np.arange(6.0), np.arange(6.0), smoothing=0.0), "must be > 0"),
+    (lambda: DriveProfile.table(np.arange(6.0), np.arange(6.0), smoothing=float("inf")), "smoothing: must be finite"),
+    (lambda: DriveProfile("constant", 1.0, smoothing=2.0), "only for profile 'table'"),
+])
+def test_table_options_are_checked(make, match):
+    with pytest.raises(ValueError, match=match):
+        make()

@@ -65,7 +65,13 @@ def build_parser() -> argparse.ArgumentParser:
     camp.add_argument("--count", type=int, default=6, help="modes per speed (default 6)")
     camp.add_argument("-o", "--output", help="figure")
     camp.add_argument("--data", help="NetCDF file of the frequencies")
-    camp.add_argument("--formulations", default="ancf,ffr,ffr+", help="comma-separated: ancf, ffr, ffr+ (default all)")
+    camp.add_argument("--formulations", default=None,
+                      help="comma-separated: ancf, ffr, ffr+ (default: the scenario's own)")
+    camp.add_argument("--frame", choices=("rotating", "fixed"), default="rotating",
+                      help="the frame of the diagram: rotating (default) or fixed (multi-blade coordinates: "
+                           "progressive and regressive whirl; N >= 3 identical, evenly spaced beams)")
+    camp.add_argument("--harmonics", metavar="N,N,...",
+                      help="the nP lines to draw (default 1 to 2 x the number of beams)")
     zoom = camp.add_mutually_exclusive_group()
     zoom.add_argument("--fmax", type=float, help="draw frequencies from 0 to FMAX Hz only")
     zoom.add_argument("--frange", metavar="LO:HI", help="draw frequencies from LO to HI Hz only")

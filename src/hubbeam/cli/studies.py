@@ -8,6 +8,26 @@ import os
 
 from hubbeam.cli.common import MAX_MEASURED_BYTES, check_targets, limit_workers, listed, load, progress_bar, say, write_jobs
 
+#: the highest nP line --harmonics draws
+MAX_HARMONIC = 1000
+
+
+def _harmonics(text: str | None):
+    from hubbeam.io.scenario import ScenarioError
+
+    if text is None:
+        return None
+    try:
+        orders = [int(v) for v in text.split(",")]
+    except ValueError:
+        orders = []
+    if not orders or any(not 1 <= n <= MAX_HARMONIC for n in orders):
+        raise ScenarioError(f"--harmonics: expected comma-separated whole numbers from 1 to {MAX_HARMONIC} (got {text!r})")
+    if len(set(orders)) != len(orders):
+        raise ScenarioError(f"--harmonics: an order is given twice ({text})")
+    return orders
+
+
 def cmd_campbell(args, scenario) -> dict:
     from hubbeam.io.scenario import ScenarioError
     from hubbeam.io.targets import Target
@@ -18,12 +38,15 @@ def cmd_campbell(args, scenario) -> dict:
         raise ScenarioError("--omega: hub speeds must be >= 0")
     if not 1 <= args.count <= 50:
         raise ScenarioError(f"--count: must be between 1 and 50 (got {args.count})")
-    forms = tuple(f.strip() for f in args.formulations.split(","))
-    unknown = [f for f in forms if f not in FORMULATIONS]
-    if unknown:
-        raise ScenarioError(f"--formulations: unknown {', '.join(unknown)} (use {', '.join(FORMULATIONS)})")
-    if len(set(forms)) != len(forms):
-        raise ScenarioError(f"--formulations: a formulation is given twice ({args.formulations})")
+    forms = None
+    if args.formulations is not None:
+        forms = tuple(f.strip() for f in args.formulations.split(","))
+        unknown = [f for f in forms if f not in FORMULATIONS]
+        if unknown:
+            raise ScenarioError(f"--formulations: unknown {', '.join(unknown)} (use {', '.join(FORMULATIONS)})")
+        if len(set(forms)) != len(forms):
+            raise ScenarioError(f"--formulations: a formulation is given twice ({args.formulations})")
+    harmonics = _harmonics(args.harmonics)
     frange = None if args.fmax is None else (0.0, args.fmax)
     if args.frange is not None:
         try:
@@ -38,19 +61,28 @@ def cmd_campbell(args, scenario) -> dict:
         raise ScenarioError(f"{'--fmax' if args.fmax is not None else '--frange'}: zooms the figure, and no figure is "
                             "asked for (give -o FIG.png)")
     targets = check_targets([Target("-o", args.output, "figure"), Target("--data", args.data)], args)
-    from hubbeam.studies.campbell import campbell
+    from hubbeam.studies.campbell import campbell, own_formulation
 
+    forms = forms or (own_formulation(scenario),)
     progress, finish = progress_bar(len(forms) * speeds.size, label="campbell", unit="points")
     try:
-        ds = campbell(scenario, speeds, count=args.count, formulations=forms,
+        ds = campbell(scenario, speeds, count=args.count, formulations=forms, harmonics=harmonics,
                       progress=lambda done, total: progress(done))
     finally:
         finish()
+    for line in filter(None, ds.attrs["uncertain"].split("\n")):
+        say(f"hubbeam: note: campbell: {line}")
+    frame = args.frame
+    if frame == "fixed" and not ds.attrs["symmetric"]:
+        say(f"hubbeam: note: --frame fixed: {ds.attrs['symmetry']}; the diagram and the results are in the rotating "
+            "frame")
+        frame = "rotating"
 
     def figure(path):
         from hubbeam import plots
 
-        plots.plot_campbell(ds, path, title=f"Campbell diagram: {scenario.name}", frange=frange)
+        title, subtitle = plots.run_title(f"Campbell diagram ({frame} frame): {scenario.name}", args.overrides)
+        plots.plot_campbell(ds, path, title=title, frange=frange, frame=frame, subtitle=subtitle)
 
     def data(path):
         from hubbeam.io.results import write_netcdf
@@ -67,22 +99,37 @@ def cmd_campbell(args, scenario) -> dict:
              f"{', '.join(f'{n} modes with {f}' for f, n in short.items())} (the others are null; more beam.elements "
              "give more)")
     if frange is not None and targets and targets[0].option == "-o":
-        f = ds["frequency_hz"].values
-        f = f[np.isfinite(f)]
+        shown = ds["fixed_frequency_hz" if frame == "fixed" else "tracked_frequency_hz"].values
+        f = shown[np.isfinite(shown)]
         if f.size and not ((f >= frange[0]) & (f <= frange[1])).any():
             say(f"hubbeam: note: {'--fmax' if args.fmax is not None else '--frange'}: no frequency lies in "
                  f"{frange[0]:g} to {frange[1]:g} Hz (they span {f.min():.4g} to {f.max():.4g} Hz), so the figure shows "
                  "only the speed lines")
-    result = {"omega": speeds.tolist(),
-              "frequencies_hz": {str(f): ds["frequency_hz"].sel(formulation=f).values.tolist() for f in forms},
-              "labels": {str(f): ds["label"].sel(formulation=f).values.tolist() for f in forms},
-              "tracked": {str(f): {"frequencies_hz": ds["tracked_frequency_hz"].sel(formulation=f).values.tolist(),
-                                   "labels": ds["branch_label"].sel(formulation=f).values.tolist(),
-                                   "mac": ds["mac"].sel(formulation=f).values.tolist()} for f in forms}}
+    per = lambda name: {str(f): ds[name].sel(formulation=f).values.tolist() for f in forms}  # noqa: E731
+    tracked = {str(f): {"frequencies_hz": ds["tracked_frequency_hz"].sel(formulation=f).values.tolist(),
+                        "labels": ds["branch_label"].sel(formulation=f).values.tolist(),
+                        "mac": ds["mac"].sel(formulation=f).values.tolist()} for f in forms}
+    if "harmonic" in ds:
+        for f in forms:
+            tracked[str(f)]["harmonic"] = ds["harmonic"].sel(formulation=f).values.tolist()
+    result = {"omega": speeds.tolist(), "formulations": [str(f) for f in forms], "frame": frame,
+              "blades": int(ds.attrs["blades"]), "symmetric": bool(ds.attrs["symmetric"]),
+              "frequencies_hz": per("frequency_hz"), "labels": per("label"), "tracked": tracked,
+              "np_lines": {"orders": ds["order"].values.tolist(), "frequencies_hz": ds["np_line_hz"].values.tolist()}}
+    if not ds.attrs["symmetric"]:
+        result["symmetry"] = ds.attrs["symmetry"]
+    if frame == "fixed":
+        result["fixed"] = {"omega": speeds.tolist(), "frequencies_hz": per("fixed_frequency_hz"),
+                           "labels": per("fixed_label"), "whirl": per("whirl")}
+    uncertain = [line for line in ds.attrs["uncertain"].split("\n") if line]
+    if uncertain:
+        result["uncertain"] = uncertain
     if not args.json:
         for f in forms:
-            first = ds["frequency_hz"].sel(formulation=f).values[:, 0]
-            print(f"{f:5s} first mode: {first[0]:.4f} Hz at {speeds[0]:g} rad/s -> {first[-1]:.4f} Hz at {speeds[-1]:g} rad/s")
+            first = ds["tracked_frequency_hz"].sel(formulation=f).values[:, 0]
+            label = ds["branch_label"].sel(formulation=f).values[0]
+            print(f"{f:5s} branch 1 ({label}): {first[0]:.4f} Hz at {speeds[0]:g} rad/s -> {first[-1]:.4f} Hz at "
+                  f"{speeds[-1]:g} rad/s")
     return result
 
 

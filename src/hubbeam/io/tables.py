@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from hubbeam.errors import ScenarioError
-from hubbeam.system.laws import MIN_DRIVE_ROWS, MIN_TORQUE_ROWS, DriveProfile, TorqueLaw
+from hubbeam.system.laws import MIN_DRIVE_ROWS, MIN_SMOOTHED_ROWS, MIN_TORQUE_ROWS, DriveProfile, TorqueLaw
 
 __all__ = ["MAX_TABLE_BYTES", "read_series", "read_drive_table", "read_torque_table"]
 
@@ -165,16 +165,26 @@ def read_series(
     return t, {name: v}
 
 
-def read_drive_table(path: str | Path, key: str, *, base_dir: str | Path | None = None) -> DriveProfile:
-    """A ``table`` drive profile from a CSV with columns ``time`` (s) and ``omega`` (rad/s) or ``theta`` (rad)."""
+def read_drive_table(path: str | Path, key: str, *, base_dir: str | Path | None = None, interpolation: str = "spline",
+                     smoothing: float | None = None) -> DriveProfile:
+    """A ``table`` drive profile from a CSV with columns ``time`` (s) and ``omega`` (rad/s) or
+    ``theta`` (rad), interpolated and smoothed as :meth:`DriveProfile.table` says. ``key`` names
+    the file's key (``hub.drive.file``); the options are named beside it (``hub.drive.interpolation``)."""
     t, cols = read_series(path, key, ("omega", "theta"), base_dir=base_dir, min_rows=MIN_DRIVE_ROWS,
                           start_at_zero=True)
     (quantity, values), = cols.items()
     p = _resolve(path, base_dir)
+    table = key.rsplit(".", 1)[0]
     if quantity == "theta" and values[0] != 0.0:
         raise ScenarioError(f"{key}: {p}: the first theta must be 0 rad, the initial configuration (found {float(values[0])!r})")
+    if interpolation == "linear" and quantity == "theta":
+        raise ScenarioError(f"{table}.interpolation: 'linear' is for an omega table, and {p} is a theta table (its "
+                            "speed would step and its acceleration be infinite at every row); use 'spline', with "
+                            "smoothing for a noisy one")
+    if smoothing is not None and t.size < MIN_SMOOTHED_ROWS:
+        raise ScenarioError(f"{table}.smoothing: {p} has {t.size} rows; smoothing needs at least {MIN_SMOOTHED_ROWS}")
     try:
-        return DriveProfile.table(t, values, quantity)
+        return DriveProfile.table(t, values, quantity, interpolation=interpolation, smoothing=smoothing)
     except ValueError as exc:  # pragma: no cover - read_series checks everything DriveProfile does
         raise ScenarioError(f"{key}: {p}: {exc}") from None
 

@@ -80,13 +80,55 @@ def modal_analysis(
     return Modes(f[elastic], _normalised(N @ V[:, elastic], M), np.abs(f[rigid]))
 
 
-def rotating_matrices(system: MultibodySystem, x_s, lam, F, omega: float, held: bool = True):
+def band_column_groups(z_of_x, bandwidth: int, border: int) -> list[np.ndarray]:
+    """The columns of a Jacobian over x grouped so that no two columns of a group reach a
+    common row of the system's bordered band (:class:`~hubbeam.system.assembly.BorderedBandMatrix`:
+    z-entries farther apart than ``bandwidth`` do not couple, except through the first
+    ``border`` entries of z): one residual evaluation then gives a whole group's columns, every
+    row but the border's. A column in the border is a group of its own."""
+    z_of_x = np.asarray(z_of_x)
+    colours = 2 * int(bandwidth) + 1
+    groups = [np.array([i]) for i in np.flatnonzero(z_of_x < border)]
+    inner = np.flatnonzero(z_of_x >= border)
+    for c in range(colours):
+        members = inner[z_of_x[inner] % colours == c]
+        if members.size:
+            groups.append(members)
+    return groups
+
+
+def grouped_central_differences(fun, x: np.ndarray, steps: np.ndarray, groups, rows_of) -> np.ndarray:
+    """d fun / dx by central differences, one pair of evaluations per group of columns
+    (:func:`band_column_groups`): column i of a group is read on the rows ``rows_of(i)`` (the
+    rows it can reach; the others stay zero), so the columns of a group must reach disjoint rows."""
+    x = np.asarray(x, dtype=float)
+    jac = None
+    for group in groups:
+        e = np.zeros_like(x)
+        e[group] = steps[group]
+        diff = np.asarray(fun(x + e)) - np.asarray(fun(x - e))
+        if jac is None:
+            jac = np.zeros((diff.shape[0], x.size))
+        for i in group:
+            rows = rows_of(i)
+            jac[rows, i] = diff[rows] / (2.0 * steps[i])
+    return jac
+
+
+def rotating_matrices(system: MultibodySystem, x_s, lam, F, omega: float, held: bool = True, hub_row: bool = True):
     """(M, G, K, A) about the steadily rotating state x_s (multipliers ``lam`` of the layout with
     the hub ``held``, charts F, hub speed omega in rad/s), in the co-rotating coordinates of
     :func:`rotating_modal_analysis`: M the system's mass matrix (exact), G the gyroscopic,
     Coriolis and drag terms, K the elastic, centrifugal and constraint terms (central
-    differences of the system's residual), A the constraint Jacobian."""
-    zx = system.layout_for(held).z_of_x
+    differences of the system's residual), A the constraint Jacobian.
+
+    ``hub_row`` False: the rows of the layout's border (the hub's equation when several beams
+    share it) are left zero, and the differences take one pair of residuals per colour of the
+    band (:func:`band_column_groups`: 2 x (2 b + 1) + 2 for any number of beams) instead of one
+    pair per coordinate. A held hub's modes do not need those rows: the drive constraint
+    removes them (the null space of A has no theta)."""
+    layout = system.layout_for(held)
+    zx = layout.z_of_x
 
     def forces(x, v, a):
         res = system.equations(x, v, a, lam, F, 0.0, 0.0, 0.0, 1.0, 1.0, want_matrix=False, held=held)[0]
@@ -100,15 +142,66 @@ def rotating_matrices(system: MultibodySystem, x_s, lam, F, omega: float, held: 
 
     v_s, a_s = steady_rates(x_s)
     zero, unit = np.zeros(x_s.shape[0]), relative_steps(np.zeros(x_s.shape[0]))
-    K = central_difference_jacobian(lambda y: forces(y, *steady_rates(y)), x_s, relative_steps(x_s))
-    G = central_difference_jacobian(
-        lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), zero, unit)
+    if hub_row:
+        K = central_difference_jacobian(lambda y: forces(y, *steady_rates(y)), x_s, relative_steps(x_s))
+        G = central_difference_jacobian(
+            lambda e: forces(x_s, v_s + e, a_s + 2.0 * omega * _directional(generator, x_s, e)), zero, unit)
+    else:
+        band, border = system.bandwidth_for(layout), layout.border
+        groups = band_column_groups(zx, band, border)
+
+        def rows_of(i):  # the x-rows column i reaches (all for a border column), the border's left out
+            near = (np.abs(zx - zx[i]) <= band) | (zx[i] < border)
+            return np.flatnonzero(near & (zx >= border))
+
+        # the steady rates' Jacobians once (each beam's rates depend on its own coordinates only);
+        # K needs only the first derivative of the rates at x_s, so the rates linearised there give
+        # the same K, and the Coriolis term 2 omega (dXi/dy) e is 2 (dv/dy) e
+        n = x_s.shape[0]
+        d_rates = grouped_central_differences(lambda y: np.concatenate(system.steady_rotation_rates(y, F, omega)), x_s,
+                                              relative_steps(x_s), groups, lambda i: np.concatenate([rows_of(i), n + rows_of(i)]))
+        d_v, d_a = d_rates[:n], d_rates[n:]
+        K = grouped_central_differences(lambda y: forces(y, v_s + d_v @ (y - x_s), a_s + d_a @ (y - x_s)), x_s,
+                                        relative_steps(x_s), groups, rows_of)
+        G = grouped_central_differences(lambda e: forces(x_s, v_s + e, a_s + 2.0 * (d_v @ e)), zero, unit, groups, rows_of)
     Mz = system.equations(x_s, v_s, a_s, lam, F, 0.0, 1.0, 0.0, 0.0, 1.0, held=held)[1].to_dense()
     return Mz[np.ix_(zx, zx)], G, K, system.constraint_jacobian(x_s, F, held=held)
 
 
-def rotating_modal_analysis(system: MultibodySystem, steady: StaticSolution, omega: float, count: int = 6,
-                            include_damping: bool = False) -> Modes:
+def coupled_blocks(A: np.ndarray, *matrices: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The independent blocks of the linear system ``matrices`` (n x n) with the constraints
+    A dx = 0: coordinates that a constraint row fixes alone (a held hub's angle) are left out,
+    the others grouped into the connected components of the coupling graph (an entry of any
+    matrix, or two coordinates in one constraint row). Returns (coordinates, constraint rows) per
+    block, in the order of their first coordinate. A hub held at its drive carrying beams that
+    touch nothing but the hub falls apart into one block per beam."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    A = np.asarray(A)
+    n = A.shape[1]
+    touched = A != 0.0
+    single = touched.sum(axis=1) == 1
+    fixed = np.zeros(n, dtype=bool)
+    fixed[np.flatnonzero(touched[single].any(axis=0))] = True
+    free = np.flatnonzero(~fixed)
+    pattern = np.zeros((n, n), dtype=bool)
+    for m in matrices:
+        pattern |= np.asarray(m) != 0.0
+    rows = np.flatnonzero(~single)
+    link = touched[rows][:, ~fixed].astype(float)
+    pattern = pattern[np.ix_(free, free)] | ((link.T @ link) != 0.0)
+    count, labels = connected_components(csr_matrix(pattern | pattern.T), directed=False)
+    blocks = []
+    for c in range(count):
+        coords = free[labels == c]
+        block_rows = rows[touched[np.ix_(rows, coords)].any(axis=1)]
+        blocks.append((coords, block_rows))
+    return sorted(blocks, key=lambda b: b[0][0])
+
+
+def rotating_modal_analysis(system: MultibodySystem, steady: StaticSolution, omega: float, count: int | None = 6,
+                            include_damping: bool = False, same: float = 0.0) -> Modes:
     """Lowest ``count`` natural frequencies (Hz) about the state that turns steadily with the
     hub at theta' = omega (rad/s), ``steady`` from ``solve_static(system, spin=omega)``.
 
@@ -121,35 +214,56 @@ def rotating_modal_analysis(system: MultibodySystem, steady: StaticSolution, ome
     gyroscopic (Coriolis) terms. M is the system's mass matrix (exact); K and G are central
     differences of the system's own residual (independent of how the residual was derived):
     the compiled equations give neither the stiffness of the rotary inertia's steady-rotation
-    forces nor the gyroscopic matrix. The quadratic eigenproblem is solved in
-    state space on the null space of A; the frequencies are |Im s| / (2 pi).
-    ``include_damping``: keep the drag's and the beams' structural damping's velocity terms (then the modes are damped).
+    forces nor the gyroscopic matrix. The quadratic eigenproblem is solved in state space on
+    the null space of A, block by block (:func:`coupled_blocks`: on a held hub every beam is a
+    block of its own, so the cost grows with the number of beams, not with its cube); the
+    frequencies are |Im s| / (2 pi). ``count`` None: every mode. ``same`` (relative): modes
+    beyond ``count`` whose frequency is within ``same`` of the last one kept are kept too, so
+    that a repeated frequency (identical beams) is never cut in the middle of its eigenspace.
+    ``include_damping``: keep the drag's and the beams' structural damping's velocity terms
+    (then the modes are damped).
     """
     if not include_damping:
         system = system.without_damping()
-    M, G, K, A = rotating_matrices(system, steady.x, steady.multipliers, steady.chart, omega)
-    N = null_space(A)
-    Mr, Gr, Kr = (N.T @ X @ N for X in (M, G, K))
-    n = Mr.shape[0]
-    Minv = np.linalg.inv(0.5 * (Mr + Mr.T))
-    state = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ Kr, -Minv @ Gr]])
-    s, V = eig(state)
-    keep = np.flatnonzero(s.imag > 1e-9)
-    order = keep[np.argsort(np.abs(s[keep].imag))]
-    f = np.abs(s[order].imag) / (2.0 * np.pi)
-    shapes = _normalised(N @ V[:n, order[:count]], M)
-    return Modes(f[:count], shapes, np.array([]))
+    M, G, K, A = rotating_matrices(system, steady.x, steady.multipliers, steady.chart, omega, hub_row=False)
+    freqs, vectors, places = [], [], []
+    for coords, rows in coupled_blocks(A, M, G, K):
+        N = null_space(A[np.ix_(rows, coords)]) if rows.size else np.eye(coords.size)
+        sub = np.ix_(coords, coords)
+        Mr, Gr, Kr = (N.T @ X[sub] @ N for X in (M, G, K))
+        n = Mr.shape[0]
+        if n == 0:
+            continue
+        Minv = np.linalg.inv(0.5 * (Mr + Mr.T))
+        state = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ Kr, -Minv @ Gr]])
+        s, V = eig(state)
+        keep = np.flatnonzero(s.imag > 1e-9)
+        freqs.append(np.abs(s[keep].imag) / (2.0 * np.pi))
+        vectors.append(_normalised(N @ V[:n, keep], M[sub]))
+        places += [(len(vectors) - 1, j, coords) for j in range(keep.size)]
+    if not freqs:
+        return Modes(np.array([]), np.zeros((steady.x.shape[0], 0)), np.array([]))
+    f = np.concatenate(freqs)
+    order = np.argsort(f, kind="stable")
+    kept = order.size if count is None else min(count, order.size)
+    while kept < order.size and count is not None and f[order[kept]] <= f[order[kept - 1]] * (1.0 + same):
+        kept += 1
+    order = order[:kept]
+    shapes = np.zeros((steady.x.shape[0], order.size), dtype=complex)
+    for col, i in enumerate(order):
+        block, j, coords = places[i]
+        shapes[coords, col] = vectors[block][:, j]
+    return Modes(f[order], shapes, np.array([]))
 
 
 def _normalised(shapes: np.ndarray, M: np.ndarray) -> np.ndarray:
     """Columns scaled to u^H M u = 1, each turned so that its largest entry is real and positive."""
     out = np.array(shapes, dtype=complex if np.iscomplexobj(shapes) else float)
-    for i in range(out.shape[1]):
-        u = out[:, i]
-        big = u[np.argmax(np.abs(u))]
-        mass = float(np.real(np.conj(u) @ (0.5 * (M + M.T)) @ u))
-        out[:, i] = u * (np.abs(big) / big) / np.sqrt(max(mass, 1e-300))
-    return out
+    if not out.shape[1]:
+        return out
+    big = out[np.argmax(np.abs(out), axis=0), np.arange(out.shape[1])]
+    mass = np.real(np.sum(np.conj(out) * ((0.5 * (M + M.T)) @ out), axis=0))
+    return out * (np.abs(big) / big) / np.sqrt(np.maximum(mass, 1e-300))
 
 
 def _directional(fun, x, e, h=1e-6):

@@ -42,6 +42,9 @@ __all__ = [
     "applied_work",
     "MIN_DRIVE_ROWS",
     "MIN_TORQUE_ROWS",
+    "MIN_SMOOTHED_ROWS",
+    "TableInterpolation",
+    "smooth_table",
 ]
 
 
@@ -69,6 +72,15 @@ class TorqueKind(enum.IntEnum):
 MIN_DRIVE_ROWS = 3
 #: minimum number of rows of a torque table (linear interpolation)
 MIN_TORQUE_ROWS = 2
+#: minimum number of rows of a drive table to be smoothed (a cubic smoothing spline needs five)
+MIN_SMOOTHED_ROWS = 5
+
+
+class TableInterpolation(enum.Enum):
+    """How a drive table is interpolated between its rows (:meth:`DriveProfile.table`)."""
+
+    SPLINE = "spline"  # cubic spline: omega C2 (theta C3), or theta C2
+    LINEAR = "linear"  # omega piecewise linear, theta piecewise quadratic (omega tables only)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -252,8 +264,13 @@ def _series(name_t: str, times: Any, name_v: str, values: Any, min_rows: int, st
     return t, v
 
 
-def _table_pieces(times: np.ndarray, values: np.ndarray, quantity: str) -> np.ndarray:
+def _table_pieces(times: np.ndarray, values: np.ndarray, quantity: str,
+                  interpolation: TableInterpolation = TableInterpolation.SPLINE) -> np.ndarray:
     """Piecewise polynomial coefficients of theta, shape (n-1, k), highest power first."""
+    if interpolation is TableInterpolation.LINEAR:  # omega linear on each interval, theta its integral
+        h = np.diff(times)
+        theta = np.concatenate([[0.0], np.cumsum(0.5 * (values[1:] + values[:-1]) * h)])
+        return np.ascontiguousarray(np.column_stack([np.diff(values) / (2.0 * h), values[:-1], theta[:-1]]))
     from scipy.interpolate import CubicSpline
 
     if quantity == "omega":
@@ -264,6 +281,36 @@ def _table_pieces(times: np.ndarray, values: np.ndarray, quantity: str) -> np.nd
         # C2 angle; theta'' = 0 at the last row so that alpha is continuous with the held speed
         pieces = CubicSpline(times, values, bc_type=("not-a-knot", (2, 0.0)))
     return np.ascontiguousarray(np.asarray(pieces.c, dtype=float).T)
+
+
+def smooth_table(times, values, cutoff_hz: float) -> np.ndarray:
+    """The values of a measured series smoothed without phase shift above ``cutoff_hz`` (Hz),
+    the first row's value kept: a cubic smoothing spline (scipy's ``make_smoothing_spline``)
+    that minimises sum_i w_i (y_i - f(t_i))^2 + lambda int f''(t)^2 dt with the weights w_i the
+    time each row stands for (half its two intervals) and lambda = (2 pi F)^-4. On evenly
+    sampled data away from its ends this is the linear filter H(f) = 1 / (1 + (f/F)^4) (the
+    Euler-Lagrange equation of the continuous problem is f + lambda f^(4) = y): real, so without
+    phase shift, 1/2 at F and falling as (F/f)^4 above it, the magnitude of a second-order
+    Butterworth filter run forward and backward (scipy.signal.filtfilt) at F; unlike that
+    filter it takes unevenly spaced rows as they are. The first row carries a weight 1e8 times
+    its neighbour's and is then set back to its value exactly (the start of a run: at rest, or
+    theta = 0). At least :data:`MIN_SMOOTHED_ROWS` rows. Returns the smoothed values at the rows."""
+    from scipy.interpolate import make_smoothing_spline
+
+    t, v = np.asarray(times, dtype=float), np.asarray(values, dtype=float)
+    if t.size < MIN_SMOOTHED_ROWS:
+        raise ValueError(f"smoothing: a table needs at least {MIN_SMOOTHED_ROWS} rows to be smoothed (got {t.size})")
+    cutoff = _finite_float("smoothing", cutoff_hz)
+    if not cutoff > 0.0:
+        raise ValueError(f"smoothing: the cut-off frequency must be > 0 Hz (got {cutoff})")
+    h = np.diff(t)
+    weights = 0.5 * (np.concatenate([[0.0], h]) + np.concatenate([h, [0.0]]))
+    weights[0] = 1e8 * weights[1]
+    scale = float(np.mean(weights[1:]))  # the objective divided by it: the same minimiser, numbers near 1
+    spline = make_smoothing_spline(t, v, w=weights / scale, lam=(2.0 * np.pi * cutoff) ** -4 / scale)
+    smooth = spline(t)
+    smooth[0] = v[0]
+    return smooth
 
 
 _DRIVE_NAMES = {k.name.lower(): k for k in DriveKind}
@@ -305,6 +352,8 @@ class DriveProfile:
     times: tuple[float, ...] = ()
     values: tuple[float, ...] = ()
     quantity: str = "omega"
+    interpolation: str = "spline"
+    smoothing: float | None = None
     _compiled: CompiledDrive = field(init=False, repr=False, compare=False, hash=False)
 
     # -- construction -------------------------------------------------------------------------
@@ -324,8 +373,10 @@ class DriveProfile:
             raise ValueError(f"t1: must be > 0 s (or inf) for profile 'exponential' (got {self.t1})")
         if dk != DriveKind.SLEW and angle != 0.0:
             raise ValueError(f"angle: only for profile 'slew' (profile is {name!r})")
-        if dk != DriveKind.TABLE and (len(self.times) or len(self.values) or self.quantity != "omega"):
-            raise ValueError(f"times, values, quantity: only for profile 'table' (profile is {name!r})")
+        if dk != DriveKind.TABLE and (len(self.times) or len(self.values) or self.quantity != "omega"
+                                      or self.interpolation != "spline" or self.smoothing is not None):
+            raise ValueError(f"times, values, quantity, interpolation, smoothing: only for profile 'table' "
+                             f"(profile is {name!r})")
         for attr, val in (("omega_s", omega_s), ("T", T), ("t1", t1), ("angle", angle)):
             object.__setattr__(self, attr, val)
 
@@ -340,7 +391,19 @@ class DriveProfile:
                 )
             object.__setattr__(self, "times", tuple(knots.tolist()))
             object.__setattr__(self, "values", tuple(vals.tolist()))
-            coefs = _table_pieces(knots, vals, self.quantity)
+            try:
+                interpolation = TableInterpolation(self.interpolation)
+            except ValueError:
+                raise ValueError(f"interpolation: must be one of {[i.value for i in TableInterpolation]} "
+                                 f"(got {self.interpolation!r})") from None
+            if interpolation is TableInterpolation.LINEAR and self.quantity == "theta":
+                raise ValueError("interpolation: 'linear' is for an omega table (omega piecewise linear, theta "
+                                 "piecewise quadratic); a theta table piecewise linear would have infinite "
+                                 "accelerations at its rows: use 'spline', with smoothing for a noisy one")
+            if self.smoothing is not None:
+                object.__setattr__(self, "smoothing", _finite_float("smoothing", self.smoothing))
+                vals = smooth_table(knots, vals, self.smoothing)
+            coefs = _table_pieces(knots, vals, self.quantity, interpolation)
         params = np.array([omega_s, T, t1, angle], dtype=float)
         object.__setattr__(self, "_compiled", CompiledDrive(int(dk), params, knots, coefs))
 
@@ -374,24 +437,37 @@ class DriveProfile:
         return cls("slew", T=T, angle=angle)
 
     @classmethod
-    def table(cls, times: Any, values: Any, quantity: str = "omega") -> DriveProfile:
+    def table(cls, times: Any, values: Any, quantity: str = "omega", interpolation: str = "spline",
+              smoothing: float | None = None) -> DriveProfile:
         """A measured speed (``quantity="omega"``, rad/s) or angle (``"theta"``, rad) series.
 
         Requirements: at least 3 rows (:data:`MIN_DRIVE_ROWS`), finite values, times strictly
         increasing and starting at t = 0 (nothing is defined before the first row); an angle
         table starts at theta = 0.
 
-        Interpolation (scipy ``CubicSpline``, stored as piecewise polynomials of theta):
+        ``smoothing`` (Hz): the values are first smoothed without phase shift above that
+        frequency, the first row's value kept (:func:`smooth_table`; at least 5 rows); the
+        interpolation then runs through the smoothed values.
 
-        - omega table: a cubic spline of omega (C2), not-a-knot at t = 0 and clamped
-          omega' = 0 at the last row; theta is its exact antiderivative with theta(0) = 0
-          (C3). After the last row omega is held (theta grows linearly, alpha = 0), so theta,
-          omega and alpha are continuous there. The clamped end condition bends the last
-          interval if the series has not settled; end the table where it has.
-        - theta table: a cubic spline of theta (C2), not-a-knot at t = 0 and theta'' = 0 at the
-          last row; after it omega = theta'(t_end) is held (alpha = 0, continuous).
+        Interpolation (``interpolation``, stored as piecewise polynomials of theta):
+
+        - "spline" (scipy ``CubicSpline``), omega table: a cubic spline of omega (C2),
+          not-a-knot at t = 0 and clamped omega' = 0 at the last row; theta is its exact
+          antiderivative with theta(0) = 0 (C3). After the last row omega is held (theta grows
+          linearly, alpha = 0), so theta, omega and alpha are continuous there. The clamped end
+          condition bends the last interval if the series has not settled; end the table where
+          it has.
+        - "spline", theta table: a cubic spline of theta (C2), not-a-knot at t = 0 and
+          theta'' = 0 at the last row; after it omega = theta'(t_end) is held (alpha = 0,
+          continuous).
+        - "linear" (omega tables only): omega piecewise linear through the rows, theta its exact
+          integral (piecewise quadratic, theta at each row the trapezoidal sum of the rows
+          before), alpha constant on each interval and stepping at the rows (and to 0 after the
+          last row). The spline overshoots between sparse or noisy rows; the linear law never
+          leaves the rows' range but steps the acceleration, and so the drive torque, at each row.
         """
-        return cls("table", times=times, values=values, quantity=quantity)
+        return cls("table", times=times, values=values, quantity=quantity, interpolation=interpolation,
+                   smoothing=smoothing)
 
     # -- use ----------------------------------------------------------------------------------
 
@@ -425,8 +501,10 @@ class DriveProfile:
             return f"DriveProfile('spin_up', omega_s={self.omega_s!r}, T={self.T!r})"
         if k == DriveKind.SLEW:
             return f"DriveProfile.slew(angle={self.angle!r}, T={self.T!r})"
+        options = "".join(f", {key}={getattr(self, key)!r}" for key, default in
+                          (("interpolation", "spline"), ("smoothing", None)) if getattr(self, key) != default)
         return (f"DriveProfile.table(<{len(self.times)} rows, t = 0 .. {self.times[-1]!r} s>, "
-                f"quantity={self.quantity!r})")
+                f"quantity={self.quantity!r}{options})")
 
 
 @dataclass(frozen=True, repr=False)

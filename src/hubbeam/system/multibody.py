@@ -704,9 +704,12 @@ class MultibodySystem:
         if self.base.moves:
             total.setdefault("base", 0.0)
         for k, part, q, chart in self.parts(x, F):
-            axes = self.root_axes(k, x, F)
             frame, rate = self._frame_and_rate(k, x, u, F)
-            for key, value in part.kinetic_energy_split(q, chart, u[self.layout.beam_x(k)], axes, frame, rate).items():
+            u_k = u[self.layout.beam_x(k)]
+            if not (np.any(u_k) or np.any(rate[0]) or np.any(rate[1])):  # a beam the rate does not move has none
+                continue
+            axes = self.root_axes(k, x, F)
+            for key, value in part.kinetic_energy_split(q, chart, u_k, axes, frame, rate).items():
                 total[key] += value
         return total
 

@@ -90,10 +90,42 @@ class BeamDamping(StrictTable):
     stiffness_proportional: Annotated[float, Field(ge=0.0, le=MAX_STRUCTURAL_DAMPING)] = 0.0
 
 
-class Beam(StrictTable):
-    """One beam: a ``[beam]`` table or one of the ``[[beams]]`` tables."""
+#: the most beams a hub carries (copies counted)
+MAX_BEAMS = 100
+#: the name of a table's copies when it has none: "blade1", "blade2", ...
+COPY_NAME = "blade"
 
-    name: Identifier | None = None  # default "beam1", "beam2", ... by position
+
+def beam_names_of(tables) -> list[tuple[int, int | None, str]]:
+    """(table index, copy index or None, name) of every beam the tables describe, in order:
+    a table with ``copies = N`` gives N beams named NAME1 .. NAMEN (NAME its ``name``, default
+    :data:`COPY_NAME`), another one beam named by its ``name``, default "beam<k>" with k its
+    position among all the beams (1-based). ``tables`` are :class:`Beam` models or their dicts
+    (parsed TOML, before validation: what is not a count of copies counts as one beam)."""
+    out = []
+    for i, table in enumerate(tables):
+        get = table.get if isinstance(table, dict) else (lambda key, t=table: getattr(t, key, None))
+        name, copies = get("name"), get("copies")
+        name = name if isinstance(name, str) else None
+        if isinstance(copies, int) and not isinstance(copies, bool) and copies >= 2:
+            out += [(i, k, f"{name or COPY_NAME}{k + 1}") for k in range(min(copies, MAX_BEAMS + 1))]
+        else:
+            out.append((i, None, name or f"beam{len(out) + 1}"))
+    return out
+
+
+def copy_azimuth(azimuth: float, copy: int | None, copies: int | None) -> float:
+    """The azimuth (deg) of copy ``copy`` of a table at ``azimuth`` with ``copies`` copies:
+    azimuth + copy 360 / copies (the table's own azimuth for a table without copies)."""
+    return azimuth if copy is None else azimuth + copy * 360.0 / copies
+
+
+class Beam(StrictTable):
+    """One beam: a ``[beam]`` table or one of the ``[[beams]]`` tables; with ``copies = N``, N
+    identical beams at azimuth + k 360/N deg (k = 0 .. N-1) named NAME1 .. NAMEN."""
+
+    name: Identifier | None = None  # default "beam1", "beam2", ... by position; with copies the copies' stem
+    copies: Annotated[int, Field(ge=2, le=MAX_BEAMS)] | None = None
     formulation: Literal["ancf", "ffr"] = "ancf"
     elements: Annotated[int, Field(gt=0, le=2000)]
     length: Positive

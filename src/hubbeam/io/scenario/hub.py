@@ -22,7 +22,7 @@ DRIVE_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "exponential": (("omega_s", "T", "t1"), ("omega_s", "T")),
     "spin_up": (("omega_s", "T"), ("omega_s", "T")),
     "slew": (("angle", "T"), ("angle", "T")),
-    "table": (("file",), ("file",)),
+    "table": (("file", "interpolation", "smoothing"), ("file",)),
 }
 
 #: torque law -> (its keys besides `law`, the required ones)
@@ -46,6 +46,8 @@ class Drive(KeyedChoice):
     t1: Positive = math.inf  # s (exponential: omega_s from t1 on; default never)
     angle: float = 0.0  # rad (slew)
     file: Annotated[str, Field(min_length=1)] | None = None  # CSV: time, omega (rad/s) or theta (rad)
+    interpolation: Literal["spline", "linear"] = "spline"  # table: between the rows
+    smoothing: Annotated[float, Field(gt=0.0)] | None = None  # table: Hz, zero-phase smoothing above it
 
 
 class HubTorque(KeyedChoice):

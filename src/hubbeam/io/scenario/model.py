@@ -20,7 +20,8 @@ from pydantic import ValidationError
 from hubbeam.errors import ScenarioError
 from hubbeam.io.scenario.analysis import Analysis, Damping, Environment, Loads
 from hubbeam.io.scenario.base import Base
-from hubbeam.io.scenario.beams import Beam, ResolvedBeam, ResolvedTipBody, span_sections
+from hubbeam.io.scenario.beams import (MAX_BEAMS, Beam, ResolvedBeam, ResolvedTipBody, beam_names_of, copy_azimuth,
+                                       span_sections)
 from hubbeam.io.scenario.common import STEP_TOLERANCE, StrictTable
 from hubbeam.io.scenario.hub import Hub, HubTorque
 from hubbeam.io.scenario.sensors import BEAM_SENSORS, Sensor
@@ -48,16 +49,32 @@ class Scenario(StrictTable):
 
     @property
     def beam_names(self) -> tuple[str, ...]:
-        return tuple(b.name or f"beam{i + 1}" for i, b in enumerate(self.beam_tables))
+        """Every beam's name, a table's copies one by one (:func:`~hubbeam.io.scenario.beams.beam_names_of`)."""
+        return tuple(name for _, _, name in beam_names_of(self.beam_tables))
+
+    @property
+    def beam_places(self) -> list[tuple[int, int | None]]:
+        """For every beam (copies one by one) its table's index and its copy's index (None: a
+        table without copies)."""
+        return [(i, k) for i, k, _ in beam_names_of(self.beam_tables)]
+
+    def beam_key(self, k: int) -> str:
+        """Where beam k (0-based, copies one by one) is written: ``beam``, ``beams[i]`` or, for
+        a copy, ``beams[i]`` with the copy named (``beams[1] (copy 2 of 3)``)."""
+        i, copy = self.beam_places[k]
+        if self.single_beam is not None:
+            return "beam"
+        table = self.beam_tables[i]
+        return f"beams[{i}]" + ("" if copy is None else f" (copy {copy + 1} of {table.copies})")
 
     @property
     def beam(self) -> Beam:
         """The one beam of a single-beam scenario (its table as written; the placement keys
         may be None: :meth:`resolved_beams` has them resolved)."""
-        tables = self.beam_tables
-        if len(tables) != 1:
+        tables, names = self.beam_tables, self.beam_names
+        if len(names) != 1:
             raise ScenarioError(
-                f"beams: this scenario has {len(tables)} beams ({', '.join(self.beam_names)}) where one is expected")
+                f"beams: this scenario has {len(names)} beams ({', '.join(names)}) where one is expected")
         return tables[0]
 
     def beam_index(self, name: str | None = None) -> int:
@@ -73,7 +90,9 @@ class Scenario(StrictTable):
         """Every beam with its defaults filled in (SI units, radians)."""
         loaded = self.beam_index(self.loads.beam)
         out = []
-        for i, (b, name) in enumerate(zip(self.beam_tables, self.beam_names)):
+        tables = self.beam_tables
+        for i, ((t, copy), name) in enumerate(zip(self.beam_places, self.beam_names)):
+            b = tables[t]
             if b.shear_modulus is not None:
                 g = b.shear_modulus
             else:
@@ -93,7 +112,7 @@ class Scenario(StrictTable):
                 name=name, index=i, formulation=b.formulation, elements=b.elements, length=b.length, width=b.width,
                 thickness=b.thickness, density=b.density, youngs_modulus=b.youngs_modulus, shear_modulus=g,
                 torsion_constant=jt, gauss_points=b.gauss_points, geometric_stiffening=bool(b.geometric_stiffening),
-                azimuth=math.radians(b.azimuth),
+                azimuth=math.radians(copy_azimuth(b.azimuth, copy, b.copies)),
                 radius=float(self.hub.radius if b.radius is None else b.radius),
                 twist=math.radians(self.hub.twist if b.twist is None else b.twist),
                 precone=math.radians(b.precone), tip_body=tip,
@@ -154,14 +173,20 @@ def _cross_checks(s: Scenario) -> None:
     if s.single_beam is None and s.beams is None and s.base.motion != "free":
         raise ScenarioError("beam: required key is missing (a [beam] table, or [[beams]] tables for several beams; "
                             "only a free base may carry no beam)")
-    tables, names = s.beam_tables, s.beam_names
+    tables, names, places = s.beam_tables, s.beam_names, s.beam_places
     where = "beam" if s.single_beam is not None else "beams"
+    if s.single_beam is not None and s.single_beam.copies is not None:
+        raise ScenarioError("beam.copies: a [beam] table is one beam; write [[beams]] with copies = N for N copies")
+    if len(names) > MAX_BEAMS:
+        raise ScenarioError(f"beams: {len(names)} beams in all (copies counted); at most {MAX_BEAMS}")
     seen: dict[str, int] = {}
-    for i, name in enumerate(names):
+    for k, name in enumerate(names):
+        i, copy = places[k]
         if name in seen:
-            how = "" if tables[i].name is not None else " by default"
-            raise ScenarioError(f"beams[{i}].name: duplicate beam name {name!r}{how} (also beams[{seen[name]}])")
-        seen[name] = i
+            how = "" if tables[i].name is not None or copy is not None else " by default"
+            also = s.beam_key(seen[name])
+            raise ScenarioError(f"beams[{i}].name: duplicate beam name {name!r}{how} (also {also})")
+        seen[name] = k
     listed = ", ".join(names)
 
     hub = s.hub
@@ -228,9 +253,9 @@ def _cross_checks(s: Scenario) -> None:
                 raise ScenarioError(f"sensors[{i}].kind: a {sen.kind} sensor needs a beam (the scenario has none)")
             continue
         k = s.beam_index(sen.beam)
-        b = tables[k]
-        of = f"{where}[{k}]" if where == "beams" else "beam"
-        label = f"beam {names[k]!r}" if len(tables) > 1 else "the beam"
+        b = tables[places[k][0]]
+        of = f"{where}[{places[k][0]}]" if where == "beams" else "beam"
+        label = f"beam {names[k]!r}" if len(names) > 1 else "the beam"
         if sen.x is not None and sen.x > b.length:
             raise ScenarioError(f"sensors[{i}].x: station {sen.x} m is beyond the length of {label} "
                                 f"({of}.length = {b.length} m)")
@@ -427,6 +452,10 @@ def _check_tables(s: Scenario) -> None:
 
     readers = {"drive": read_drive_table, "torque": read_torque_table, "pose": read_pose_table}
     for what, key, path in tables:
-        readers[what](path, key)
+        if what == "drive":
+            drive = s.hub.drive if key == "hub.drive.file" else s.hub.torque.reference
+            read_drive_table(path, key, interpolation=drive.interpolation, smoothing=drive.smoothing)
+        else:
+            readers[what](path, key)
 
 

@@ -10,6 +10,7 @@ from typing import Any
 
 from hubbeam.errors import ScenarioError
 from hubbeam.io.examples import example_text, examples_folder
+from hubbeam.io.scenario.beams import beam_names_of, copy_azimuth
 from hubbeam.io.scenario.hub import DRIVE_KEYS, TORQUE_KEYS
 from hubbeam.io.scenario.model import Scenario, _format_loc, validate
 
@@ -52,47 +53,86 @@ def _tokens(key: str, text: str) -> list:
     return out
 
 
-def _beam_name(table: Any, i: int) -> str:
-    if isinstance(table, dict) and isinstance(table.get("name"), str):
-        return table["name"]
-    return f"beam{i + 1}"
+def _selected_beams(data: dict, sel, text: str) -> tuple[list, list[int]]:
+    """(the beams (table index, copy, name) of the scenario data, the indices among them that
+    the selector ``sel`` of ``beams[sel]`` / ``beams.sel`` picks: an index, a name or '*')."""
+    single, many = data.get("beam"), data.get("beams")
+    if isinstance(single, dict) and many is None:
+        tables = [single]
+    elif isinstance(many, list):
+        tables = many
+    else:
+        raise ScenarioError(f"--set {text}: the scenario has no beams to address")
+    beams = beam_names_of(tables)
+    names = [name for _, _, name in beams]
+    if sel == "*":
+        return beams, list(range(len(beams)))
+    if isinstance(sel, int):
+        if sel >= len(beams):
+            raise ScenarioError(f"--set {text}: beam index {sel} is out of range (the scenario has "
+                                f"{len(beams)} beam{'s' if len(beams) > 1 else ''}: 0..{len(beams) - 1})")
+        return beams, [sel]
+    if sel not in names:
+        raise ScenarioError(f"--set {text}: no beam named {sel!r} (beams: {', '.join(names)})")
+    return beams, [names.index(sel)]
 
 
 def _addresses(data: dict, tokens: list, text: str) -> list[tuple]:
     """The places a --set key addresses, with a beam named by index or name turned into its
-    table: ('beam', ...) for a single [beam], ('beams', i, ...) for [[beams]]."""
+    table: ('beam', ...) for a single [beam], ('beams', i, ...) for [[beams]]. Beams are counted
+    copy by copy; a copy of a table with ``copies`` addresses that table (:func:`apply_overrides`
+    gives a copy addressed alone a table of its own first), and ``beams[*]`` each table once."""
     head, rest = tokens[0], tokens[1:]
     single = data.get("beam")
     many = data.get("beams")
     if head == "beam":
         if isinstance(many, list) and single is None:
-            if len(many) != 1:
-                raise ScenarioError(f"--set {text}: the scenario has {len(many)} beams; address one as "
+            count = len(beam_names_of(many))
+            if count != 1:
+                raise ScenarioError(f"--set {text}: the scenario has {count} beams; address one as "
                                     f"beams[i].KEY (0-based) or beams.NAME.KEY")
             return [("beams", 0, *rest)]
         return [("beam", *rest)]
     if head == "beams" and rest:
         sel, rest = rest[0], rest[1:]
-        if isinstance(single, dict) and many is None:
-            tables, to = [single], (lambda i: ("beam",))
-        elif isinstance(many, list):
-            tables, to = many, (lambda i: ("beams", i))
-        else:
-            raise ScenarioError(f"--set {text}: the scenario has no beams to address")
-        names = [_beam_name(t, i) for i, t in enumerate(tables)]
-        if sel == "*":
-            picked = list(range(len(tables)))
-        elif isinstance(sel, int):
-            if sel >= len(tables):
-                raise ScenarioError(f"--set {text}: beam index {sel} is out of range (the scenario has "
-                                    f"{len(tables)} beam{'s' if len(tables) > 1 else ''}: 0..{len(tables) - 1})")
-            picked = [sel]
-        else:
-            if sel not in names:
-                raise ScenarioError(f"--set {text}: no beam named {sel!r} (beams: {', '.join(names)})")
-            picked = [names.index(sel)]
-        return [address for i in picked for address in _expand(data, (*to(i), *rest), text)]
+        beams, picked = _selected_beams(data, sel, text)
+        to = (lambda i: ("beam",)) if isinstance(single, dict) and many is None else (lambda i: ("beams", i))
+        tables = list(dict.fromkeys(beams[k][0] for k in picked))
+        return [address for i in tables for address in _expand(data, (*to(i), *rest), text)]
     return _expand(data, tuple(tokens), text)
+
+
+def _split_copies(data: dict, overrides: list[str]) -> None:
+    """Give every copy of a ``copies`` table that a --set addresses alone (``beams[i]`` or
+    ``beams.NAME``, not ``beams[*]``) a table of its own, in place: the table is replaced by its
+    copies, each with its name and azimuth written out and no ``copies`` key, so that the
+    --set changes that copy only."""
+    many = data.get("beams")
+    if not isinstance(many, list):
+        return
+    split: set[int] = set()
+    for text in overrides:
+        key = text.split("=", 1)[0].strip()
+        tokens = _tokens(key, text)
+        if tokens[0] == "beams" and len(tokens) > 2 and tokens[1] != "*":
+            beams, picked = _selected_beams(data, tokens[1], text)
+            split.update(beams[k][0] for k in picked if beams[k][1] is not None)
+    if not split:
+        return
+    out = []
+    for i, table in enumerate(many):
+        if i not in split:
+            out.append(table)
+            continue
+        copies = beam_names_of([table])
+        for _, k, name in copies:
+            one = {key: copy.deepcopy(value) for key, value in table.items() if key != "copies"}
+            azimuth = table.get("azimuth", 0.0)
+            one["name"] = name
+            if isinstance(azimuth, (int, float)) and not isinstance(azimuth, bool):
+                one["azimuth"] = copy_azimuth(float(azimuth), k, len(copies))
+            out.append(one)
+    data["beams"] = out
 
 
 def _expand(data: dict, address: tuple, text: str) -> list[tuple]:
@@ -188,7 +228,8 @@ def _prune(data: dict, switch: tuple, set_paths: set) -> list[str]:
         if value != "prescribed":
             drop("drive")
     elif key == "profile" and value in DRIVE_KEYS:
-        drop(*(k for k in ("omega_s", "T", "t1", "angle", "file") if k not in DRIVE_KEYS[value][0]))
+        drop(*(k for k in ("omega_s", "T", "t1", "angle", "file", "interpolation", "smoothing")
+               if k not in DRIVE_KEYS[value][0]))
     elif key == "law" and value in TORQUE_KEYS:
         drop(*(k for k in ("value", "file", "kp", "kd", "reference") if k not in TORQUE_KEYS[value][0]))
     return dropped
@@ -217,13 +258,17 @@ def apply_overrides(data: dict, overrides: list[str], dropped: list[str] | None 
 
     Keys are dotted paths; a list entry is addressed by a 0-based index (``sensors[1].x``);
     a beam by index or name (``beams[1].twist``, ``beams.blade2.twist``, and ``beams[*].KEY``
-    for every beam); ``beam.KEY`` addresses the one beam of a single-beam scenario. A key may
+    for every beam), a table's copies one by one (a copy addressed alone gets a table of its
+    own, :func:`_split_copies`); ``beam.KEY`` addresses the one beam of a single-beam scenario. A key may
     be set once. A relative ``file`` value is taken relative to the current directory.
     Switching a formulation, hub.motion, a drive profile or a torque law drops the keys of
     the old choice that the new one does not take; each drop is added to ``dropped`` (when
     given) as a line naming the --set and the keys.
     """
     data = copy.deepcopy(data)
+    for text in overrides or []:
+        parse_override(text)  # checks the KEY=VALUE form before anything is read
+    _split_copies(data, list(overrides or []))
     set_paths: dict[tuple, str] = {}
     switches = []
     for text in overrides or []:
@@ -258,7 +303,10 @@ def apply_overrides(data: dict, overrides: list[str], dropped: list[str] | None 
 
 
 def value_at(data: dict, key: str):
-    """The value a --set key addresses in parsed scenario data (None if not set there)."""
+    """The value a --set key addresses in parsed scenario data (None if not set there); a copy
+    of a ``copies`` table has the table's values but its own name and azimuth."""
+    data = copy.deepcopy(data)
+    _split_copies(data, [key])
     addresses = _addresses(data, _tokens(key, key), key)
     if len(addresses) != 1:
         raise ScenarioError(f"{key}: addresses {len(addresses)} values; name one")
