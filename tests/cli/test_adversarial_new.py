@@ -63,7 +63,7 @@ def test_no_target_overwrites_a_table_the_scenario_reads(tmp_path, hub, table, o
         target = str(tmp_path / "fig.png")
     code, out, err = cli("run", path, option, target)
     assert_contract(code, out, err)
-    assert code == 2 and f"is the table of hub." in err and "would be overwritten" in err, err
+    assert code == 2 and "is the table of hub." in err and "would be overwritten" in err, err
     assert (tmp_path / table).read_bytes() == before
 
 
