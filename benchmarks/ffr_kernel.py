@@ -1,9 +1,9 @@
-"""The compiled FFR body terms against FfrPart.forces (Python) on one beam (moved here from
-the test suite, where it printed its timing into ``pytest -q``'s output).
+"""The compiled FFR body terms in v-space (:func:`hubbeam.elements.ffr.kernels.ffr_vspace_terms`)
+against their Python reference (:meth:`FfrPart.vspace_forces`) on one beam.
 
     python benchmarks/ffr_kernel.py
 
-Prints the time of one evaluation of the body's forces and Newton block (drag, geometric
+Prints the time of one evaluation of the body's forces and matrices (drag, geometric
 stiffening, tip loads, a tip body; 3 elements) by the compiled kernel and by the Python
 reference, and their ratio (best of 5 repetitions; a warm numba cache).
 """
@@ -46,24 +46,28 @@ def best(fun, reps: int) -> float:
 
 
 def main() -> None:
+    from hubbeam.system.frames import rotation_vector_matrix
+
     p = part()
     rng = np.random.default_rng(3)
-    n = p.ndof
-    q = np.concatenate([rng.normal(size=3) * 0.3, rng.uniform(-1.2, 1.2, size=3), 2e-3 * rng.normal(size=n - 6)])
-    v, acc = 0.3 * rng.normal(size=n), 10.0 * rng.normal(size=n)
+    nf = p.ndof
+    A = rotation_vector_matrix(rng.uniform(-1.2, 1.2, size=3))
+    q = 2e-3 * rng.normal(size=nf)
+    vb, vdot = 0.3 * rng.normal(size=6 + nf), 10.0 * rng.normal(size=6 + nf)
     damping = (0.4, 1.7)
     arrays = fk.pack(p)
-    force, block = np.empty(n), np.empty((n, n))
+    n = 6 + nf
+    fv, Mv, Cv, K_el = np.empty(n), np.empty((n, n)), np.empty((n, n)), np.empty((nf, nf))
     inv, tip, drag = arrays.inv, arrays.tip, arrays.drag(damping)
 
     def kernel():
-        fk.ffr_body_terms(inv, q, v, acc, GRAVITY, tip, drag, 1.0, 0.5, 0.25, 1.0, True, force, block)
+        fk.ffr_vspace_terms(inv, A, q, vb, vdot, GRAVITY, tip, drag, 1.0, True, fv, Mv, Cv, K_el)
 
     kernel()  # compiled (or loaded from the cache) before timing
     t_kernel = best(kernel, 200)
-    t_python = best(lambda: p.forces(q, v, acc, GRAVITY, damping, tangent=True), 20)
-    print(f"FFR forces (nf = {n - 6}, drag, stiffening, matrix): kernel {t_kernel * 1e6:.1f} us, "
-          f"FfrPart.forces {t_python * 1e6:.1f} us, ratio {t_python / t_kernel:.0f}x")
+    t_python = best(lambda: p.vspace_forces(A, q, vb, vdot, GRAVITY, damping, tangent=True), 20)
+    print(f"FFR v-space terms (nf = {nf}, drag, stiffening, matrices): kernel {t_kernel * 1e6:.1f} us, "
+          f"FfrPart.vspace_forces {t_python * 1e6:.1f} us, ratio {t_python / t_kernel:.0f}x")
 
 
 if __name__ == "__main__":
