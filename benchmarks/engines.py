@@ -281,6 +281,61 @@ def run_hubbeam_spacecraft(elements: int, t_end: float, dt: float) -> dict:
             "tip_b": [[float(r[p]) for p in parts] for r in rec["tip_b"]]}
 
 
+def _spacecraft_cost(elements: int, t_end: float, dt: float, free_base: bool, modes: int = 0) -> dict:
+    """Case M: the panels of case S (benchmarks/case_s.toml, released turning) on the free bus
+    (``free_base``) or, the same panels, elements, steps and Newton settings, on a free 1-DOF
+    hub (no [base]; hub inertia 120 kg m^2, the bus's about its y axis, spun up from rest by a
+    constant 2 N m: a free hub has no initial speed);
+    ANCF panels, or FFR on ``modes`` clamped modes. Output every 10 ms."""
+    import os
+    import re
+    import tempfile
+
+    from hubbeam import api
+    from hubbeam.io.scenario import load_scenario
+
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_s.toml"), encoding="utf-8") as f:
+        text = f.read()
+    if not free_base:  # the [base] tables and the bus's sensor out, the hub free about its axis
+        text = re.sub(r"\[base\].*?(?=\[hub\])", "", text, flags=re.S)
+        text = text.replace("[hub]\n", "[hub]\nmotion = \"free\"\ninertia = 120.0\ntorque = 2.0\n")
+        text = text.replace('[[sensors]]\nname = "rate"\nkind = "base_angular_velocity"\n', "")
+    overrides = [f"beams[*].elements={elements}", f"analysis.dt={dt}", "analysis.output_dt=0.01"]
+    if modes:
+        overrides += ['beams[*].formulation="ffr"', f"beams[*].modes={modes}"]
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "case_m.toml")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+        api.run(load_scenario(path, [*overrides, f"analysis.t_end={2 * dt}"]))  # loads the compiled code
+        traj, failure = api.run(load_scenario(path, [*overrides, f"analysis.t_end={t_end}"]))
+    if failure is not None:
+        raise failure
+    return {"integration_s": traj.wall_time_s, "steps": traj.steps,
+            "newton_per_step": traj.newton_iterations / traj.steps,
+            "factorisations_per_step": traj.factorisations / traj.steps}
+
+
+def run_spacecraft_free_base(elements: int, t_end: float, dt: float) -> dict:
+    """Case M: case S's two ANCF panels on the free bus."""
+    return _spacecraft_cost(elements, t_end, dt, True)
+
+
+def run_spacecraft_free_hub(elements: int, t_end: float, dt: float) -> dict:
+    """Case M: the same two ANCF panels on a free 1-DOF hub."""
+    return _spacecraft_cost(elements, t_end, dt, False)
+
+
+def run_spacecraft_modal_free_base(elements: int, t_end: float, dt: float) -> dict:
+    """Case M: case S's two panels as FFR beams on 4 modes each, on the free bus."""
+    return _spacecraft_cost(elements, t_end, dt, True, modes=4)
+
+
+def run_spacecraft_modal_free_hub(elements: int, t_end: float, dt: float) -> dict:
+    """Case M: the same two 4-mode FFR panels on a free 1-DOF hub."""
+    return _spacecraft_cost(elements, t_end, dt, False, modes=4)
+
+
 def run_exudyn_spacecraft(elements: int, t_end: float, dt: float) -> dict:
     """Case S with Exudyn, the model of benchmarks/case_s.toml: the bus an ObjectRigidBody on an
     Euler-parameter node (its inertia tensor as [J_xx, J_yy, J_zz, J_yz, J_xz, J_xy]); each panel
@@ -408,7 +463,10 @@ ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge"
            "hubbeam-kane": run_hubbeam_kane, "exudyn-cable-kane": run_exudyn_cable_kane,
            "exp1-ancf": run_exp1_ancf, "exp1-ffr": run_exp1_ffr, "exp1-ffr-modal4": run_exp1_ffr_modal,
            "hubbeam-ffr-modal": run_hubbeam_ffr_modal, "exudyn-ffrf": run_exudyn_ffrf,
-           "hubbeam-spacecraft": run_hubbeam_spacecraft, "exudyn-spacecraft": run_exudyn_spacecraft}
+           "hubbeam-spacecraft": run_hubbeam_spacecraft, "exudyn-spacecraft": run_exudyn_spacecraft,
+           "spacecraft-free-base": run_spacecraft_free_base, "spacecraft-free-hub": run_spacecraft_free_hub,
+           "spacecraft-modal-free-base": run_spacecraft_modal_free_base,
+           "spacecraft-modal-free-hub": run_spacecraft_modal_free_hub}
 
 if __name__ == "__main__":
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])

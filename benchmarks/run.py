@@ -1,6 +1,6 @@
 """Speed benchmark: hubbeam against Exudyn on the same models (issue 6), run side by side.
 
-    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R,S] [--quick]
+    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R,S,M] [--quick]
 
 Every run is a fresh process (benchmarks/engines.py; ``hubbeam run`` for case P), the
 engines of a case alternate within each repetition, and the tables show medians: the
@@ -32,6 +32,9 @@ straight while turning at (0.1, 0.3, 0.2) rad/s, no gravity; 8 elements per pane
 dt = 2 ms. Peer: Exudyn's ObjectBeamGeometricallyExact panels on an ObjectRigidBody bus. The
 same time series side by side: the bus's angular velocity (bus axes) and panel a's tip
 deflection, with their differences.
+Case M (issue 24, issue 26): case S's panels on the free bus against the same panels on a free
+1-DOF hub, ANCF and FFR on 4 modes, 60 s at 1 ms (what a moving base costs; the modal
+spacecraft's time per step).
 """
 
 from __future__ import annotations
@@ -192,12 +195,37 @@ def spacecraft(reps: int, t_end: float, dt: float, elements: int = 8) -> None:
               f"{scale * size:.4g} {unit})")
 
 
+def moving_base(reps: int, t_end: float, dt: float, elements: int = 8) -> None:
+    """Case M: what a free base costs. Case S's two panels (8 elements) on the free bus against
+    the same panels on a free 1-DOF hub (issue 24: at most 1.3x), ANCF and FFR on 4 modes each
+    (issue 26: the modal spacecraft, 60 s at 1 ms, output every 10 ms, within 0.5 s),
+    alternating, medians."""
+    engines = ["spacecraft-free-base", "spacecraft-free-hub", "spacecraft-modal-free-base",
+               "spacecraft-modal-free-hub"]
+    runs = {e: [] for e in engines}
+    for _ in range(reps):
+        for e in engines:
+            runs[e].append(one_run(e, elements, t_end, dt))
+    print(f"\nCase M (case S's panels on a free base and on a free 1-DOF hub): {elements} elements per panel, "
+          f"{t_end:g} s at dt = {dt:g} s, output every 10 ms; median of {reps}, {os.cpu_count()} cores")
+    print(f"{'engine':28s} {'integration s':>13s} {'us/step':>8s} {'Newton/step':>11s} {'LU/step':>8s}")
+    for e in engines:
+        first = runs[e][0]
+        seconds = median(runs[e], "integration_s")
+        print(f"{e:28s} {seconds:13.3f} {1e6 * seconds / first['steps']:8.1f} {first['newton_per_step']:11.2f} "
+              f"{first['factorisations_per_step']:8.3f}")
+    for kind in ("", "modal-"):
+        ratio = median(runs[f"spacecraft-{kind}free-base"], "integration_s") / median(
+            runs[f"spacecraft-{kind}free-hub"], "integration_s")
+        print(f"spacecraft-{kind}free-base / spacecraft-{kind}free-hub: integration {ratio:.2f}")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--t-end", type=float, default=10.0)
     p.add_argument("--dt", type=float, default=1e-3)
-    p.add_argument("--cases", default="A,B,C,P,F,R,S", help="comma-separated subset of A, B, C, P, F, R, S")
+    p.add_argument("--cases", default="A,B,C,P,F,R,S,M", help="comma-separated subset of A, B, C, P, F, R, S, M")
     p.add_argument("--quick", action="store_true", help="1 s simulated, one repetition")
     a = p.parse_args()
     if a.quick:
@@ -226,6 +254,8 @@ def main() -> None:
         reduced_order(a.reps, a.t_end, a.dt)
     if "S" in cases:
         spacecraft(a.reps, 10.0 if not a.quick else 1.0, 2e-3)
+    if "M" in cases:
+        moving_base(a.reps, 60.0 if not a.quick else 1.0, 1e-3)
     if "P" in cases:
         times = [cli_run(a.t_end) for _ in range(a.reps)]
         print(f"\nCase P: `hubbeam run benchmarks/case_a.toml -o OUT.nc` ({a.t_end:g} s simulated), whole process: "
