@@ -397,10 +397,8 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     ``progress(done, total)``: called as the output derivatives are computed."""
     from hubbeam.analysis.state_space import linearise
 
-    if isinstance(inputs, (str, bytes)):
-        raise ScenarioError(f"inputs: a list of input names (got the string {inputs!r}; write [{inputs!r}])")
-    if isinstance(outputs, (str, bytes)):
-        raise ScenarioError(f"outputs: a list of output names (got the string {outputs!r}; write [{outputs!r}])")
+    if isinstance(outputs, str):  # one output, not a sequence of one-letter outputs
+        outputs = [outputs]
     if reduce is not None and balanced is not None:
         raise ScenarioError("reduce: give reduce (modal) or balanced, not both")
     for key, value, low in (("reduce", reduce, 1), ("balanced", balanced, 1)):

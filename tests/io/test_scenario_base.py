@@ -101,8 +101,8 @@ CASES = {
 #: (table file, what the one line must contain)
 TABLE_CASES = {
     "fewer than 4 rows": ("three_rows.csv", ["base.file: ", "three_rows.csv: the table needs at least 4 rows, found 3"]),
-    "repeated time": ("repeated.csv", ["base.file: ", "repeated.csv: row 3 (line 4): a duplicate time (1 after 1)"]),
-    "unsorted times": ("unsorted.csv", ["base.file: ", "row 3 (line 4): times are not increasing (1 after 2)"]),
+    "repeated time": ("repeated.csv", ["base.file: ", "repeated.csv: row 3 (line 4): a duplicate time (1.0 after 1.0)"]),
+    "unsorted times": ("unsorted.csv", ["base.file: ", "row 3 (line 4): times are not increasing (1.0 after 2.0)"]),
     "a jump of the rotation vector": ("jump.csv", ["base.file: ", "jump.csv: row 3: the rotation vector jumps by 6.2 rad"]),
     "a late start": ("late.csv", ["base.file: ", "the first time must be 0 s (found 0.5)"]),
     "a missing column": ("no_rz.csv", ["base.file: ", "no 'rz' column"]),
