@@ -75,15 +75,22 @@ def cli_run(t_end: float) -> float:
         return time.perf_counter() - start
 
 
+def alternate(engines: dict, reps: int, t_end: float, dt: float) -> dict:
+    """{engine: [one_run's result per repetition]}: every engine (with its number of elements)
+    run once per repetition, in turn, so that a machine's changing load falls on all alike."""
+    runs = {e: [] for e in engines}
+    for _ in range(reps):
+        for e, elements in engines.items():
+            runs[e].append(one_run(e, elements, t_end, dt))
+    return runs
+
+
 def median(runs, key):
     return statistics.median(r[key] for r in runs)
 
 
 def compare(title: str, engines: list[str], elements: int, reps: int, t_end: float, dt: float, tip: str) -> None:
-    runs = {e: [] for e in engines}
-    for _ in range(reps):
-        for e in engines:
-            runs[e].append(one_run(e, elements, t_end, dt))
+    runs = alternate({e: elements for e in engines}, reps, t_end, dt)
     print(f"\n{title}: {elements} elements, {t_end:g} s at dt = {dt:g} s; median of {reps}, {os.cpu_count()} cores")
     print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'steps':>6s} {'Newton/step':>11s} "
           f"{'LU/step':>8s} {'tip min (m)':>12s} {'tip end (m)':>12s}   ({tip})")
@@ -105,10 +112,7 @@ def compare(title: str, engines: list[str], elements: int, reps: int, t_end: flo
 def formulations(reps: int, t_end: float, dt: float) -> None:
     """Case F: ANCF, nodal FFR and modal FFR on experiment 1, alternating, medians."""
     engines = ["exp1-ancf", "exp1-ffr", "exp1-ffr-modal4"]
-    runs = {e: [] for e in engines}
-    for _ in range(reps):
-        for e in engines:
-            runs[e].append(one_run(e, 6, t_end, dt))
+    runs = alternate({e: 6 for e in engines}, reps, t_end, dt)
     print(f"\nCase F (exp1, three formulations): 6 elements, {t_end:g} s at dt = {dt:g} s; median of {reps}, "
           f"{os.cpu_count()} cores")
     print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'Newton/step':>11s} {'LU/step':>8s} "
@@ -129,10 +133,7 @@ def reduced_order(reps: int, t_end: float, dt: float) -> None:
     alternating, medians; with the solid mesh's check (mass, first two frequencies)."""
     engines = {"hubbeam-ffr-modal": 8, "exudyn-ffrf": 32}
     one_run("hubbeam-ffr-modal", 8, 2 * dt, dt)  # warm the numba cache of the FFR code
-    runs = {e: [] for e in engines}
-    for _ in range(reps):
-        for e, elements in engines.items():
-            runs[e].append(one_run(e, elements, t_end, dt))
+    runs = alternate(engines, reps, t_end, dt)
     print(f"\nCase R (case A, modal reduction to 4 clamped modes): {t_end:g} s at dt = {dt:g} s; median of {reps}, "
           f"{os.cpu_count()} cores")
     print(f"{'engine':18s} {'mesh':>22s} {'integration s':>13s} {'process s':>10s} {'tip min (m)':>12s} "
@@ -161,10 +162,7 @@ def spacecraft(reps: int, t_end: float, dt: float, elements: int = 8) -> None:
     engines' series side by side (every 1 s) with their differences."""
     engines = ["hubbeam-spacecraft", "exudyn-spacecraft"]
     one_run(engines[0], elements, 2 * dt, dt)  # warm the numba cache of the free base's code
-    runs = {e: [] for e in engines}
-    for _ in range(reps):
-        for e in engines:
-            runs[e].append(one_run(e, elements, t_end, dt))
+    runs = alternate({e: elements for e in engines}, reps, t_end, dt)
     print(f"\nCase S (a spacecraft tumbling freely): {elements} elements per panel, {t_end:g} s at dt = {dt:g} s; "
           f"median of {reps}, {os.cpu_count()} cores")
     print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'steps':>6s} {'Newton/step':>11s} {'LU/step':>8s}")
@@ -202,10 +200,7 @@ def moving_base(reps: int, t_end: float, dt: float, elements: int = 8) -> None:
     alternating, medians."""
     engines = ["spacecraft-free-base", "spacecraft-free-hub", "spacecraft-modal-free-base",
                "spacecraft-modal-free-hub"]
-    runs = {e: [] for e in engines}
-    for _ in range(reps):
-        for e in engines:
-            runs[e].append(one_run(e, elements, t_end, dt))
+    runs = alternate({e: elements for e in engines}, reps, t_end, dt)
     print(f"\nCase M (case S's panels on a free base and on a free 1-DOF hub): {elements} elements per panel, "
           f"{t_end:g} s at dt = {dt:g} s, output every 10 ms; median of {reps}, {os.cpu_count()} cores")
     print(f"{'engine':28s} {'integration s':>13s} {'us/step':>8s} {'Newton/step':>11s} {'LU/step':>8s}")
