@@ -365,7 +365,9 @@ def base_law_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, 
     if pack.attitude != AttitudeKind.NONE:
         cols, R, Jw, wb = _base_state(pack, ctx, F, x, v)
         tau = attitude_torque(pack, t, x[e0:e0 + 4], wb)
-        tg = R @ tau
+        tg = np.empty(3)  # R tau, written out: R is a view of the chain table's pose (not contiguous)
+        for i in range(3):
+            tg[i] = R[i, 0] * tau[0] + R[i, 1] * tau[1] + R[i, 2] * tau[2]
         for j in range(3, 7):
             res[zx[cols[j]]] -= coef_k * load_factor * (Jw[0, j] * tg[0] + Jw[1, j] * tg[1] + Jw[2, j] * tg[2])
         if want_matrix:
