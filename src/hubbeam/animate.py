@@ -4,7 +4,8 @@ Input: a run's recorded state (:class:`hubbeam.io.state.RunState`). Each beam is
 ribbon, its centre line -+ (b/2) m at every stored station (b the station's width, m the
 section's unit vector along it), so twist and bending of the sections show; the hub is a
 disc of the hub radius (the largest root radius) in the plane normal to j0, with a spoke
-along i_h(theta) that turns with it. Axes: global x, -z and y (so the hub axis j0 points
+along i_h(theta) that turns with it; a hinge (a beam's root on a revolute joint) is a black
+dot at the beam's root. Axes: global x, -z and y (so the hub axis j0 points
 up and the view stays right-handed), the same limits in every frame (the whole run's
 extent) and equal scales. One frame per stored output time, or every ``stride``-th.
 """
@@ -116,6 +117,7 @@ def build(state: RunState, color: str = "strain", stride: int = 1, size=(7.0, 5.
                              facecolor=f"C{k % 10}")
         ax.add_collection3d(r)
         ribbons.append(r)
+    (hinges,) = ax.plot([], [], [], linestyle="none", marker="o", color="k", markersize=5)
     label = ax.text2D(0.02, 0.95, "", transform=ax.transAxes)
     ax.set_title(state.name)
 
@@ -129,8 +131,11 @@ def build(state: RunState, color: str = "strain", stride: int = 1, size=(7.0, 5.
             if values is not None:
                 v = values[k][np.searchsorted(frames, i)]
                 r.set_facecolor(cmap(norm(0.5 * (v[:-1] + v[1:]))))
+        if state.joints:
+            at = _view(np.array([state.beams[k].centre_line[i, 0] for k in state.joints]))
+            hinges.set_data_3d(at[:, 0], at[:, 1], at[:, 2])
         label.set_text(f"t = {state.times[i]:.3f} s")
-        return [hub, spoke, label, *ribbons]
+        return [hub, spoke, hinges, label, *ribbons]
 
     update(frames[0])
     return fig, update, frames

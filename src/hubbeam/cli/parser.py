@@ -50,9 +50,11 @@ def build_parser() -> argparse.ArgumentParser:
     lin = scenario_cmd("linearize", "state space (A, B, C, D) about the equilibrium (steady rotation for a "
                                     "constant drive)")
     lin.add_argument("-o", "--output", help="NetCDF file of A, B, C, D")
-    lin.add_argument("--inputs", help="comma-separated: hub_torque, tip_force:BEAM (default: hub_torque on a free hub, "
-                                      "the first beam's tip force on a held one)")
-    lin.add_argument("--open-loop", action="store_true", help="leave the scenario's hub torque law out")
+    lin.add_argument("--inputs", help="comma-separated: hub_torque, joint_torque:BEAM, tip_force:BEAM (default: "
+                                      "hub_torque on a free hub, the first beam's tip force on a held one, and every "
+                                      "joint motor's torque)")
+    lin.add_argument("--open-loop", action="store_true", help="leave the scenario's torque laws out (the hub's and "
+                                                             "the joint motors')")
     camp = scenario_cmd("campbell", "natural frequencies about the steadily rotating state against hub speed")
     camp.add_argument("--omega", required=True, metavar="START:STOP:N", help="hub speeds (rad/s)")
     camp.add_argument("--count", type=int, default=6, help="modes per speed (default 6)")

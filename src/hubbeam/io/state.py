@@ -56,6 +56,8 @@ class RunState:
     beams: tuple[BeamTrack, ...]
     #: for the state of a run that stopped early: how far it got and why (from the file's attributes)
     partial: str | None = None
+    #: the indices of the beams whose root is a hinge (a revolute joint): their first station
+    joints: tuple[int, ...] = ()
 
 
 def hub_rotation(theta) -> np.ndarray:
@@ -105,8 +107,10 @@ def read_state(path, option: str = "input") -> RunState:
                 partial = (f"the run stopped at t = {float(reached):g} s" + (f" of {float(t_end):g} s" if t_end is not None
                                                                              else "") +
                            f" ({_text(f.attrs.get('partial_reason', 'partial'))})")
+            hinged = json.loads(_text(f.attrs["state_joints"])) if "state_joints" in f.attrs else []
             state = RunState(_text(f.attrs.get("name", p.stem)), v["time"][...], v["state_hub_angle"][...],
-                             float(f.attrs["state_hub_radius"]), beams, partial)
+                             float(f.attrs["state_hub_radius"]), beams, partial,
+                             tuple(names.index(name) for name in hinged))
         except (KeyError, ValueError, TypeError) as exc:
             raise ScenarioError(f"{option} {p}: the stored state is incomplete ({exc.__class__.__name__}: {exc})") \
                 from None

@@ -11,7 +11,7 @@ from hubbeam import api
 from hubbeam.errors import ComputationError
 from hubbeam.io.scenario import Scenario
 from hubbeam.solvers.modal import rotating_modal_analysis
-from hubbeam.solvers.mode_shapes import MOTIONS, energy_fractions, match_modes, mode_label
+from hubbeam.solvers.mode_shapes import energy_fractions, match_modes, mode_label, motions_of
 from hubbeam.solvers.static import solve_static
 from hubbeam.studies.variants import FORMULATIONS, variant
 
@@ -41,7 +41,8 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=("ancf", "
     nf, ns = len(formulations), speeds.size
     freq = np.full((nf, ns, computed), np.nan)
     labels = np.full((nf, ns, computed), "", dtype=object)
-    fractions = np.full((nf, ns, computed, len(MOTIONS)), np.nan)
+    motions = motions_of(api.build_system(scenario))  # joints add their hinges' parts
+    fractions = np.full((nf, ns, computed, len(motions)), np.nan)
     tracked = np.full((nf, ns, count), np.nan)
     tracked_labels = np.full((nf, ns, count), "", dtype=object)
     mac = np.full((nf, ns, count), np.nan)
@@ -66,7 +67,7 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=("ancf", "
             n = f.size
             freq[i, j, :n] = f
             labels[i, j, :n] = [mode_label(s) for s in shares]
-            fractions[i, j, :n] = [[s[k] for k in MOTIONS] for s in shares]
+            fractions[i, j, :n] = [[s[k] for k in motions] for s in shares]
             if previous is None:
                 index, match = np.arange(min(count, n)), np.ones(min(count, n))
             else:
@@ -90,7 +91,7 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=("ancf", "
                      "branch_label": (("formulation", "branch"), branch_labels)},
                     coords={"formulation": list(formulations), "omega": ("omega", speeds, {"units": "rad/s"}),
                             "mode": np.arange(1, count + 1), "branch": np.arange(1, count + 1),
-                            "motion": list(MOTIONS)})
+                            "motion": list(motions)})
     ds.attrs["scenario"] = scenario.name
     return ds
 

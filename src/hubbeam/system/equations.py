@@ -27,7 +27,7 @@ from numba import literal_unroll, njit
 from hubbeam.elements.ancf import kernels
 from hubbeam.elements.ancf.strain import strain_measures
 from hubbeam.system.terms import (CHART_SINGULAR, Context, part_drive_power, part_energies, part_equations,
-                                  part_momenta, part_power, part_tips)
+                                  part_events, part_momenta, part_power, part_tips)
 
 
 class SystemModel(NamedTuple):
@@ -101,6 +101,18 @@ def step_powers(model, F, t, x, v, lam):
         dissipated += part_power(pack, ctx, F, x, v)
         drive += part_drive_power(pack, ctx, t, x, v, lam)
     return dissipated, drive
+
+
+@njit(cache=True, inline="always")
+def system_events(model, x):
+    """Whether any part's event (a joint reaching its latch angle) is reached at x
+    (:func:`hubbeam.system.terms.part_events`); inlined into the time loop."""
+    ctx = model.context
+    event = False
+    for pack in literal_unroll(model.parts):
+        if part_events(pack, ctx, x):
+            event = True
+    return event
 
 
 @njit(cache=True)
@@ -177,7 +189,7 @@ def record_measures(model, F, xs, vs, count, energies, gauges, hub, beams, tips,
 
 #: the functions here that take the model, which holds the parts' packs
 MODEL_FUNCTIONS = ("system_equations", "step_powers", "beam_energies", "tip_displacements", "system_momenta",
-                   "record_measures")
+                   "record_measures", "system_events")
 
 
 class Compiled(NamedTuple):
@@ -189,6 +201,7 @@ class Compiled(NamedTuple):
     tip_displacements: object
     system_momenta: object
     record_measures: object
+    system_events: object
 
 
 def uncached_twins(functions: dict, others: dict | None = None) -> dict:

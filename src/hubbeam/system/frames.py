@@ -15,7 +15,13 @@ either constant or moved by coordinates of the system:
   R(e / |e|) (the rotation of the normalised parameters: it is exact for any e != 0, and the
   norm is fixed by a constraint elsewhere);
 - ``ANCF_TIP`` (first link only): the section frame of an ANCF node, from its position r0
-  (3), slope r0' (3) and twist theta_1 (1) in a rotation chart F (:mod:`hubbeam.elements.ancf.frame`).
+  (3), slope r0' (3) and twist theta_1 (1) in a rotation chart F (:mod:`hubbeam.elements.ancf.frame`);
+- ``FFR_TIP``: the tip section of an FFR beam floating on the current frame, moved by its
+  nf elastic coordinates p: a translation by (L, 0, 0) + N_L p and a small rotation by
+  phi = Phi_L p (N_L, Phi_L: the tip's displacement and rotation rows of
+  :class:`~hubbeam.elements.ffr.body.FfrBeam`), turned as successive rotations by phi_1, phi_2,
+  phi_3 about the current x, y', z'' axes (equal to the rotation vector phi to first order,
+  FFR's own kinematics).
 
 For every coordinate c_i of a chain :func:`chain_kinematics` gives the frame's pose (r, R)
 and the velocity Jacobians: Jw[:, i], the frame's angular velocity per unit c_i' (global
@@ -28,10 +34,15 @@ serial-chain rule gives them all by cross products:
     l before or equal i:  Hw_il = Jw_l x Jw_i,   Hr_il = Jw_l x Jr_i
     l after i:            Hw_il = 0,             Hr_il = Jw_i x Jr_l
 
-The first link's own coordinates (``FREE``, ``ANCF_TIP``) are not such screws among each
-other: their mutual derivatives are written out below; with every later coordinate the rule
-holds (the first link carries the rest of the chain). Tests check every Jacobian and
-derivative against finite differences of the pose.
+(a translation along an axis of the current frame, Jw_i = 0 and Jr_i that axis, follows the
+same rule). The first link's own coordinates (``FREE``, ``ANCF_TIP``) are not such screws among
+each other: their mutual derivatives are written out below; with every later coordinate the
+rule holds (the first link carries the rest of the chain). An ``FFR_TIP`` link is six such
+screws in a row (three translations, three revolutes) whose *virtual* coordinates
+v = M p, M = [N_L; Phi_L] (6 x nf), are linear in its nf coordinates: the Jacobians and
+derivatives are computed over the virtual columns by the rule and then carried to the real
+ones, J_p = J_v M, H_pp = M^T H_vv M, H_pc = M^T H_vc (exact: v is linear in p). Tests check
+every Jacobian and derivative against finite differences of the pose.
 """
 
 from __future__ import annotations
@@ -52,12 +63,15 @@ class LinkKind(enum.IntEnum):
     REVOLUTE = 1
     FREE = 2
     ANCF_TIP = 3
+    FFR_TIP = 4
 
 
-#: coordinates each link kind moves
+#: coordinates each link kind moves (an FFR tip: its beam's elastic coordinates, :attr:`Link.coordinates`)
 LINK_COORDINATES = {LinkKind.CONSTANT: 0, LinkKind.REVOLUTE: 1, LinkKind.FREE: 7, LinkKind.ANCF_TIP: 7}
 #: columns of a link row in :class:`ChainTable.links`
 KIND, COORD, PARAM = 0, 1, 2
+#: virtual columns of an FFR tip: translations along x, y, z, then rotations about x, y', z''
+FFR_TIP_VIRTUAL = 6
 
 
 @dataclass(frozen=True)
@@ -74,9 +88,13 @@ class Link:
     axis: tuple = (0.0, 1.0, 0.0)
     sign: float = 1.0
     chart: int = 0
+    length: float = 0.0
+    rows: tuple = ()
 
     @property
     def coordinates(self) -> int:
+        if self.kind == LinkKind.FFR_TIP:
+            return len(self.rows[0])
         return LINK_COORDINATES[self.kind]
 
     def params(self) -> np.ndarray:
@@ -92,6 +110,9 @@ class Link:
             out[3] = self.sign
         elif self.kind == LinkKind.ANCF_TIP:
             out[0] = self.chart
+        elif self.kind == LinkKind.FFR_TIP:  # the rows' place in ChainTable.maps is set by ChainTable.of
+            out[0] = self.length
+            out[2] = self.coordinates
         return out
 
 
@@ -117,6 +138,16 @@ def ancf_tip(coordinate: int, chart: int) -> Link:
     return Link(LinkKind.ANCF_TIP, coordinate, chart=chart)
 
 
+def ffr_tip(coordinate: int, length: float, displacement_rows, rotation_rows) -> Link:
+    """The tip section of an FFR beam of ``length`` (m) whose nf elastic coordinates p start at
+    x[coordinate]: translated by (length, 0, 0) + N p and turned by phi = Phi p (module
+    docstring); ``displacement_rows`` N (3 x nf), ``rotation_rows`` Phi (3 x nf)."""
+    rows = np.vstack([np.asarray(displacement_rows, dtype=float), np.asarray(rotation_rows, dtype=float)])
+    if rows.shape[0] != FFR_TIP_VIRTUAL or rows.shape[1] < 1:
+        raise ValueError(f"an FFR tip needs 3 + 3 rows over its coordinates (got {rows.shape})")
+    return Link(LinkKind.FFR_TIP, coordinate, length=float(length), rows=tuple(tuple(float(v) for v in r) for r in rows))
+
+
 @dataclass(frozen=True)
 class Chain:
     """A frame as a product of links (the first may be FREE or ANCF_TIP)."""
@@ -127,6 +158,8 @@ class Chain:
         for i, link in enumerate(self.links):
             if i > 0 and link.kind in (LinkKind.FREE, LinkKind.ANCF_TIP):
                 raise ValueError(f"a {link.kind.name} link must be the first of its chain")
+            if i == 0 and link.kind == LinkKind.FFR_TIP:
+                raise ValueError("an FFR_TIP link hangs on the frame of its beam: it cannot be the first of its chain")
 
     def then(self, *links: Link) -> "Chain":
         """This chain continued by ``links``."""
@@ -154,20 +187,26 @@ class ChainTable(NamedTuple):
     start: np.ndarray  # int64 (n_chains + 1): chain k's links are links[start[k]:start[k + 1]]
     columns: np.ndarray  # int64 (n_columns,): the chains' coordinate columns' x indices
     column_start: np.ndarray  # int64 (n_chains + 1): chain k's columns are columns[column_start[k]:...]
+    maps: np.ndarray  # (n,): the FFR tips' rows M (6 x nf, row-major), each from its link's params[1]
 
     @classmethod
     def of(cls, chains) -> "ChainTable":
-        links, params, start, columns, cstart = [], [], [0], [], [0]
+        links, params, start, columns, cstart, maps = [], [], [0], [], [0], []
         for chain in chains:
             for link in chain.links:
                 links.append((int(link.kind), link.coordinate, len(params)))
-                params.append(link.params())
+                row = link.params()
+                if link.kind == LinkKind.FFR_TIP:
+                    row[1] = len(maps)
+                    maps += [v for r in link.rows for v in r]
+                params.append(row)
             start.append(len(links))
             columns += chain.coordinates
             cstart.append(len(columns))
         ints = lambda v, shape: np.array(v, dtype=np.int64).reshape(shape)  # noqa: E731
         return cls(ints(links, (len(links), 3)), np.array(params, dtype=float).reshape(len(params), 13),
-                   ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)))
+                   ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)),
+                   np.array(maps, dtype=float))
 
     def width(self, k: int) -> int:
         """Number of coordinate columns of chain k."""
@@ -287,7 +326,66 @@ def _ancf_rate_derivative(d, tau, L, y, b, out):
 
 # ---------------------------------------------------------------------------- the kinematics
 #: column types: how a column moves the frame (for the derivative rules)
-SCREW, TRANSLATION, ROOT_ROTATION = 0, 1, 2
+SCREW, TRANSLATION, ROOT_ROTATION, PRISMATIC = 0, 1, 2, 3
+
+
+@njit(cache=True)
+def _virtual_columns(table, k):
+    """The number of virtual columns of chain k: its coordinate columns, each FFR tip's nf
+    replaced by its six screws."""
+    nv = table.column_start[k + 1] - table.column_start[k]
+    for li in range(table.start[k], table.start[k + 1]):
+        if table.links[li, KIND] == LinkKind.FFR_TIP:
+            nv += FFR_TIP_VIRTUAL - int(table.params[table.links[li, PARAM], 2])
+    return nv
+
+
+@njit(cache=True)
+def _virtual_entries(table, k, nv):
+    """The map from chain k's virtual columns to its real ones, by rows: virtual column v is
+    sum_e weight[e] (real column index[e]) over e in start[v]:start[v + 1] (one entry of weight 1
+    for an ordinary column; the FFR tip rows M for its six screws)."""
+    count = 0
+    for li in range(table.start[k], table.start[k + 1]):
+        kind = table.links[li, KIND]
+        if kind == LinkKind.FFR_TIP:
+            count += FFR_TIP_VIRTUAL * int(table.params[table.links[li, PARAM], 2])
+        elif kind == LinkKind.REVOLUTE:
+            count += 1
+        elif kind != LinkKind.CONSTANT:
+            count += 7
+    start = np.empty(nv + 1, dtype=np.int64)
+    index = np.empty(count, dtype=np.int64)
+    weight = np.empty(count)
+    v = 0
+    e = 0
+    real = 0
+    start[0] = 0
+    for li in range(table.start[k], table.start[k + 1]):
+        kind = table.links[li, KIND]
+        if kind == LinkKind.CONSTANT:
+            continue
+        if kind == LinkKind.FFR_TIP:
+            par = table.params[table.links[li, PARAM]]
+            off, nf = int(par[1]), int(par[2])
+            for a in range(FFR_TIP_VIRTUAL):
+                for j in range(nf):
+                    index[e] = real + j
+                    weight[e] = table.maps[off + a * nf + j]
+                    e += 1
+                v += 1
+                start[v] = e
+            real += nf
+        else:
+            n = 1 if kind == LinkKind.REVOLUTE else 7
+            for j in range(n):
+                index[e] = real + j
+                weight[e] = 1.0
+                e += 1
+                v += 1
+                start[v] = e
+            real += n
+    return start, index, weight
 
 
 @njit(cache=True)
@@ -298,14 +396,69 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
     Jw[:, i] (rad per unit coordinate, global axes). With ``order`` 2 also Hr[:, i, l] =
     dJr[:, i]/dc_l and Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). Jr, Jw (3, nc) and
     Hr, Hw (3, nc, nc) are overwritten."""
-    l0, l1 = table.start[k], table.start[k + 1]
     nc = table.column_start[k + 1] - table.column_start[k]
+    nv = _virtual_columns(table, k)
+    has_tip = False
+    for li in range(table.start[k], table.start[k + 1]):
+        if table.links[li, KIND] == LinkKind.FFR_TIP:
+            has_tip = True
+    if not has_tip:
+        _screw_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw)
+        return
+    vJr, vJw = np.empty((3, nv)), np.empty((3, nv))
+    no = 0 if order < 2 else nv
+    vHr, vHw = np.empty((3, no, no)), np.empty((3, no, no))
+    _screw_kinematics(table, k, x, F, order, r, R, vJr, vJw, vHr, vHw)
+    start, index, weight = _virtual_entries(table, k, nv)
+    for a in range(3):
+        for j in range(nc):
+            Jr[a, j] = 0.0
+            Jw[a, j] = 0.0
+    for v in range(nv):
+        for e in range(start[v], start[v + 1]):
+            j, wt = index[e], weight[e]
+            for a in range(3):
+                Jr[a, j] += wt * vJr[a, v]
+                Jw[a, j] += wt * vJw[a, v]
+    if order < 2:
+        return
+    # T[:, v, l] = sum_w H[:, v, w] M[w, l], then H[:, i, l] = sum_v M[v, i] T[:, v, l]
+    Tr, Tw = np.zeros((3, nv, nc)), np.zeros((3, nv, nc))
+    for v in range(nv):
+        for w in range(nv):
+            for e in range(start[w], start[w + 1]):
+                l, wt = index[e], weight[e]
+                for a in range(3):
+                    Tr[a, v, l] += vHr[a, v, w] * wt
+                    Tw[a, v, l] += vHw[a, v, w] * wt
+    for a in range(3):
+        for i in range(nc):
+            for l in range(nc):
+                Hr[a, i, l] = 0.0
+                Hw[a, i, l] = 0.0
+    for v in range(nv):
+        for e in range(start[v], start[v + 1]):
+            i, wt = index[e], weight[e]
+            for a in range(3):
+                for l in range(nc):
+                    Hr[a, i, l] += wt * Tr[a, v, l]
+                    Hw[a, i, l] += wt * Tw[a, v, l]
+
+
+@njit(cache=True)
+def _screw_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
+    """:func:`chain_kinematics` over the virtual columns of chain k (its columns, each FFR tip
+    as its six screws: three translations along the current axes, three revolutes about the
+    current x, y', z''); Jr, Jw (3, nv), Hr, Hw (3, nv, nv)."""
+    l0, l1 = table.start[k], table.start[k + 1]
+    nc = Jr.shape[1]
     for i in range(3):
         r[i] = 0.0
         for j in range(3):
             R[i, j] = 1.0 if i == j else 0.0
     kind_of = np.empty(nc, dtype=np.int64)  # SCREW, TRANSLATION or ROOT_ROTATION
     direction = np.zeros(nc, dtype=np.int64)  # a translation column's global axis
+    prism = np.empty((nc, 3))  # a prismatic column's axis (global)
     origin = np.empty((nc, 3))  # the point a rotation column turns about
     root_columns = 0  # the first link's own columns (their mutual derivatives are explicit)
     root_kind = -1
@@ -339,6 +492,34 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
                 for j in range(3):
                     R[i, j] = tmp[i, j]
             col += 1
+        elif kind == LinkKind.FFR_TIP:
+            off, nf = int(par[1]), int(par[2])
+            moved = np.zeros(FFR_TIP_VIRTUAL)  # v = M p
+            for a in range(FFR_TIP_VIRTUAL):
+                for j in range(nf):
+                    moved[a] += table.maps[off + a * nf + j] * x[c0 + j]
+            for a in range(3):  # translations along the current axes (the beam's body frame)
+                for i in range(3):
+                    prism[col + a, i] = R[i, a]
+                    Jw[i, col + a] = 0.0
+                kind_of[col + a] = PRISMATIC
+            shift0 = par[0] + moved[0]
+            for i in range(3):
+                r[i] += R[i, 0] * shift0 + R[i, 1] * moved[1] + R[i, 2] * moved[2]
+            col += 3
+            unit = np.zeros(3)
+            for a in range(3):  # rotations about x, then y', then z''
+                unit[:] = 0.0
+                unit[a] = 1.0
+                for i in range(3):
+                    Jw[i, col] = R[i, a]
+                    origin[col, i] = r[i]
+                kind_of[col] = SCREW
+                _rotate_about(R, unit, moved[3 + a], tmp)
+                for i in range(3):
+                    for j in range(3):
+                        R[i, j] = tmp[i, j]
+                col += 1
         elif kind == LinkKind.FREE:
             root_kind = kind
             root_columns = 7
@@ -395,6 +576,9 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
         if kind_of[i] == TRANSLATION:
             for a in range(3):
                 Jr[a, i] = 1.0 if a == direction[i] else 0.0
+        elif kind_of[i] == PRISMATIC:
+            for a in range(3):
+                Jr[a, i] = prism[i, a]
         else:
             for a in range(3):
                 dr[a] = r[a] - origin[i, a]
