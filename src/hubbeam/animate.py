@@ -22,7 +22,7 @@ import numpy as np  # noqa: E402
 from matplotlib import animation  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
-from hubbeam.io.state import RunState, hub_rotation  # noqa: E402
+from hubbeam.io.state import RunState  # noqa: E402
 
 #: sides of the polygon drawn as the hub
 HUB_SIDES = 36
@@ -41,7 +41,7 @@ class Coloring:
 COLORINGS = {
     "strain": Coloring("upper-surface axial strain", lambda state, k: state.beams[k].surface_strain),
     "deflection": Coloring("deflection (m)",
-                           lambda state, k: np.linalg.norm(state.beams[k].displacement(state.hub_angle), axis=2)),
+                           lambda state, k: np.linalg.norm(state.displacement(k), axis=2)),
     "none": Coloring("", None),
 }
 
@@ -61,11 +61,12 @@ def ribbon_quads(state: RunState, k: int, i: int) -> np.ndarray:
 
 
 def hub_polygon(state: RunState, i: int) -> np.ndarray:
-    """The hub disc at output time i: (HUB_SIDES, 3) points (m), turned by the hub angle."""
+    """The hub disc at output time i: (HUB_SIDES, 3) points (m), in the plane of the hub's frame
+    normal to its axis, turned with it (the base's motion and the hub angle)."""
     radius = state.hub_radius if state.hub_radius > 0 else 0.05 * _extent(state)
     phi = 2 * np.pi * np.arange(HUB_SIDES) / HUB_SIDES
     disc = radius * np.column_stack([np.cos(phi), np.zeros(HUB_SIDES), np.sin(phi)])
-    return disc @ hub_rotation(state.hub_angle[i])[0].T
+    return state.hub_origin[i] + disc @ state.hub_axes[i].T
 
 
 def _extent(state: RunState) -> float:

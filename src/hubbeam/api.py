@@ -379,7 +379,14 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
         system = system.with_hub(torque=TorqueLaw()).without_motors()
     load_steps = scenario.analysis.load_steps
     if inputs is None:
-        inputs = (["hub_torque"] if not system.hub.held else [f"tip_force:{system.beams[0].name}"]) + motors
+        from hubbeam.analysis.state_space import BASE_TORQUE_INPUTS
+
+        inputs = ["hub_torque"] if not system.hub.held else []
+        if system.base.motion == BaseMotion.FREE:
+            inputs += list(BASE_TORQUE_INPUTS)
+        if not inputs:
+            inputs = [f"tip_force:{system.beams[0].name}"]
+        inputs += motors
     omega = 0.0
     if scenario.hub.motion == "prescribed" and system.drive.kind == "constant":
         omega = float(system.drive(0.0)[1])

@@ -6,7 +6,8 @@ thickness of the section there (through :meth:`hubbeam.system.parts.BeamPart.sec
 the one place that reads them). At each output time it records the hub angle theta and, for
 every beam, at those stations: the deformed centre line, the section frame's unit vectors m
 (along the width) and n (along the thickness), and the axial strain on the upper surface
-(z = +h/2, h the station's thickness). Everything is global and SI: m, rad, strain 1. The
+(z = +h/2, h the station's thickness), and the frames of the hub (its origin and axes at
+theta: R R_h A_h(theta)) and of the base. Everything is global and SI: m, rad, strain 1. The
 beams whose root is on a revolute joint (:mod:`hubbeam.system.joints`) are listed
 (``joints``): their first station is the hinge, which drawings mark.
 """
@@ -33,10 +34,15 @@ class BeamSnapshot:
 
 @dataclass(frozen=True)
 class Snapshot:
-    """The hub angle (rad) and every beam's :class:`BeamSnapshot` at one output time."""
+    """The hub angle (rad), the hub's and the base's frames (origin (3,) m and axes (3, 3),
+    global) and every beam's :class:`BeamSnapshot` at one output time."""
 
     hub_angle: float
     beams: tuple[BeamSnapshot, ...]
+    hub_origin: np.ndarray = None
+    hub_axes: np.ndarray = None
+    base_origin: np.ndarray = None
+    base_axes: np.ndarray = None
 
 
 class StateRecorder:
@@ -63,6 +69,10 @@ class StateRecorder:
         #: turned by the hub angle, the place the deflection is measured from
         x0, F0 = system.initial_state(0.0)
         self.references = tuple(system.centre_line_at(x0, F0, st, k) for k, st in enumerate(self.stations))
+        #: the same in the hub's frame at theta = 0 (m): carried by the hub's frame at any time, the
+        #: undeformed beams moving rigidly with the base and the hub
+        O, H = system.frames.pose(system.frames.hub, x0)
+        self.local_references = tuple((ref - O) @ H for ref in self.references)
 
     def __call__(self, system, state) -> Snapshot:
         beams = []
@@ -72,4 +82,6 @@ class StateRecorder:
             strain = part.surface_strains(q, chart, xs, np.zeros(xs.size), 0.5 * self.thicknesses[k])
             beams.append(BeamSnapshot(system.centre_line_at(state.x, state.chart, xs, k), frames[:, :, 1],
                                       frames[:, :, 2], strain))
-        return Snapshot(float(state.x[system.theta_index]), tuple(beams))
+        hub = system.frames.pose(system.frames.hub, state.x)
+        base = system.frames.pose(system.frames.base, state.x)
+        return Snapshot(float(state.x[system.theta_index]), tuple(beams), hub[0], hub[1], base[0], base[1])

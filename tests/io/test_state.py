@@ -69,7 +69,7 @@ def test_read_state_gives_back_what_was_recorded(rotor_run, tmp_path):
         np.testing.assert_array_equal(beam.surface_strain, [s.beams[k].strain for s in traj.snapshots])
         # deflection: measured from the undeformed blade turned with the hub; the tip's equals the
         # tip sensor's (radial, vertical, tangential) in the blade's own hub frame
-        disp = beam.displacement(state.hub_angle)
+        disp = state.displacement(k)
         for i, t in enumerate(state.times):
             psi = np.radians(120.0 * k)
             A = hub_rotation(state.hub_angle[i] + psi)[0]

@@ -39,12 +39,12 @@ def test_each_vtu_is_the_ribbons_of_every_beam(state, tmp_path):
         np.testing.assert_array_equal(np.bincount(mesh.cell_data["beam"][0]), np.array(stations) - 1)
         # the two edge points of a station are b apart, their middle is the stored centre line
         start = 0
-        for beam in state.beams:
+        for k, beam in enumerate(state.beams):
             pts = mesh.points[start : start + 2 * beam.stations.size].reshape(-1, 2, 3)
             np.testing.assert_allclose(0.5 * (pts[:, 0] + pts[:, 1]), beam.centre_line[i], atol=1e-12)
             np.testing.assert_allclose(np.linalg.norm(pts[:, 1] - pts[:, 0], axis=1), beam.width, rtol=1e-12)
             disp = mesh.point_data["displacement"][start : start + 2 * beam.stations.size : 2]
-            np.testing.assert_allclose(disp, beam.displacement(state.hub_angle)[i], atol=1e-12)
+            np.testing.assert_allclose(disp, state.displacement(k)[i], atol=1e-12)
             start += 2 * beam.stations.size
 
 

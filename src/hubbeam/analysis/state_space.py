@@ -175,6 +175,10 @@ class _Probe:
     chart: np.ndarray
 
 
+#: the inputs of a free base: its attitude torque's components, base axes (N m)
+BASE_TORQUE_INPUTS = ("base_torque_x", "base_torque_y", "base_torque_z")
+
+
 def input_columns(system: MultibodySystem, names, x, v, acc, lam, F) -> tuple[np.ndarray, list[str], list[str]]:
     """(B_x (nx x m), input names, units) of the inputs ``names``: "hub_torque" (a free hub) and
     "tip_force:NAME" (three components). ScenarioError ("inputs: ...") for an unknown one."""
@@ -205,6 +209,12 @@ def input_columns(system: MultibodySystem, names, x, v, acc, lam, F) -> tuple[np
             columns.append(e)
             labels.append(f"joint_torque_{beam}")
             units.append("N m")
+        elif kind in BASE_TORQUE_INPUTS and not beam:
+            if system.base.motion.value != "free":
+                raise ScenarioError(f"inputs: {kind} needs a free base (base.motion = {system.base.motion.value!r})")
+            columns.append(system.base_torque_column(x, BASE_TORQUE_INPUTS.index(kind)))
+            labels.append(kind)
+            units.append("N m")
         elif kind == "tip_force":
             names_ = [b.name for b in system.beams]
             k = 0 if not beam else (names_.index(beam) if beam in names_ else None)
@@ -219,7 +229,8 @@ def input_columns(system: MultibodySystem, names, x, v, acc, lam, F) -> tuple[np
                 labels.append(f"tip_force_{axis}_{system.beams[k].name}")
                 units.append("N")
         else:
-            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque, joint_torque:BEAM or tip_force:BEAM)")
+            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque, base_torque_x|y|z, joint_torque:BEAM "
+                                f"or tip_force:BEAM)")
     if len(set(labels)) != len(labels):
         raise ScenarioError(f"inputs: an input is given twice ({', '.join(map(str, names))})")
     return np.array(columns).T.reshape(system.nx, len(columns)), labels, units

@@ -52,7 +52,9 @@ def state_table(trajectory):
     """The recorded state of a run (:mod:`hubbeam.snapshots`) as NetCDF variables: (dimension
     sizes, {variable: (dimensions, values, attrs)}, file attrs); empty without a recorder.
 
-    ``state_hub_angle`` (time; rad) and, for every beam NAME, on its own dimension
+    ``state_hub_angle`` (time; rad), ``state_hub_origin`` and ``state_base_origin`` (time,
+    state_xyz; m), ``state_hub_axes`` and ``state_base_axes`` (time, state_xyz, state_axis: the
+    frames' axes as columns; the hub's at theta) and, for every beam NAME, on its own dimension
     ``state_NAME_station`` (a coordinate: m from the root along the undeformed beam):
     ``state_NAME_width``, ``state_NAME_thickness`` (m), ``state_NAME_reference`` (station,
     state_xyz; m: the undeformed centre line with the hub at theta = 0), ``state_NAME_centre_line`` (time,
@@ -66,9 +68,17 @@ def state_table(trajectory):
     if rec is None:
         return {}, {}, {}
     snaps = trajectory.snapshots[:complete_records(trajectory)]
-    dims = {STATE_XYZ: 3}
+    dims = {STATE_XYZ: 3, "state_axis": 3}
     out = {"state_hub_angle": (("time",), np.array([s.hub_angle for s in snaps], dtype=float),
                                {"units": "rad", "long_name": "hub angle theta"})}
+    for frame in ("hub", "base"):
+        out[f"state_{frame}_origin"] = (("time", STATE_XYZ), np.array([getattr(s, f"{frame}_origin") for s in snaps],
+                                                                      dtype=float).reshape(len(snaps), 3),
+                                        {"units": "m", "long_name": f"the {frame} frame's origin, global x y z"})
+        out[f"state_{frame}_axes"] = (("time", STATE_XYZ, "state_axis"),
+                                      np.array([getattr(s, f"{frame}_axes") for s in snaps], dtype=float).reshape(
+                                          len(snaps), 3, 3),
+                                      {"units": "1", "long_name": f"the {frame} frame's axes (columns), global x y z"})
     for k, name in enumerate(rec.names):
         station = f"state_{name}_station"
         dims[station] = rec.stations[k].size
@@ -84,9 +94,9 @@ def state_table(trajectory):
                                       {"units": "m", "long_name": "section width (along m)", **beam})
         out[f"state_{name}_thickness"] = ((station,), np.asarray(rec.thicknesses[k], dtype=float),
                                           {"units": "m", "long_name": "section thickness (along n)", **beam})
-        out[f"state_{name}_reference"] = ((station, STATE_XYZ), np.asarray(rec.references[k], dtype=float),
-                                          {"units": "m", "long_name": "undeformed centre line with the hub at theta = 0, "
-                                                                      "global x y z", **beam})
+        out[f"state_{name}_reference"] = ((station, STATE_XYZ), np.asarray(rec.local_references[k], dtype=float),
+                                          {"units": "m", "long_name": "undeformed centre line in the hub's frame at "
+                                                                      "theta = 0 (its x y z axes)", **beam})
         out[f"state_{name}_centre_line"] = (("time", station, STATE_XYZ), over_time("centre_line"),
                                             {"units": "m", "long_name": "deformed centre line, global x y z", **beam})
         out[f"state_{name}_m"] = (("time", station, STATE_XYZ), over_time("m"),

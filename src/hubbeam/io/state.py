@@ -30,24 +30,28 @@ class BeamTrack:
     stations: np.ndarray  # (n,) m from the root along the undeformed beam
     width: np.ndarray  # (n,) m
     thickness: np.ndarray  # (n,) m
-    reference: np.ndarray  # (n, 3) m: undeformed centre line, hub at theta = 0
+    reference: np.ndarray  # (n, 3) m: undeformed centre line in the hub's frame at theta = 0
     centre_line: np.ndarray  # (nt, n, 3) m
     m: np.ndarray  # (nt, n, 3) unit vectors along the width
     n: np.ndarray  # (nt, n, 3) unit vectors along the thickness
     surface_strain: np.ndarray  # (nt, n) axial strain on the upper surface
 
-    def displacement(self, hub_angle: np.ndarray, times=slice(None)) -> np.ndarray:
-        """(nt, n, 3) m at the output ``times`` (a slice or index array; default all) of the
-        ``hub_angle`` series (rad): the centre line's displacement from the undeformed beam
-        turned with the hub (by theta about -j0, Eq. 74), the beam's deflection."""
-        turned = np.einsum("tij,nj->tni", hub_rotation(np.asarray(hub_angle)[times]), self.reference)
-        return self.centre_line[times] - turned
+    def displacement(self, hub_origin: np.ndarray, hub_axes: np.ndarray, times=slice(None)) -> np.ndarray:
+        """(nt, n, 3) m at the output ``times`` (a slice or index array; default all) of the hub
+        frame's series (origin (nt, 3) m and axes (nt, 3, 3)): the centre line's displacement from
+        the undeformed beam carried by the hub's frame (the base and the hub angle), the beam's
+        deflection."""
+        carried = np.asarray(hub_origin)[times][:, None, :] + np.einsum(
+            "tij,nj->tni", np.asarray(hub_axes)[times], self.reference)
+        return self.centre_line[times] - carried
 
 
 @dataclass(frozen=True)
 class RunState:
     """A run's recorded state: ``name`` (the scenario's), ``times`` (nt, s), ``hub_angle`` (nt,
-    rad), ``hub_radius`` (m) and every beam's :class:`BeamTrack`."""
+    rad), ``hub_radius`` (m), every beam's :class:`BeamTrack`, and the hub's and the base's
+    frames over time: ``hub_origin``, ``base_origin`` (nt, 3) m and ``hub_axes``, ``base_axes``
+    (nt, 3, 3) (columns, global; the hub's at theta)."""
 
     name: str
     times: np.ndarray
@@ -56,8 +60,27 @@ class RunState:
     beams: tuple[BeamTrack, ...]
     #: for the state of a run that stopped early: how far it got and why (from the file's attributes)
     partial: str | None = None
+    hub_origin: np.ndarray = None
+    hub_axes: np.ndarray = None
+    base_origin: np.ndarray = None
+    base_axes: np.ndarray = None
     #: the indices of the beams whose root is a hinge (a revolute joint): their first station
     joints: tuple[int, ...] = ()
+
+    def __post_init__(self) -> None:
+        nt = np.asarray(self.times).size
+        if self.hub_axes is None:  # a file of a hub on a fixed upright axis: A_h(theta) at the origin
+            object.__setattr__(self, "hub_axes", hub_rotation(self.hub_angle))
+        for name in ("hub_origin", "base_origin"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros((nt, 3)))
+        if self.base_axes is None:
+            object.__setattr__(self, "base_axes", np.tile(np.eye(3), (nt, 1, 1)))
+
+    def displacement(self, k: int, times=slice(None)) -> np.ndarray:
+        """Beam k's deflection (nt, n, 3) m at the output ``times``: :meth:`BeamTrack.displacement`
+        from the undeformed beam the hub's frame carries."""
+        return self.beams[k].displacement(self.hub_origin, self.hub_axes, times)
 
 
 def hub_rotation(theta) -> np.ndarray:
@@ -108,9 +131,11 @@ def read_state(path, option: str = "input") -> RunState:
                                                                              else "") +
                            f" ({_text(f.attrs.get('partial_reason', 'partial'))})")
             hinged = json.loads(_text(f.attrs["state_joints"])) if "state_joints" in f.attrs else []
+            frames = {name: v[f"state_{name}"][...] for name in ("hub_origin", "hub_axes", "base_origin", "base_axes")
+                      if f"state_{name}" in v}
             state = RunState(_text(f.attrs.get("name", p.stem)), v["time"][...], v["state_hub_angle"][...],
-                             float(f.attrs["state_hub_radius"]), beams, partial,
-                             tuple(names.index(name) for name in hinged))
+                             float(f.attrs["state_hub_radius"]), beams, partial, **frames,
+                             joints=tuple(names.index(name) for name in hinged))
         except (KeyError, ValueError, TypeError) as exc:
             raise ScenarioError(f"{option} {p}: the stored state is incomplete ({exc.__class__.__name__}: {exc})") \
                 from None

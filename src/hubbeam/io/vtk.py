@@ -52,7 +52,7 @@ def ribbon_mesh(state: RunState, i: int):
         s = offset + 2 * np.arange(n - 1)
         quads.append(np.column_stack([s, s + 1, s + 3, s + 2]))
         beam_ids.append(np.full(n - 1, k, dtype=np.int32))
-        disp = beam.displacement(state.hub_angle, slice(i, i + 1))[0]
+        disp = state.displacement(k, slice(i, i + 1))[0]
         displacement.append(np.repeat(disp, 2, axis=0))
         strain.append(np.repeat(beam.surface_strain[i], 2))
         offset += 2 * n
@@ -62,7 +62,7 @@ def ribbon_mesh(state: RunState, i: int):
         for k in state.joints:
             beam = state.beams[k]
             points.append(beam.centre_line[i, :1])
-            displacement.append(beam.displacement(state.hub_angle, slice(i, i + 1))[0][:1])
+            displacement.append(state.displacement(k, slice(i, i + 1))[0][:1])
             strain.append(beam.surface_strain[i, :1])
         cells.append(("vertex", offset + np.arange(len(state.joints)).reshape(-1, 1)))
         ids.append(np.array(state.joints, dtype=np.int32))

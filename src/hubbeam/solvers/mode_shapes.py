@@ -3,7 +3,7 @@ modal assurance criterion that follows a mode from one hub speed to the next.
 
 **Split and label.** A mode shape u about the configuration x is a rate of the coordinates;
 the kinetic energy of the system moving at u is split into the hub's and, for every beam in
-its own directions, the ``flap`` (centre line along j0, out of the hub plane), ``lag`` (along
+its own directions, the ``flap`` (centre line along j_h, out of the hub plane), ``lag`` (along
 the beam's k_k, in the hub plane across the beam), ``axial`` (along the beam axis) and
 ``torsion`` (section rotation about the beam axis) parts
 (:meth:`hubbeam.system.multibody.MultibodySystem.kinetic_energy_split`). The fractions add up to
@@ -22,8 +22,9 @@ import numpy as np
 
 from hubbeam.system.parts import BEAM_MOTIONS
 
-#: the parts of a mode's kinetic energy, in the order a label joins them
-MOTIONS = BEAM_MOTIONS + ("hub",)
+#: the parts of a mode's kinetic energy, in the order a label joins them (``base``: a moving
+#: base's own body)
+MOTIONS = BEAM_MOTIONS + ("hub", "base")
 #: a part at least this share of the kinetic energy names the mode alone
 DOMINANT = 0.6
 

@@ -845,6 +845,16 @@ class MultibodySystem:
         e = np.ascontiguousarray(x[self.layout.base_x][3:], dtype=float)
         return np.array(attitude_torque(laws[0], float(t), e, R.T @ w))
 
+    def base_torque_column(self, x, axis: int) -> np.ndarray:
+        """The generalized force (on x) of a unit torque on a moving base about its base axis
+        ``axis`` (0, 1, 2): Jw^T R e_axis on the base's coordinates (N m per N m)."""
+        from hubbeam.system.frames import chain_pose
+
+        _, R, _, Jw, _, _ = chain_pose(self.frames.table, self.frames.base, x)
+        out = np.zeros(self.nx)
+        out[self.layout.base_x] = Jw.T @ R[:, axis]
+        return out
+
     def angular_momentum(self, x, v, F) -> float:
         """The whole system's absolute angular momentum about the hub axis (the line through O
         along j_h; N m s), positive in the sense of theta' (about -j_h)."""
