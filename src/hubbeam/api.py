@@ -290,7 +290,7 @@ class ModalResult:
         unit = "per unit modal coordinate (kinetic energy eta'^2/2)"
         data = {"frequency_hz": ("mode", modes.frequencies_hz, {"units": "Hz"}),
                 "label": ("mode", np.array([mode_label(f) for f in fractions], dtype=object)),
-                "energy_fraction": (("mode", "motion"), np.array([[f[k] for k in motions] for f in fractions]),
+                "energy_fraction": (("mode", "motion"), np.array([[f.get(k, 0.0) for k in motions] for f in fractions]),
                                     {"units": "1"}),
                 "x": (("beam", "station"), x, {"units": "m", "long_name": "station from the root"})}
         arrays = {"shape": (("mode", "coordinate"), modes.shapes.T, {"units": "coordinates' units kg^-1/2"}),

@@ -11,7 +11,8 @@ from importlib import resources
 from hubbeam.errors import ScenarioError
 
 #: the bundled scenarios (package data in hubbeam/examples)
-EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2", "rotor3", "spacecraft", "arm", "blade")
+EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2", "rotor3", "spacecraft", "arm", "blade", "articulated",
+            "deploy", "arm2")
 
 
 def example_text(name: str) -> str:

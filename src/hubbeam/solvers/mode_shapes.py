@@ -30,31 +30,32 @@ DOMINANT = 0.6
 
 
 def motions_of(system) -> tuple[str, ...]:
-    """The parts of a mode's kinetic energy in ``system``: :data:`MOTIONS` and, on joints, the
-    hinges' rigid rotations ("flap hinge", "lag hinge", ...: :meth:`MultibodySystem.hinge_labels`)."""
+    """The parts a mode's kinetic energy can have in ``system``: :data:`MOTIONS` and, on joints,
+    the hinges' rigid rotations ("flap hinge", "lag hinge", ...:
+    :meth:`~hubbeam.system.multibody.MultibodySystem.hinge_labels`)."""
     return MOTIONS + system.hinge_labels()
 
 
 def energy_fractions(system, x, F, shape) -> dict[str, float]:
-    """The shares (summing to 1) of a mode's kinetic energy in each of :func:`motions_of`: a
-    joint's rigid rotation psi' e x (r - r_J) is its hinge's share, the rest split as
-    :data:`MOTIONS` (:meth:`MultibodySystem.mode_energy_split`)."""
+    """The shares (summing to 1) of a mode's kinetic energy in each part of :func:`motions_of`
+    the system has (``base`` only with a moving base, the hinges only on joints): a joint's
+    rigid rotation psi' e x (r - r_J) is its hinge's share, the rest split as :data:`MOTIONS`
+    (:meth:`~hubbeam.system.multibody.MultibodySystem.mode_energy_split`)."""
     split = system.mode_energy_split(x, F, shape)
-    motions = motions_of(system)
     total = sum(split.values())
     if not total > 0.0:
         raise ValueError("a mode shape without kinetic energy has no energy split")
-    return {k: split.get(k, 0.0) / total for k in motions}
+    return {k: split[k] / total for k in motions_of(system) if k in split}
 
 
 def mode_label(fractions: dict[str, float], dominant: float = DOMINANT) -> str:
     """The largest part's name, or the two largest joined by "+" (in the order of
     :data:`MOTIONS`, then the hinges) when the largest is below ``dominant``."""
-    motions = MOTIONS + tuple(k for k in fractions if k not in MOTIONS)
-    ranked = sorted(motions, key=lambda k: -fractions.get(k, 0.0))
-    if fractions.get(ranked[0], 0.0) >= dominant:
+    present = [k for k in MOTIONS if k in fractions] + [k for k in fractions if k not in MOTIONS]
+    ranked = sorted(present, key=lambda k: -fractions[k])
+    if fractions[ranked[0]] >= dominant:
         return ranked[0]
-    return "+".join(k for k in motions if k in ranked[:2])
+    return "+".join(k for k in present if k in ranked[:2])
 
 
 def mac_matrix(a: np.ndarray, b: np.ndarray) -> np.ndarray:

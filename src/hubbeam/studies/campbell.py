@@ -67,7 +67,7 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=("ancf", "
             n = f.size
             freq[i, j, :n] = f
             labels[i, j, :n] = [mode_label(s) for s in shares]
-            fractions[i, j, :n] = [[s[k] for k in motions] for s in shares]
+            fractions[i, j, :n] = [[s.get(k, 0.0) for k in motions] for s in shares]
             if previous is None:
                 index, match = np.arange(min(count, n)), np.ones(min(count, n))
             else:

@@ -264,8 +264,16 @@ class MultibodySystem:
         return self._with(beams=list(beams))
 
     def without_damping(self) -> "MultibodySystem":
-        """The same system without air drag and without the beams' structural damping."""
-        return self._with(beams=[b.without_structural_damping() for b in self.beams], damping=(0.0, 0.0))
+        """The same system without air drag, without the beams' structural damping and without the
+        joints' dampers."""
+        beams = []
+        for b in self.beams:
+            b = b.without_structural_damping()
+            joint = b.mount.joint
+            if joint is not None and any(joint.damping):
+                b = replace(b, mount=replace(b.mount, joint=replace(joint, damping=(0.0,) * joint.count)))
+            beams.append(b)
+        return self._with(beams=beams, damping=(0.0, 0.0))
 
     def without_motors(self) -> "MultibodySystem":
         """The same system without its joints' motor laws (springs and dampers kept)."""
