@@ -1,6 +1,6 @@
 """Speed benchmark: hubbeam against Exudyn on the same models (issue 6), run side by side.
 
-    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R] [--quick]
+    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R,J] [--quick]
 
 Every run is a fresh process (benchmarks/engines.py; ``hubbeam run`` for case P), the
 engines of a case alternate within each repetition, and the tables show medians: the
@@ -26,6 +26,10 @@ Case R: case A with modal reduction to 4 clamped modes: hubbeam's FFR beam (8 el
 against Exudyn's ObjectFFRFreducedOrder on a 32 x 1 x 2 Hex20 solid mesh of the plate
 (benchmarks/solid_plate.py), with the mesh's mass and first two frequencies against
 Euler-Bernoulli.
+Case J (joints): experiment 1 (free hub, 6 elements) clamped against the same plate on a revolute
+(flap) joint with a stiff spring (its motion the clamped one's), ANCF and nodal FFR, alternating,
+medians: what a joint adds to the integration time; and a chain of 1, 2, 4 and 8 equal links (4 ANCF elements each) on
+lag hinges, its cost per step against n times one link's. No peer needed.
 """
 
 from __future__ import annotations
@@ -147,12 +151,41 @@ def reduced_order(reps: int, t_end: float, dt: float) -> None:
           f"{100 * (mesh['f2_hz'] / mesh['f2_eb_hz'] - 1):+.2f} %)")
 
 
+def joints(reps: int, t_end: float, dt: float) -> None:
+    """Case J: a joint's cost against the same beam clamped, and chains of n links."""
+    pairs = [("exp1-ancf", "exp1-ancf-hinge"), ("exp1-ffr", "exp1-ffr-hinge")]
+    for e in ("exp1-ancf-hinge", "exp1-ffr-hinge"):
+        one_run(e, 6, 2 * dt, dt)  # warm the numba cache of the joints' code
+    runs = {e: [] for pair in pairs for e in pair}
+    for _ in range(reps):
+        for e in runs:
+            runs[e].append(one_run(e, 6, t_end, dt))
+    print(f"\nCase J (joints): exp1, 6 elements, {t_end:g} s at dt = {dt:g} s, clamped against a stiff flap hinge; "
+          f"median of {reps}, {os.cpu_count()} cores")
+    print(f"{'engine':18s} {'integration s':>13s} {'Newton/step':>11s} {'LU/step':>8s} {'P1 peak':>11s} {'P1 end':>11s}")
+    for e in runs:
+        first = runs[e][0]
+        print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {first['newton_per_step']:11.2f} "
+              f"{first['factorisations_per_step']:8.2f} {first['peak']:11.4e} {first['end']:11.4e}")
+    for clamped, hinged in pairs:
+        ratio = median(runs[hinged], "integration_s") / median(runs[clamped], "integration_s")
+        print(f"{hinged} / {clamped}: integration {ratio:.3f}")
+    print(f"\nCase J (chains): n links on lag hinges, 4 ANCF elements each, 1 s at dt = {dt:g} s; best of {reps}")
+    one = None
+    for n in (1, 2, 4, 8):
+        best = min((one_run("chain", n, 1.0, dt) for _ in range(reps)), key=lambda r: r["integration_s"])
+        per = best["integration_s"] / best["steps"]
+        one = per if n == 1 else one
+        print(f"  {n} link{'s' if n > 1 else ' '}: {1e3 * per:.3f} ms per step, {best['newton_per_step']:.2f} Newton "
+              f"iterations per step ({per / (n * one):.2f} x n times one link)")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--t-end", type=float, default=10.0)
     p.add_argument("--dt", type=float, default=1e-3)
-    p.add_argument("--cases", default="A,B,C,P,F,R", help="comma-separated subset of A, B, C, P, F, R")
+    p.add_argument("--cases", default="A,B,C,P,F,R,J", help="comma-separated subset of A, B, C, P, F, R, J")
     p.add_argument("--quick", action="store_true", help="1 s simulated, one repetition")
     a = p.parse_args()
     if a.quick:
@@ -179,6 +212,8 @@ def main() -> None:
         formulations(a.reps, 20.0 if not a.quick else 1.0, a.dt)
     if "R" in cases:
         reduced_order(a.reps, a.t_end, a.dt)
+    if "J" in cases:
+        joints(a.reps, a.t_end, a.dt)
     if "P" in cases:
         times = [cli_run(a.t_end) for _ in range(a.reps)]
         print(f"\nCase P: `hubbeam run benchmarks/case_a.toml -o OUT.nc` ({a.t_end:g} s simulated), whole process: "
