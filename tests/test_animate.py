@@ -29,12 +29,48 @@ def test_ribbons_are_as_wide_as_the_section_along_m():
 
 
 def test_the_hub_turns_with_the_hub_angle():
+    from hubbeam.io.bodies import rigid_bodies
+
     state = _state()
-    disc = animate.hub_polygon(state, 4)
-    np.testing.assert_allclose(np.linalg.norm(disc, axis=1), 0.3)
-    np.testing.assert_allclose(disc[:, 1], 0.0, atol=1e-15)
-    # its first vertex (the spoke) lies along the beam's root direction i_h(theta)
-    np.testing.assert_allclose(disc[0], state.beams[0].centre_line[4, 0], atol=1e-12)
+    hub = rigid_bodies(state)[0]
+    faces = animate.body_faces(hub, 4)
+    rim = faces[0]  # the lower cap: a polygon of the hub radius, 1/20 of it below the hub plane
+    np.testing.assert_allclose(np.linalg.norm(rim[:, [0, 2]], axis=1), 0.3)
+    np.testing.assert_allclose(rim[:, 1], -0.015, atol=1e-15)
+    # the hub's first axis (the spoke) lies along the beam's root direction i_h(theta)
+    np.testing.assert_allclose(0.3 * hub.rotation[4][:, 0], state.beams[0].centre_line[4, 0], atol=1e-12)
+
+
+def test_scale_magnifies_the_deflection_from_the_turned_undeformed_beam():
+    """A beam bent by d (along j0) drawn with --scale 10 sits at 10 d from the undeformed beam
+    turned with the hub, and at 9 d from where it is."""
+    from dataclasses import replace
+
+    state = _state()
+    beam = state.beams[0]
+    bend = np.zeros_like(beam.centre_line)
+    bend[:, :, 1] = 0.01 * beam.stations[None, :] ** 2
+    state = replace(state, beams=(replace(beam, centre_line=beam.centre_line + bend),))
+    plain, scaled = animate.ribbon_quads(state, 0, 3), animate.ribbon_quads(state, 0, 3, scale=10.0)
+    np.testing.assert_allclose(scaled - plain, 9.0 * np.stack([bend[3, :-1], bend[3, :-1], bend[3, 1:], bend[3, 1:]],
+                                                              axis=1), atol=1e-14)
+
+
+@pytest.mark.parametrize("view, expected", [("top", (90.0, -90.0)), ("20,45", (20.0, 45.0)), ((10, 5), (10.0, 5.0))])
+def test_views_place_the_camera(view, expected):
+    assert animate.camera(view) == expected
+    fig, _, _ = animate.build(_state(), "none", view=view)
+    ax = fig.axes[0]
+    assert (ax.elev, ax.azim) == pytest.approx(expected)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+
+
+@pytest.mark.parametrize("view", ["sideways", "1,2,3", "95,0", "nan,0"])
+def test_bad_views_are_refused(view):
+    with pytest.raises(ValueError, match="view"):
+        animate.camera(view)
 
 
 def test_frames_limits_and_colours():
@@ -66,6 +102,6 @@ def test_an_interruption_before_the_first_frame_passes_through(tmp_path, monkeyp
     def interrupted(i):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(animate, "build", lambda *args: (fig, interrupted, frames))
+    monkeypatch.setattr(animate, "build", lambda *args, **kwargs: (fig, interrupted, frames))
     with pytest.raises(KeyboardInterrupt):
         animate.animate(_state(), tmp_path / "m.gif")

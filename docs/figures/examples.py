@@ -9,15 +9,12 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hubbeam import api  # noqa: E402
-from hubbeam.io.results import to_dataset  # noqa: E402
-from hubbeam.io.scenario import load_example  # noqa: E402
+from hubbeam import api
+from hubbeam.io.results import to_dataset
+from hubbeam.io.scenario import load_example
+from hubbeam.plots import style
 
 OUT = Path(__file__).resolve().parent
 
@@ -32,20 +29,18 @@ def run(name):
 
 
 def panels(ds, rows, path, title):
-    fig, axes = plt.subplots(len(rows), 1, figsize=(8, 2.0 * len(rows) + 0.6), sharex=True, squeeze=False)
-    t = ds["time"].values
-    for ax, (label, curves) in zip(axes[:, 0], rows):
-        for legend, values, style in curves:
-            ax.plot(t, values, style, lw=1.4, label=legend)
-        ax.set_ylabel(label)
-        ax.grid(alpha=0.3)
-        if len(curves) > 1:
-            ax.legend(fontsize=8, loc="best")
-    axes[-1, 0].set_xlabel("time (s)")
-    fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    """Stacked panels in hubbeam's figure style (:mod:`hubbeam.plots.style`)."""
+    with style.paper_style():
+        fig, axes = style.figure(len(rows), 1, sharex=True)
+        t = ds["time"].values
+        for ax, (label, curves) in zip(axes[:, 0], rows):
+            for legend, values, line in curves:
+                ax.plot(t, values, line, label=legend)
+            ax.set_ylabel(label)
+            if len(curves) > 1:
+                ax.legend(loc="best")
+        axes[-1, 0].set_xlabel("time (s)")
+        style.finish(fig, path, title)
 
 
 def reference(scenario, t):
@@ -71,7 +66,7 @@ def main():
         ("PD torque (N m)", [("", ds["torque"], "k-")]),
         ("panel tip (mm)", [("panel a, tangential", 1e3 * ds["tip_a_tangential"], "C0-"),
                             ("panel b, tangential", 1e3 * ds["tip_b_tangential"], "C1--")]),
-        ("root strain, panel a", [("", ds["root_strain_a"], "C0-")]),
+        ("root strain, panel a (\u00b5\u03b5)", [("", 1e6 * ds["root_strain_a"], "C0-")]),
     ], OUT / "example_spacecraft.png", "spacecraft: PD slew of a bus with two flexible panels")
 
     sc, ds = run("arm")

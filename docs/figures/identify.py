@@ -39,8 +39,9 @@ def main() -> None:
     for name, value, half in zip(names, fit.values, fit.ci95):
         print(f"{name} = {value:.4g} +- {half:.2g} (95 %)")
     print(f"correlation {fit.correlation[0][1]:.3f}, {fit.evaluations} simulations")
-    plots.plot_fit(fit.times, fit.measured, fit.fitted, OUT / "identify_exp1.png", "strain_P1",
-                   title="exp1: fit of damping.linear, damping.quadratic")
+    title, subtitle = plots.run_title("exp1: fit of damping.linear, damping.quadratic", MESH)
+    plots.plot_fit(fit.times, fit.measured, fit.fitted, OUT / "identify_exp1.png", "strain_P1", title=title,
+                   kind="surface_strain", subtitle=subtitle)
 
 
 if __name__ == "__main__":

@@ -358,18 +358,38 @@ def modes(scenario: Scenario) -> ModalResult:
                        about=about)
 
 
-def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
+def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=None, reduce: int | None = None,
+              balanced: int | None = None, fmax: float | None = None, progress=None):
     """The continuous-time state space (A, B, C, D) of a scenario
     (:class:`hubbeam.analysis.state_space.LinearModel`): about the static equilibrium under its
     loads or, for a hub driven at a constant omega_s, about the steadily rotating state (other
-    prescribed profiles: at rest with the hub held). ``inputs``: "hub_torque" (free hub, N m, added
-    to the torque law), "joint_torque:BEAM" (N m, in the joint of BEAM, added to its motor law) and
-    "tip_force:BEAM" (N, three components); default: the hub torque of a free hub (the first
-    beam's tip force on a held one) and every joint motor's torque. Outputs: the scenario's
-    sensors. ``open_loop``: leave the scenario's torque laws out, the hub's and the joints' motors
-    (the plant a controller is designed for)."""
+    prescribed profiles: at rest with the hub held). ``inputs``: a list of "hub_torque" (free
+    hub, N m, added to the torque law), "joint_torque:BEAM" (N m, in the joint of BEAM, added to
+    its motor law) and "tip_force:BEAM" (N, three components); default: the hub torque of a free
+    hub (the first beam's tip force on a held one) and every joint motor's torque. Outputs: the
+    scenario's sensors (``outputs``: only those columns, in that order). ``open_loop``: leave
+    the scenario's torque laws out, the hub's and the joints' motors (the plant a controller is
+    designed for).
+
+    Reduced models (docs/state_space.md): ``reduce=N`` keeps the N lowest modes (modal
+    truncation, the rest residualised: :meth:`LinearModel.reduced`), ``balanced=N`` N balanced
+    states of the stable part (:meth:`LinearModel.balanced`), ``fmax=F`` (Hz) drops the modes
+    above F (alone: a modal truncation at F; with ``balanced``: before balancing).
+    ``progress(done, total)``: called as the output derivatives are computed."""
     from hubbeam.analysis.state_space import linearise
 
+    if isinstance(inputs, (str, bytes)):
+        raise ScenarioError(f"inputs: a list of input names (got the string {inputs!r}; write [{inputs!r}])")
+    if isinstance(outputs, (str, bytes)):
+        raise ScenarioError(f"outputs: a list of output names (got the string {outputs!r}; write [{outputs!r}])")
+    if reduce is not None and balanced is not None:
+        raise ScenarioError("reduce: give reduce (modal) or balanced, not both")
+    for key, value, low in (("reduce", reduce, 1), ("balanced", balanced, 1)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low):
+            raise ScenarioError(f"{key}: a whole number >= {low} (got {value!r})")
+    if fmax is not None and (isinstance(fmax, bool) or not isinstance(fmax, (int, float, np.floating))
+                             or not np.isfinite(fmax) or fmax <= 0):
+        raise ScenarioError(f"fmax: a frequency > 0 in Hz (got {fmax!r})")
     scenario = as_scenario(scenario)
     notes: list[str] = []
     system = equilibrium_system(scenario, notes)
@@ -397,7 +417,12 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
         if scenario.hub.motion == "prescribed":
             about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
         equilibrium = solve_static(system, load_steps=load_steps)
-    model = linearise(system, equilibrium, omega, inputs, scenario.sensors, about)
+    model = linearise(system, equilibrium, omega, inputs, scenario.sensors, about, progress)
+    if outputs is not None:
+        try:
+            model = model.select(outputs=list(outputs))
+        except ValueError as exc:
+            raise ScenarioError(str(exc)) from None
     model.notes.extend(notes)
     if not system.hub.held:
         needed = -float(equilibrium.multipliers[system.layout_for(True, static=True).drive_lambda])  # the torque that holds it
@@ -406,6 +431,13 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False):
         if abs(missing) > 1e-4 * max(scale, abs(needed)):  # above the discretisation's own small torque
             model.notes.append(f"the free hub is not in equilibrium there: it needs {missing:+.6g} N m more torque "
                                "(the model holds for the motion about that state)")
+    if balanced is not None:
+        try:
+            model = model.balanced(balanced, fmax)
+        except ValueError as exc:
+            raise ScenarioError(f"balanced: {exc}") from None
+    elif reduce is not None or fmax is not None:
+        model = model.reduced(reduce, fmax)
     return model
 
 

@@ -65,6 +65,11 @@ class StateRecorder:
         self.thicknesses = tuple(s[:, 1] for s in sizes)
         #: the hub's radius for drawing (m): the largest root radius
         self.hub_radius = max(float(part.mount.radius) for part in system.beams)
+        #: every beam's tip body ({"mass" (kg), "inertia" (kg m^2, about tau, m, n), "offset"
+        #: (m, in the tip section frame)}) or None: drawn on the tip section's frame
+        self.tip_bodies = tuple(None if part.tip_body is None else
+                                {"mass": float(part.tip_body.mass), "inertia": [float(v) for v in part.tip_body.inertia],
+                                 "offset": [float(v) for v in part.tip_body.offset]} for part in system.beams)
         #: every beam's undeformed centre line at the stations with the hub at theta = 0 (m, global):
         #: turned by the hub angle, the place the deflection is measured from
         x0, F0 = system.initial_state(0.0)

@@ -103,8 +103,13 @@ def test_vtk_series_reads_back_and_is_not_overwritten_silently(runs, tmp_path):
     target = tmp_path / "series"
     code, out, err = cli("vtk", runs["rotor3"], "-o", target)
     assert code == 0, err
-    rows = ET.parse(target / "rotor3.pvd").getroot().find("Collection").findall("DataSet")
-    assert [float(r.get("timestep")) for r in rows] == state.times.tolist()
+    every = ET.parse(target / "rotor3.pvd").getroot().find("Collection").findall("DataSet")
+    rows = [r for r in every if r.get("part") == "0"]  # the beams; part 1: the rigid bodies
+    bodies = [r for r in every if r.get("part") == "1"]
+    assert [float(r.get("timestep")) for r in rows] == [float(r.get("timestep")) for r in bodies] == state.times.tolist()
+    assert "and 4 rigid bodies" in out  # the hub and the three tip masses
+    for row in bodies:
+        assert sorted(set(np.concatenate(meshio.read(target / row.get("file")).cell_data["body"]))) == [0, 1, 2, 3]
     points = 2 * sum(b.stations.size for b in state.beams)
     for i, row in enumerate(rows):
         mesh = meshio.read(target / row.get("file"))
@@ -112,14 +117,30 @@ def test_vtk_series_reads_back_and_is_not_overwritten_silently(runs, tmp_path):
         strain = mesh.point_data["surface_strain"]
         stored = np.concatenate([b.surface_strain[i] for b in state.beams])
         assert (strain.min(), strain.max()) == (stored.min(), stored.max())
-    assert sorted(p.name for p in target.iterdir()) == sorted(["rotor3.pvd"] + [r.get("file") for r in rows])
+    assert sorted(p.name for p in target.iterdir()) == sorted(["rotor3.pvd"] + [r.get("file") for r in every])
     before = (target / "rotor3_00000.vtu").stat().st_mtime_ns
     code, out, err = cli("vtk", runs["rotor3"], "-o", target)
     assert_contract(code, out, err)
     assert code == 2 and "--force" in err
     assert (target / "rotor3_00000.vtu").stat().st_mtime_ns == before
     (target / "rotor3_00099.vtu").write_text("an older, longer series")
+    (target / "rotor3_bodies_00099.vtu").write_text("its bodies")
     code, out, err = cli("vtk", runs["rotor3"], "-o", target, "--force")
     assert code == 0, err
-    assert not (target / "rotor3_00099.vtu").exists()
+    assert not (target / "rotor3_00099.vtu").exists() and not (target / "rotor3_bodies_00099.vtu").exists()
     assert no_temporary_files(target)
+
+
+def test_animate_scale_and_view(runs, tmp_path):
+    movie = tmp_path / "m.gif"
+    code, out, err = cli("animate", runs["rotor3"], "-o", movie, "--scale", "50", "--view", "top", "--stride", "5")
+    assert_contract(code, out, err)
+    assert code == 0, err
+    code, out, err = cli("animate", runs["rotor3"], "-o", movie, "--view", "30,-120", "--stride", "5")
+    assert code == 0, err
+    for args, message in ((["--view", "above"], "--view: unknown view 'above'"), (["--scale", "0"], "--scale: must be > 0"),
+                          (["--scale", "inf"], "--scale: must be > 0")):
+        code, out, err = cli("animate", runs["rotor3"], "-o", tmp_path / "x.gif", *args)
+        assert_contract(code, out, err)
+        assert code == 2 and message in err, err
+        assert not (tmp_path / "x.gif").exists()

@@ -63,3 +63,39 @@ def test_bad_input_is_one_line_naming_the_option(tmp_path):
     assert code == 2 and "--inputs: tip_force:blade9" in err
     code, out, err = cli("linearize", EXAMPLES / "exp1.toml", *SMALL, "-o", tmp_path / "no" / "ss.nc")
     assert code == 2 and err.startswith("hubbeam: error: -o ")
+
+
+def test_reduced_models_from_the_command_line(tmp_path):
+    """--reduce, --balanced, --fmax and --outputs on the bundled spacecraft (PD slew, two panels)."""
+    sc = EXAMPLES / "spacecraft.toml"
+    code, out, err = cli("linearize", sc, "--reduce", "3", "--json")
+    assert_contract(code, out, err, json_out=True)
+    d = json.loads(out)
+    assert d["states"] == 6 and d["reduction"]["method"] == "modal" and len(d["frequencies_hz"]) == 3
+    assert "no input reaches" in err  # the symmetric panel modes, said
+    path = tmp_path / "bal.nc"
+    code, out, err = cli("linearize", sc, "--balanced", "4", "--outputs", "theta,root_strain_a", "-o", path, "--json")
+    assert_contract(code, out, err, json_out=True)
+    d = json.loads(out)
+    assert d["outputs"] == ["theta", "root_strain_a"] and d["states"] == 4
+    sigma = d["hankel_singular_values"]
+    assert sigma == sorted(sigma, reverse=True) and d["reduction"]["error_bound"] == 2 * sum(sigma[4:])
+    with xr.open_dataset(path) as ds:
+        assert ds["projection"].dims == ("full_state", "state") and ds.sizes["full_state"] == d["reduction"]["full_states"]
+        np.testing.assert_array_equal(ds["hankel_singular_value"].values, sigma)
+    code, out, err = cli("linearize", sc, "--fmax", "5", "--json")
+    assert code == 0 and max(json.loads(out)["frequencies_hz"]) < 5
+    code, out, err = cli("linearize", sc, "--reduce", "3")  # the text summary says what it is
+    assert code == 0 and "6 states (reduced from" in out
+
+
+def test_bad_reduction_options_are_one_line():
+    sc = EXAMPLES / "spacecraft.toml"
+    for args, start in ((["--reduce", "0"], "--reduce: must be >= 1"), (["--fmax", "nan"], "--fmax: a frequency > 0"),
+                        (["--outputs", "theta,nope"], "--outputs: unknown 'nope'"),
+                        (["--reduce", "2", "--balanced", "2"], "argument --balanced: not allowed with")):
+        code, out, err = cli("linearize", sc, *args)
+        assert code == 2 and err.splitlines()[-1].startswith("hubbeam: error: " + start), err
+    code, out, err = cli("linearize", EXAMPLES / "cantilever.toml", *SMALL, "--set", "damping.linear=0",
+                         "--set", "damping.quadratic=0", "--balanced", "2")
+    assert code == 2 and "--balanced: the model has no stable part" in err

@@ -52,8 +52,54 @@ def test_the_pvd_lists_every_file_with_its_time(state):
     root = ET.fromstring(vtk.pvd_text(state))
     rows = root.find("Collection").findall("DataSet")
     _, names = vtk.file_names(state)
-    assert [r.get("file") for r in rows] == names == [f"rotor3_{i:05d}.vtu" for i in range(state.times.size)]
-    assert [float(r.get("timestep")) for r in rows] == state.times.tolist()
+    assert names == [f"rotor3_{i:05d}.vtu" for i in range(state.times.size)]
+    assert vtk.body_file_names(state) == [f"rotor3_bodies_{i:05d}.vtu" for i in range(state.times.size)]
+    assert [r.get("file") for r in rows if r.get("part") == "0"] == names
+    assert [r.get("file") for r in rows if r.get("part") == "1"] == vtk.body_file_names(state)
+    assert [float(r.get("timestep")) for r in rows] == np.repeat(state.times, 2).tolist()
+
+
+def test_the_bodies_file_holds_the_hub_and_every_tip_body_at_their_poses(state, tmp_path):
+    """rotor3's hub and its three 0.05 kg tip masses: each glyph's vertices about the body's
+    pose (the hub a disc of its radius turned by theta, a tip body a box about its centre of
+    mass, the tip centroid plus the offset in the tip section frame), its axes as lines."""
+    from hubbeam.io.bodies import Glyph, rigid_bodies
+    from hubbeam.io.state import hub_rotation
+
+    bodies = rigid_bodies(state)
+    assert [b.name for b in bodies] == ["hub", "tip_body_blade1", "tip_body_blade2", "tip_body_blade3"]
+    i = state.times.size - 1
+    path = tmp_path / "b.vtu"
+    vtk.write_bodies_vtu(state, bodies, i, path)
+    mesh = meshio.read(path)
+    assert mesh.field_data["TimeValue"][0] == state.times[i]
+    body = np.concatenate(mesh.cell_data["body"])
+    axis = np.concatenate(mesh.cell_data["axis"])
+    assert sorted(set(body.tolist())) == [0, 1, 2, 3]
+    assert np.count_nonzero(axis >= 0) == 3 * len(bodies)  # three axis lines per body
+    hub = bodies[0]
+    assert hub.glyph is Glyph.DISC and hub.half_size[0] == pytest.approx(state.hub_radius)
+    np.testing.assert_allclose(hub.rotation[i], hub_rotation(state.hub_angle[i])[0])
+    for k, beam in enumerate(state.beams):
+        tip = bodies[1 + k]
+        R = tip.rotation[i]
+        np.testing.assert_allclose(R.T @ R, np.eye(3), atol=1e-12)
+        assert np.linalg.det(R) == pytest.approx(1.0)
+        np.testing.assert_allclose(R[:, 1], beam.m[i, -1])
+        np.testing.assert_allclose(tip.position[i], beam.centre_line[i, -1] + R @ beam.tip_body["offset"], atol=1e-14)
+        vertices, _ = tip.surface(i)
+        np.testing.assert_allclose(np.linalg.norm(vertices - tip.position[i], axis=1),
+                                   np.linalg.norm(tip.half_size), rtol=1e-12)
+
+
+def test_a_tip_body_is_drawn_as_the_box_of_its_mass_and_inertia():
+    """The spacecraft's 1 kg tip bodies are 100 x 100 x 50 mm boxes (the example's comment):
+    their inertias m (b^2 + c^2) / 12, ... give those sides back; a point mass a cube."""
+    from hubbeam.io.bodies import box_of_inertia
+
+    np.testing.assert_allclose(2 * box_of_inertia(1.0, [1.0417e-3, 1.0417e-3, 1.6667e-3], 0.4), [0.1, 0.1, 0.05],
+                               rtol=1e-3)
+    np.testing.assert_allclose(box_of_inertia(0.5, [0.0, 0.0, 0.0], 0.04), [0.02, 0.02, 0.02])
 
 
 def test_a_series_name_is_a_safe_file_name(state):

@@ -72,6 +72,17 @@ def test_free_hub_leaves_out_one_rigid_mode():
     assert modes.frequencies_hz[0] >= fixed.frequencies_hz[0] * (1 - 1e-9)
 
 
+def test_a_rigid_frequency_is_never_negative():
+    """exp1 without gravity: the straight beam's rigid rotation has omega^2 = -3.4e-8 (1/s^2)
+    by round-off; it was reported as -2.95e-5 Hz. It is sqrt(|omega^2|) / 2 pi."""
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+
+    result = api.modes(load_example("exp1", ["environment.gravity=[0.0, 0.0, 0.0]"]))
+    rigid = result.to_dict()["rigid_frequencies_hz"]
+    assert result.modes.rigid_modes == 1 and 0.0 <= rigid[0] < 1e-3
+
+
 def test_rigid_mode_frequency_about_a_bent_state_vanishes_with_refinement():
     sec = plate()
     out = []

@@ -53,20 +53,15 @@ import numpy as np
 from scipy.linalg import null_space
 
 from hubbeam.errors import ScenarioError
-from hubbeam.numerics import central_difference_jacobian, relative_steps
-from hubbeam.sensors import UNITS, measure
+from hubbeam.analysis import reduction
+from hubbeam.analysis.output_jacobian import linear_outputs, output_jacobians
+from hubbeam.analysis.reduction import RIGID_TOL_HZ
 from hubbeam.solvers.modal import rotating_matrices
 from hubbeam.solvers.static import StaticSolution
 from hubbeam.system.multibody import MultibodySystem
 
-#: sensor kinds that give no linear output (a norm, zero to first order)
-NOT_LINEARISED = ("constraint_violation",)
-#: parts of a multi-part sensor that are work integrals over a run, not functions of the state
-WORK_PARTS = ("dissipated", "drive")
 #: tip force components (global directions)
 AXES = ("x", "y", "z")
-#: modes below this frequency are rigid (the rule of :func:`hubbeam.solvers.modal.modal_analysis`)
-RIGID_TOL_HZ = 1e-3
 
 
 @dataclass
@@ -87,7 +82,12 @@ class LinearModel:
     """x' = A x + B u, y = C x + D u: deviations from the equilibrium (SI units; the states
     [y, y'] are the coordinates of the constraint null-space basis ``basis``: the system's
     coordinates are equilibrium.x + basis @ y). ``output_offsets`` are the outputs' values at
-    the equilibrium; ``rigid_modes`` how many rigid-body modes the modal summary leaves out."""
+    the equilibrium; ``rigid_modes`` how many rigid-body modes the modal summary leaves out.
+
+    A reduced model (:meth:`reduced`, :meth:`balanced`) has its own states; ``projection``
+    maps them to the full model's ([y, y'] ~ projection @ states, the residualised modes'
+    steady part left out) and ``reduction`` says what was done (method, sizes, the Hankel
+    singular values and the H-infinity error bound of a balanced reduction)."""
 
     A: np.ndarray
     B: np.ndarray
@@ -105,6 +105,8 @@ class LinearModel:
     rigid_modes: int = 0
     left_out: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    projection: np.ndarray | None = None
+    reduction: dict = field(default_factory=dict)
 
     def to_control(self):
         """A ``control.StateSpace`` with the state, input and output names (python-control,
@@ -117,12 +119,20 @@ class LinearModel:
         return control.ss(self.A, self.B, self.C, self.D, states=self.states, inputs=self.inputs,
                           outputs=self.outputs, name="hubbeam")
 
+    def eigenvalues(self) -> np.ndarray:
+        """The eigenvalues of A (1/s), computed once."""
+        cached = getattr(self, "_eigenvalues", None)
+        if cached is None or cached.size != self.A.shape[0]:
+            cached = np.linalg.eigvals(self.A) if self.A.size else np.zeros(0, dtype=complex)
+            self._eigenvalues = cached
+        return cached
+
     def modal_summary(self) -> tuple[np.ndarray, np.ndarray]:
         """(frequencies Hz, damping ratios) of the eigenvalues lambda of A with Im > 0:
         |lambda| / 2 pi and -Re lambda / |lambda|, ascending in frequency. Rigid-body modes are
         left out as ``modes`` does: the ``rigid_modes`` eigenvalue pairs nearest zero (the free
         hub's rotation) and any mode below 1e-3 Hz."""
-        s = np.linalg.eigvals(self.A)
+        s = self.eigenvalues()
         keep = np.ones(s.size, dtype=bool)
         keep[np.argsort(np.abs(s))[: 2 * self.rigid_modes]] = False
         keep &= np.abs(s) / (2.0 * np.pi) >= RIGID_TOL_HZ
@@ -130,49 +140,124 @@ class LinearModel:
         s = s[np.argsort(np.abs(s))]
         return np.abs(s) / (2.0 * np.pi), -s.real / np.abs(s)
 
+    def dc_gain(self) -> np.ndarray:
+        """D - C A^-1 B (outputs x inputs): the steady response to a constant input; with rigid
+        modes, that of every other mode (:func:`hubbeam.analysis.reduction.dc_gain`: a free
+        hub without a torque law never settles under a constant torque)."""
+        return reduction.dc_gain(self.A, self.B, self.C, self.D, self.rigid_modes)
+
+    def frequency_response(self, freq_hz) -> np.ndarray:
+        """G(i 2 pi f) (frequencies, outputs, inputs), complex, at the frequencies (Hz)
+        (:func:`hubbeam.analysis.reduction.frequency_response`: one Schur form, then a
+        triangular solve per frequency)."""
+        return reduction.frequency_response(self.A, self.B, self.C, self.D, freq_hz)
+
+    def select(self, outputs=None, inputs=None) -> "LinearModel":
+        """The same model with only the named outputs and inputs (in the order given; None:
+        all). ValueError naming an unknown one."""
+        def pick(names, known, what):
+            if names is None:
+                return list(range(len(known)))
+            if isinstance(names, str):
+                names = [names]
+            missing = [n for n in names if n not in known]
+            if missing:
+                raise ValueError(f"{what}: unknown {missing[0]!r} (this model has: {', '.join(known)})")
+            return [known.index(n) for n in names]
+
+        rows, cols = pick(outputs, self.outputs, "outputs"), pick(inputs, self.inputs, "inputs")
+        return replace(self, B=self.B[:, cols], C=self.C[rows], D=self.D[np.ix_(rows, cols)],
+                       inputs=[self.inputs[i] for i in cols], outputs=[self.outputs[i] for i in rows],
+                       input_units=[self.input_units[i] for i in cols],
+                       output_units=[self.output_units[i] for i in rows], output_offsets=self.output_offsets[rows],
+                       notes=list(self.notes))
+
+    def _with(self, reduced: "reduction.Reduced") -> "LinearModel":
+        projection = reduced.V if self.projection is None else self.projection @ reduced.V
+        info = dict(reduced.info)
+        if self.reduction:
+            info["full_states"] = self.reduction.get("full_states", info["full_states"])
+        return replace(self, A=reduced.A, B=reduced.B, C=reduced.C, D=reduced.D, states=list(reduced.states),
+                       projection=projection, reduction=info, notes=list(self.notes) + list(reduced.notes))
+
+    def reduced(self, modes: int | None = None, fmax: float | None = None) -> "LinearModel":
+        """Modal truncation (:func:`hubbeam.analysis.reduction.modal_reduction`): rigid and
+        unstable modes kept as they are, of the other modes the ``modes`` lowest (a complex
+        pair is one mode) and none above ``fmax`` Hz, the rest residualised (the DC gain kept);
+        states ``modeJ_re``, ``modeJ_im`` (``modeJ`` for a real eigenvalue) and ``rigidK``."""
+        if modes is not None and (isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 0):
+            raise ValueError(f"modes: a whole number >= 0 (got {modes!r})")
+        _check_fmax(fmax)
+        return self._with(reduction.modal_reduction(self.A, self.B, self.C, self.D, modes, fmax, self.rigid_modes))
+
+    def balanced(self, order: int, fmax: float | None = None, match: str = "dc") -> "LinearModel":
+        """Balanced reduction of the stable part to ``order`` states
+        (:func:`hubbeam.analysis.reduction.balanced_reduction`); ``reduction`` then holds the
+        ``hankel_singular_values`` and the ``error_bound`` (twice the discarded ones' sum)."""
+        if isinstance(order, bool) or not isinstance(order, (int, np.integer)) or order < 1:
+            raise ValueError(f"order: a whole number >= 1 (got {order!r})")
+        _check_fmax(fmax)
+        return self._with(reduction.balanced_reduction(self.A, self.B, self.C, self.D, int(order), fmax,
+                                                       self.rigid_modes, match))
+
     def to_dict(self) -> dict:
         f, zeta = self.modal_summary()
-        return {"states": len(self.states), "inputs": list(self.inputs), "outputs": list(self.outputs),
-                "frequencies_hz": f.tolist(), "damping_ratios": zeta.tolist(), "about": self.about}
+        out = {"states": len(self.states), "inputs": list(self.inputs), "outputs": list(self.outputs),
+               "frequencies_hz": f.tolist(), "damping_ratios": zeta.tolist(), "about": self.about}
+        if self.reduction:
+            info = dict(self.reduction)
+            sigma = info.pop("hankel_singular_values", None)
+            out["reduction"] = info
+            if sigma is not None:
+                out["hankel_singular_values"] = sigma
+        return out
 
     def to_dataset(self, scenario=None):
         """A, B, C, D with named dimensions (``state_rate`` x ``state``, ``state_rate`` x ``input``,
         ``output`` x ``state``, ``output`` x ``input``), the basis and the equilibrium, as an
-        xarray.Dataset (A[i, j] = d(rate of state i) / d(state j))."""
+        xarray.Dataset (A[i, j] = d(rate of state i) / d(state j)). A reduced model adds
+        ``projection`` (``full_state`` x ``state``) and, balanced, ``hankel_singular_value``."""
         import xarray as xr
 
-        n = len(self.states) // 2
+        n = self.basis.shape[1]
         data = {
             "A": (("state_rate", "state"), self.A, {"units": "1/s", "long_name": "state matrix"}),
             "B": (("state_rate", "input"), self.B, {"long_name": "input matrix"}),
             "C": (("output", "state"), self.C, {"long_name": "output matrix"}),
             "D": (("output", "input"), self.D, {"long_name": "feedthrough matrix"}),
             "basis": (("coordinate", "reduced"), self.basis,
-                      {"long_name": "x = equilibrium_x + basis @ y (the first half of the states)"}),
+                      {"long_name": "x = equilibrium_x + basis @ y (y: the first half of the full model's states)"}),
             "equilibrium_x": (("coordinate",), self.equilibrium.x, {"long_name": "coordinates at the equilibrium"}),
             "output_offset": (("output",), self.output_offsets, {"long_name": "outputs at the equilibrium"}),
         }
+        full_states = [f"y{i + 1}" for i in range(n)] + [f"y{i + 1}_rate" for i in range(n)]
         coords = {"state": self.states, "state_rate": self.states, "input": self.inputs, "output": self.outputs,
-                  "reduced": self.states[:n], "coordinate": np.arange(self.basis.shape[0]),
+                  "reduced": full_states[:n], "coordinate": np.arange(self.basis.shape[0]),
                   "input_units": ("input", self.input_units), "output_units": ("output", self.output_units)}
+        if self.projection is not None:
+            data["projection"] = (("full_state", "state"), self.projection,
+                                  {"long_name": "the full model's states [y, y'] ~ projection @ states (the "
+                                                "residualised modes' steady part left out)"})
+            coords["full_state"] = full_states
+        sigma = self.reduction.get("hankel_singular_values")
+        if sigma is not None:
+            data["hankel_singular_value"] = (("hankel",), np.asarray(sigma, dtype=float),
+                                             {"long_name": "Hankel singular values of the stable part, descending"})
         ds = xr.Dataset(data, coords=coords)
         ds.attrs.update({"about": self.about, "omega": float(self.equilibrium.omega),
                          "left_out": json.dumps(self.left_out), "notes": json.dumps(self.notes)})
+        if self.reduction:
+            ds.attrs["reduction"] = json.dumps({k: v for k, v in self.reduction.items() if k != "hankel_singular_values"})
         if scenario is not None:
             ds.attrs["name"] = scenario.name
             ds.attrs["scenario"] = json.dumps(scenario.to_dict())
         return ds
 
 
-@dataclass
-class _Probe:
-    """The state a sensor reads (what :func:`hubbeam.sensors.measure` needs of an integrator state)."""
-
-    t: float
-    x: np.ndarray
-    v: np.ndarray
-    lam: np.ndarray
-    chart: np.ndarray
+def _check_fmax(fmax) -> None:
+    if fmax is not None and (isinstance(fmax, bool) or not isinstance(fmax, (int, float, np.floating))
+                             or not np.isfinite(fmax) or fmax <= 0):
+        raise ValueError(f"fmax: a frequency > 0 in Hz (got {fmax!r})")
 
 
 #: the inputs of a free base: its attitude torque's components, base axes (N m)
@@ -261,32 +346,8 @@ def rest_matrices(system: MultibodySystem, x, lam_held, F):
     return M, C, K, A
 
 
-def _output_specs(sensors, system):
-    """[(sensor, part or None, name, units)] of the linearised outputs, and the names left out."""
-    specs, left_out = [], []
-    probe = None
-    for s in sensors:
-        if s.kind in NOT_LINEARISED:
-            left_out.append(s.name)
-            continue
-        if probe is None:
-            x, F = system.initial_state(0.0)
-            probe = _Probe(0.0, x, np.zeros(system.nx), np.zeros(system.layout.n_lambda), F)
-        value = measure(s, system, probe, {"dissipated": 0.0, "drive": 0.0})
-        if isinstance(value, dict):
-            for part in value:
-                name = f"{s.name}_{part}"
-                if part in WORK_PARTS:
-                    left_out.append(name)
-                else:
-                    specs.append((s, part, name, UNITS[s.kind]))
-        else:
-            specs.append((s, None, s.name, UNITS[s.kind]))
-    return specs, left_out
-
-
 def linearise(system: MultibodySystem, equilibrium: StaticSolution, omega: float = 0.0, inputs=("hub_torque",),
-              sensors=(), about: str = "") -> LinearModel:
+              sensors=(), about: str = "", progress=None) -> LinearModel:
     """The state space of ``system`` about ``equilibrium`` (a ``solve_static`` solution; with
     ``spin=omega`` for a hub driven at the constant speed omega rad/s, then the system's hub is
     held). ``inputs``: names (see :func:`input_columns`); ``sensors``: a scenario's sensors."""
@@ -316,30 +377,12 @@ def linearise(system: MultibodySystem, equilibrium: StaticSolution, omega: float
     lam_v = -P @ (M @ N @ acc_v + C @ N)
     lam_u = P @ (Bx - M @ N @ acc_u)
 
-    specs, left_out = _output_specs(sensors, system)
-
-    def outputs(y, yd, dlam):
-        x = x0 + N @ y
-        v = (system.steady_rotation_rates(x, F, omega)[0] if omega else np.zeros(system.nx)) + N @ yd
-        probe = _Probe(0.0, x, v, lam + dlam, F)
-        out, cache = np.empty(len(specs)), {}
-        for i, (s, part, _, _) in enumerate(specs):
-            if id(s) not in cache:
-                cache[id(s)] = measure(s, system, probe, {"dissipated": 0.0, "drive": 0.0})
-            out[i] = cache[id(s)] if part is None else cache[id(s)][part]
-        return out
-
-    zy, zl = np.zeros(n), np.zeros(lam.size)
-    offsets = outputs(zy, zy, zl)
-    h = 1e-6 * np.ones(n)
-    Hy = central_difference_jacobian(lambda y: outputs(y, zy, zl), zy, h).reshape(len(specs), n)
-    Hv = central_difference_jacobian(lambda yd: outputs(zy, yd, zl), zy, h).reshape(len(specs), n)
-    Hl = central_difference_jacobian(lambda d: outputs(zy, zy, d), zl, relative_steps(lam, 1e-6)).reshape(
-        len(specs), lam.size)
-    C_ss = np.hstack([Hy + Hl @ lam_y, Hv + Hl @ lam_v])
+    outputs, left_out = linear_outputs(sensors, system, x0, F)
+    offsets, Hx, Hv, Hl = output_jacobians(outputs, system, x0, lam, F, omega, progress)
+    C_ss = np.hstack([Hx @ N + Hl @ lam_y, Hv @ N + Hl @ lam_v])
     D_ss = Hl @ lam_u
     states = [f"y{i + 1}" for i in range(n)] + [f"y{i + 1}_rate" for i in range(n)]
     rigid = int(not held and system.hub.torque(0.0, x0[system.theta_index], 0.0)[1] == 0.0)
-    return LinearModel(A_ss, B_ss, C_ss, D_ss, states, in_names, [sp[2] for sp in specs], in_units,
-                       [sp[3] for sp in specs], N, Equilibrium(x0, lam, F, float(omega), v0), offsets, about,
+    return LinearModel(A_ss, B_ss, C_ss, D_ss, states, in_names, [name for o in outputs for name in o.names], in_units,
+                       [u for o in outputs for u in o.units], N, Equilibrium(x0, lam, F, float(omega), v0), offsets, about,
                        rigid, left_out)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 
-from hubbeam.cli.common import check_targets, numerical_failure, say, write_jobs
+from hubbeam.cli.common import check_targets, numerical_failure, progress_bar, say, write_jobs
 
 def print_static(d: dict) -> None:
     t = d["tip_displacement"]
@@ -34,8 +34,9 @@ def cmd_static(args, scenario) -> dict:
 
         x0, F0 = result.system.initial_state(0.0)
         sol = result.solution
+        title, subtitle = plots.run_title(f"{scenario.name}: static equilibrium", args.overrides)
         write_jobs([(targets[0], lambda p: plots.plot_deformed(result.system, x0, F0, sol.x, sol.chart, p,
-                                                          title=f"{scenario.name}: static equilibrium"))])
+                                                               title=title, subtitle=subtitle))])
     if not args.json:
         print_static(d)
     return d
@@ -63,7 +64,8 @@ def cmd_modes(args, scenario) -> dict:
         from hubbeam import plots
 
         half = [0.5 * max(b.section.width, b.section.thickness) for b in result.static.system.beams]
-        plots.plot_mode_shapes(ds, path, half, title=f"{scenario.name}: mode shapes")
+        title, subtitle = plots.run_title(f"{scenario.name}: mode shapes", args.overrides)
+        plots.plot_mode_shapes(ds, path, half, title=title, subtitle=subtitle)
 
     def shapes(path):
         from hubbeam.io.results import write_netcdf
@@ -95,26 +97,53 @@ def cmd_linearize(args, scenario) -> dict:
     if args.open_loop and scenario.hub.torque_law is None and not motors:
         raise ScenarioError(f"--open-loop: hub.motion = {scenario.hub.motion!r} has no torque law to leave out (only a "
                             "free hub has one) and no joint has a motor ([beams.joint.torque])")
+    for option, value in (("--reduce", args.reduce), ("--balanced", args.balanced)):
+        if value is not None and value < 1:
+            raise ScenarioError(f"{option}: must be >= 1 (got {value})")
+    if args.fmax is not None and not (np.isfinite(args.fmax) and args.fmax > 0):
+        raise ScenarioError(f"--fmax: a frequency > 0 in Hz (got {args.fmax:g})")
     inputs = None if args.inputs is None else [i.strip() for i in args.inputs.split(",")]
+    outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",")]
+    bar = {}
+
+    def progress(done, total):  # the output derivatives: a bar (or a line every 10 s) once the total is known
+        if "update" not in bar:
+            bar["update"], bar["finish"] = progress_bar(total, "linearize: output derivatives", "evaluations")
+        bar["update"](done)
+
     try:
-        model = api.linearize(scenario, inputs, open_loop=args.open_loop)
+        model = api.linearize(scenario, inputs, open_loop=args.open_loop, outputs=outputs, reduce=args.reduce,
+                              balanced=args.balanced, fmax=args.fmax, progress=progress)
     except ScenarioError as exc:
-        raise ScenarioError(f"--{exc}" if str(exc).startswith("inputs:") else str(exc)) from None
+        text = str(exc)
+        for key in ("inputs", "outputs", "reduce", "balanced", "fmax"):
+            if text.startswith(f"{key}:"):
+                text = f"--{text}"
+        raise ScenarioError(text) from None
     except (np.linalg.LinAlgError, ValueError) as exc:
         raise numerical_failure("linearisation", exc) from exc
+    finally:
+        if "finish" in bar:
+            bar["finish"]()
     if targets:
         from hubbeam.io.results import write_netcdf
 
         write_jobs([(targets[0], lambda p: write_netcdf(model.to_dataset(scenario), p))])
     d = model.to_dict()
     if not args.json:
-        print(f"state space about the {d['about']}: {d['states']} states, inputs {', '.join(d['inputs'])}, "
+        reduced = d.get("reduction")
+        size = (f"{d['states']} states (reduced from {reduced['full_states']}, {reduced['method']})" if reduced
+                else f"{d['states']} states")
+        print(f"state space about the {d['about']}: {size}, inputs {', '.join(d['inputs'])}, "
               f"outputs {', '.join(d['outputs']) or '(none: the scenario has no sensors)'}")
         for f, z in list(zip(d["frequencies_hz"], d["damping_ratios"]))[:10]:
-            print(f"  {f:12.6f} Hz  damping ratio {z:.4g}")
+            print(f"  {f:12.6f} Hz  damping ratio {z or 0.0:.4g}")  # never "-0"
+        if "hankel_singular_values" in d:
+            sigma = d["hankel_singular_values"]
+            print(f"  Hankel singular values: {', '.join(f'{v:.4g}' for v in sigma[:8])}"
+                  f"{f', ... ({len(sigma)})' if len(sigma) > 8 else ''}; H-infinity error bound "
+                  f"{reduced['error_bound']:.4g}")
     left_out = [f"outputs left out (not functions of the state, or zero to first order): {', '.join(model.left_out)}"]
     for note in model.notes + (left_out if model.left_out else []):
         say(f"hubbeam: note: {note}")
     return d
-
-

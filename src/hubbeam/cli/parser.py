@@ -55,6 +55,13 @@ def build_parser() -> argparse.ArgumentParser:
                                       "joint motor's torque)")
     lin.add_argument("--open-loop", action="store_true", help="leave the scenario's torque laws out (the hub's and "
                                                              "the joint motors')")
+    lin.add_argument("--outputs", metavar="A,B,...", help="only these outputs (sensor columns), in this order")
+    size = lin.add_mutually_exclusive_group()
+    size.add_argument("--reduce", type=int, metavar="N", help="modal truncation to the N lowest modes, the others "
+                                                               "residualised (DC gain kept; rigid, unstable modes kept)")
+    size.add_argument("--balanced", type=int, metavar="N", help="balanced reduction of the stable part to N states "
+                                                                 "(Hankel singular values in the JSON)")
+    lin.add_argument("--fmax", type=float, metavar="F", help="drop (residualise) the modes above F Hz")
     camp = scenario_cmd("campbell", "natural frequencies about the steadily rotating state against hub speed")
     camp.add_argument("--omega", required=True, metavar="START:STOP:N", help="hub speeds (rad/s)")
     camp.add_argument("--count", type=int, default=6, help="modes per speed (default 6)")
@@ -95,6 +102,10 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--color", default="strain", help="strain (upper surface, default), deflection or none")
     an.add_argument("--stride", type=int, default=1, help="draw every N-th stored output time (default 1)")
     an.add_argument("--fps", type=float, default=20.0, help="frames per second of the movie (default 20)")
+    an.add_argument("--scale", type=float, default=1.0, metavar="K",
+                    help="draw the deflections K times larger (from the undeformed beam turned with the hub; default 1)")
+    an.add_argument("--view", default="iso", metavar="VIEW",
+                    help="camera: iso (default), top (down the hub axis), front, side, or ELEVATION,AZIMUTH in degrees")
     an.add_argument("--json", action="store_true", help="print one JSON object on stdout")
     vt = sub.add_parser("vtk", help="a run stored with --state as a ParaView time series (.pvd and .vtu files)")
     vt.add_argument("result", help="NetCDF file of hubbeam run -o OUT.nc --state")

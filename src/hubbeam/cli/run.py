@@ -52,7 +52,7 @@ def cmd_run(args, scenario) -> dict:
     for event in getattr(traj, "latches", None) or []:
         say(f"hubbeam: latch: beam {event.beam!r} locked at t = {event.time:.6g} s (angle {event.to_dict()['angle_deg']:.4g}"
             f" deg): impulse {event.impulse:+.4g} N m s, {event.energy:.4g} J dissipated")
-    finish_run(targets, scenario, traj, failure, plot_vars)
+    finish_run(targets, scenario, traj, failure, plot_vars, args.overrides)
     final = {name: values[-1] for name, values in traj.records.items()}
     summary = {"steps": traj.steps, "newton_iterations": traj.newton_iterations,
                "newton_iterations_per_step": traj.newton_iterations / max(traj.steps, 1),
@@ -92,9 +92,10 @@ def plot_variables(text, plot, scenario) -> list[str] | None:
     return chosen
 
 
-def finish_run(targets, scenario, traj, failure, plot_vars=None) -> None:
+def finish_run(targets, scenario, traj, failure, plot_vars=None, overrides=()) -> None:
     """Write a run's results (complete or partial) and raise its failure with one line that
-    says how far it got and what was written."""
+    says how far it got and what was written; the figure's title names the scenario and its
+    ``overrides`` (--set), and what it leaves out is said on stderr."""
     from hubbeam import interrupt
     from hubbeam.interrupt import Interrupted
     from hubbeam.io import results
@@ -115,11 +116,16 @@ def finish_run(targets, scenario, traj, failure, plot_vars=None) -> None:
 
     def plot(path):
         from hubbeam import plots
+        from hubbeam.io.results import time_series
 
-        chosen, title = plot_vars, scenario.name + (" (partial)" if status else "")
+        chosen, note = plot_vars, "partial" if status else ""
         if chosen is None and not plots.timeseries_panels(dataset(), None):  # all zero: that is the result to draw
-            chosen, title = list(dataset().data_vars), title + ": every variable is zero throughout"
-        plots.plot_timeseries(dataset(), path, title=title, variables=chosen)
+            chosen, note = time_series(dataset()), ", ".join(filter(None, [note, "every variable is zero throughout"]))
+        title, subtitle = plots.run_title(scenario.name, overrides, note)
+        left_out = plots.plot_timeseries(dataset(), path, title=title, variables=chosen, subtitle=subtitle)
+        for why in dict.fromkeys(left_out.values()):
+            say(f"hubbeam: note: --plot: not drawn ({why}; --plot-vars chooses): "
+                + ", ".join(n for n, w in left_out.items() if w == why))
 
     writers = {"-o": lambda p: results.write_trajectory_netcdf(traj, scenario, p, status),
                "--csv": lambda p: results.write_csv(dataset(), p), "--plot": plot}

@@ -149,7 +149,8 @@ def cmd_sweep(args, scenario) -> dict:
 
         if not [n for n in ds.data_vars if n not in ("failed", "message") and ds[n].dtype.kind == "f"]:
             raise ValueError("nothing to plot: no point produced a result")
-        plots.plot_sweep(ds, path, title=f"sweep of {scenario.name} over {', '.join(varied)}")
+        title, subtitle = plots.run_title(f"{scenario.name}: sweep over {', '.join(varied)}", args.overrides)
+        plots.plot_sweep(ds, path, title=title, subtitle=subtitle)
 
     jobs = [(t, data if t.option == "-o" else figure) for t in targets]
     if partial is not None:
@@ -215,8 +216,10 @@ def cmd_identify(args, scenario) -> dict:
     if targets:
         from hubbeam import plots
 
+        title, subtitle = plots.run_title(f"{scenario.name}: fit of {', '.join(args.fit)}", args.overrides)
+        kind = next((s.kind for s in scenario.sensors if args.signal in s.columns), None)
         write_jobs([(targets[0], lambda p: plots.plot_fit(fit.times, fit.measured, fit.fitted, p, args.signal,
-                                                      title=f"{scenario.name}: fit of {', '.join(args.fit)}"))])
+                                                          title=title, kind=kind, subtitle=subtitle))])
     if not args.json:
         for name, p in d["parameters"].items():
             ci = "n/a" if p["ci95"] is None else f"{p['ci95']:.3g}"
@@ -280,7 +283,8 @@ def cmd_applicability(args) -> dict:
     def figure(path):
         from hubbeam import plots
 
-        plots.plot_applicability(ds, path, title=f"FFR against ANCF: {scenario.name}")
+        title, subtitle = plots.run_title(f"FFR against ANCF: {scenario.name}", args.overrides)
+        plots.plot_applicability(ds, path, title=title, subtitle=subtitle)
 
     def table(path):
         Path(path).write_text(text, encoding="utf-8")

@@ -62,8 +62,10 @@ def state_table(trajectory):
     unit vectors along the width and the thickness, global) and ``state_NAME_surface_strain``
     (time, station; the axial strain on the upper surface z = +h/2). File attributes:
     ``state_beams`` (JSON list of the beam names in order), ``state_formulations``,
-    ``state_hub_radius`` (m), ``state_points_per_element`` and, with joints, ``state_joints`` (JSON
-    list of the beams whose root is a hinge: their first station)."""
+    ``state_hub_radius`` (m), ``state_points_per_element``, ``state_tip_bodies`` (JSON list,
+    per beam: null or its tip body's mass (kg), inertia (kg m^2) and offset (m, tip section
+    frame)) and, with joints, ``state_joints`` (JSON list of the beams whose root is a hinge: their
+    first station)."""
     rec = getattr(trajectory, "recorder", None)
     if rec is None:
         return {}, {}, {}
@@ -108,7 +110,8 @@ def state_table(trajectory):
                                                {"units": "1", "long_name": "axial strain on the upper surface z = +h/2",
                                                 **beam})
     attrs = {"state_beams": json.dumps(list(rec.names)), "state_formulations": json.dumps(list(rec.formulations)),
-             "state_hub_radius": float(rec.hub_radius), "state_points_per_element": int(rec.points_per_element)}
+             "state_hub_radius": float(rec.hub_radius), "state_points_per_element": int(rec.points_per_element),
+             "state_tip_bodies": json.dumps(list(getattr(rec, "tip_bodies", ())))}
     if getattr(rec, "joints", ()):  # the beams whose root is a hinge (their first station)
         attrs["state_joints"] = json.dumps(list(rec.joints))
     return dims, out, attrs

@@ -35,6 +35,9 @@ class BeamTrack:
     m: np.ndarray  # (nt, n, 3) unit vectors along the width
     n: np.ndarray  # (nt, n, 3) unit vectors along the thickness
     surface_strain: np.ndarray  # (nt, n) axial strain on the upper surface
+    #: the tip body ({"mass", "inertia", "offset"}: kg, kg m^2 about the tip section axes, m in
+    #: them) or None (also for a file written before tip bodies were recorded)
+    tip_body: dict | None = None
 
     def displacement(self, hub_origin: np.ndarray, hub_axes: np.ndarray, times=slice(None)) -> np.ndarray:
         """(nt, n, 3) m at the output ``times`` (a slice or index array; default all) of the hub
@@ -94,6 +97,19 @@ def _text(value) -> str:
     return value.decode() if isinstance(value, bytes) else str(value)
 
 
+def _tip_body(value) -> dict | None:
+    """A recorded tip body as a dict of finite numbers (mass, 3 inertias, 3 offsets), or
+    None; ValueError for anything else."""
+    if value is None:
+        return None
+    body = {"mass": float(value["mass"]), "inertia": [float(x) for x in value["inertia"]],
+            "offset": [float(x) for x in value["offset"]]}
+    if len(body["inertia"]) != 3 or len(body["offset"]) != 3 or not np.all(np.isfinite(
+            [body["mass"], *body["inertia"], *body["offset"]])):
+        raise ValueError(f"a tip body is not three inertias and three offsets of finite numbers ({value!r:.80})")
+    return body
+
+
 def read_state(path, option: str = "input") -> RunState:
     """The recorded state of a run's NetCDF file; ScenarioError (one line naming the file) when
     it is not a readable NetCDF file or has no stored state."""
@@ -119,11 +135,13 @@ def read_state(path, option: str = "input") -> RunState:
             names = json.loads(_text(f.attrs["state_beams"]))
             formulations = json.loads(_text(f.attrs["state_formulations"]))
             v = f.variables
+            tips = json.loads(_text(f.attrs["state_tip_bodies"])) if "state_tip_bodies" in f.attrs else []
+            tips = [_tip_body(t) for t in tips] if len(tips) == len(names) else [None] * len(names)
             beams = tuple(BeamTrack(
                 name, form, v[f"state_{name}_station"][...], v[f"state_{name}_width"][...],
                 v[f"state_{name}_thickness"][...], v[f"state_{name}_reference"][...],
                 v[f"state_{name}_centre_line"][...], v[f"state_{name}_m"][...], v[f"state_{name}_n"][...],
-                v[f"state_{name}_surface_strain"][...]) for name, form in zip(names, formulations))
+                v[f"state_{name}_surface_strain"][...], tip) for name, form, tip in zip(names, formulations, tips))
             partial = None
             if int(f.attrs.get("partial", 0)):
                 reached, t_end = f.attrs.get("time_reached"), f.attrs.get("t_end")

@@ -11,6 +11,14 @@ station); cell data ``beam`` (the beam's index, 0-based); field data ``TimeValue
 (a beam's root on a revolute joint) is one more point at the root's centre with a vertex cell
 (its ``beam``, the child's index), so that ParaView draws it as a joint (Glyph it).
 ``NAME.pvd`` (a ParaView Data collection) lists the files with their times.
+
+The rigid bodies (:mod:`hubbeam.io.bodies`: the hub and every tip body) are a second block of
+the series: ``NAME_bodies_NNNNN.vtu`` at each output time, listed in the .pvd as part 1 (the
+beams are part 0), each body its glyph's surface (quads; the hub's disc caps as polygons)
+and its three axes (lines from its origin, 1.5 times its largest half side long). Cell data
+``body`` (the body's index: 0 the hub, then the tip bodies in the beams' order, named in
+the .pvd's comment) and ``axis`` (-1 on the surface, 0, 1, 2 on
+the lines along the body's first, second, third axis).
 """
 
 from __future__ import annotations
@@ -20,6 +28,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from hubbeam.io.bodies import rigid_bodies
 from hubbeam.io.state import RunState
 
 #: digits of the output-time index in the .vtu file names
@@ -36,6 +45,46 @@ def file_names(state: RunState) -> tuple[str, list[str]]:
     """(the .pvd name, the .vtu names in time order) of a run's series."""
     stem = series_name(state)
     return f"{stem}.pvd", [f"{stem}_{i:0{INDEX_DIGITS}d}.vtu" for i in range(state.times.size)]
+
+
+def body_file_names(state: RunState) -> list[str]:
+    """The rigid bodies' .vtu names in time order (see the module doc)."""
+    stem = series_name(state)
+    return [f"{stem}_bodies_{i:0{INDEX_DIGITS}d}.vtu" for i in range(state.times.size)]
+
+
+def bodies_mesh(bodies, i: int, time: float):
+    """The meshio.Mesh of the rigid bodies (:func:`hubbeam.io.bodies.rigid_bodies`) at output
+    time i, ``time`` s (see the module doc)."""
+    import meshio
+
+    points, blocks = [], {}
+    offset = 0
+    for k, body in enumerate(bodies):
+        vertices, faces = body.surface(i)
+        axes = body.axes(i)
+        points += [vertices, axes]
+        for face in faces:
+            kind = {3: "triangle", 4: "quad"}.get(face.size, "polygon")
+            blocks.setdefault(kind, []).append((offset + face, k, -1))
+        base = offset + vertices.shape[0]
+        for a in range(3):
+            blocks.setdefault("line", []).append((np.array([base, base + 1 + a]), k, a))
+        offset += vertices.shape[0] + 4
+    cells, body_ids, axis_ids = [], [], []
+    for kind, rows in blocks.items():
+        if kind == "polygon":  # one block per polygon size (meshio writes them as VTK polygons)
+            for size in sorted({len(r[0]) for r in rows}):
+                same = [r for r in rows if len(r[0]) == size]
+                cells.append(("polygon", np.array([r[0] for r in same])))
+                body_ids.append(np.array([r[1] for r in same], dtype=np.int32))
+                axis_ids.append(np.array([r[2] for r in same], dtype=np.int32))
+            continue
+        cells.append((kind, np.array([r[0] for r in rows])))
+        body_ids.append(np.array([r[1] for r in rows], dtype=np.int32))
+        axis_ids.append(np.array([r[2] for r in rows], dtype=np.int32))
+    return meshio.Mesh(np.concatenate(points), cells, cell_data={"body": body_ids, "axis": axis_ids},
+                       field_data={"TimeValue": np.array([time])})
 
 
 def ribbon_mesh(state: RunState, i: int):
@@ -74,11 +123,20 @@ def ribbon_mesh(state: RunState, i: int):
 
 
 def write_vtu(state: RunState, i: int, path) -> None:
-    """Output time i as a .vtu file (base64 binary, uncompressed), with the field data
+    """Output time i's beams as a .vtu file (base64 binary, uncompressed), with the field data
     ``TimeValue`` (meshio reads field data but does not write it: it is added here)."""
+    _write_mesh(ribbon_mesh(state, i), path)
+
+
+def write_bodies_vtu(state: RunState, bodies, i: int, path) -> None:
+    """Output time i's rigid bodies (``bodies``: :func:`hubbeam.io.bodies.rigid_bodies` of the
+    state, computed once for the series) as a .vtu file (as :func:`write_vtu`)."""
+    _write_mesh(bodies_mesh(bodies, i, float(state.times[i])), path)
+
+
+def _write_mesh(mesh, path) -> None:
     import meshio
 
-    mesh = ribbon_mesh(state, i)
     meshio.write(str(path), mesh, file_format="vtu", binary=True, compression=None)
     with open(path, encoding="ascii") as f:
         text = f.read()
@@ -91,9 +149,13 @@ def write_vtu(state: RunState, i: int, path) -> None:
 
 
 def pvd_text(state: RunState) -> str:
-    """The ParaView collection of a run's .vtu files with their times (s)."""
+    """The ParaView collection of a run's .vtu files with their times (s): the beams (part 0)
+    and the rigid bodies (part 1)."""
     _, vtus = file_names(state)
-    rows = "\n".join(f'    <DataSet timestep="{t!r}" group="" part="0" file={quoteattr(name)}/>'
-                     for t, name in zip(state.times.tolist(), vtus))
+    rows = "\n".join(f'    <DataSet timestep="{t!r}" group="" part="{part}" file={quoteattr(name)}/>'
+                     for t, beams, bodies in zip(state.times.tolist(), vtus, body_file_names(state))
+                     for part, name in ((0, beams), (1, bodies)))
+    names = ", ".join(f"{k} {b.name}" for k, b in enumerate(rigid_bodies(state)))
+    comment = f"  <!-- part 0: the beams; part 1: the rigid bodies (cell data body: {names}) -->\n"
     return ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
-            f"  <Collection>\n{rows}\n  </Collection>\n</VTKFile>\n")
+            f"{comment}  <Collection>\n{rows}\n  </Collection>\n</VTKFile>\n")

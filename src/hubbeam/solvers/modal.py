@@ -10,7 +10,8 @@ beam about j0). For a straight beam its frequency is zero to round-off; about a 
 equilibrium the discrete model gives it a small non-zero frequency, because the twist
 relative to a fixed chart that a rigid rotation needs is not a cubic along a bent element
 (the paper's Cardan-angle element shares this); it vanishes under mesh refinement
-(tests/solvers/test_modal.py) and is reported as ``rigid_frequencies_hz``.
+(tests/solvers/test_modal.py) and is reported as ``rigid_frequencies_hz`` (sqrt(|omega^2|) / 2 pi:
+for a straight beam round-off gives omega^2 either sign, never a negative frequency).
 
 Mode shapes are mass-normalised: with x = x_s + u eta the kinetic energy is eta'^2 / 2 (J),
 u^H M u = 1; a complex shape (the gyroscopic modes about a rotating state) is turned in
@@ -74,7 +75,9 @@ def modal_analysis(
         # it the servo mode, an elastic mode like the others
         rigid[np.argmin(np.abs(f))] = True
     elastic = np.flatnonzero(~rigid)[:count]
-    return Modes(f[elastic], _normalised(N @ V[:, elastic], M), f[rigid])
+    # a rigid mode's omega^2 is zero but for the discretisation (about a bent state) and
+    # round-off, of either sign: its frequency is reported as sqrt(|omega^2|) / 2 pi, never negative
+    return Modes(f[elastic], _normalised(N @ V[:, elastic], M), np.abs(f[rigid]))
 
 
 def rotating_matrices(system: MultibodySystem, x_s, lam, F, omega: float, held: bool = True):

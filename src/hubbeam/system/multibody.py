@@ -680,11 +680,18 @@ class MultibodySystem:
         """Kinetic (rigid bodies and beams, rotary inertia and tip bodies included), strain and
         gravity energy (J); of one beam when ``beam`` is its index (compiled:
         :func:`~hubbeam.system.equations.beam_energies`)."""
+        return energy_sums(*self.energy_table(x, v, F), beam)
+
+    def energy_table(self, x, v, F) -> tuple[np.ndarray, np.ndarray]:
+        """(others (3,), beams (beams, 3)): the (kinetic, strain, gravity) energy (J) of the parts
+        that belong to no beam (the hub's rotor, the base) and of each beam (tip bodies in their
+        beam's row), as :func:`energy_sums` adds them (compiled:
+        :func:`~hubbeam.system.equations.beam_energies`)."""
         hub, beams = np.zeros(3), np.zeros((len(self.beams), 3))
         self.functions.beam_energies(self.model(), np.ascontiguousarray(F, dtype=float),
                                      np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float), beams,
                                      hub)
-        return energy_sums(hub, beams, beam)
+        return hub, beams
 
     def momenta(self, x, v, F) -> dict[str, np.ndarray | float]:
         """The whole system's mass (kg), centre of mass (m), linear momentum (N s) and angular
@@ -744,6 +751,8 @@ class MultibodySystem:
                 e += 0.5 * body.mass * float(v_c @ v_c) + 0.5 * float(w @ R @ body.inertia_matrix() @ R.T @ w)
             total[body.name] = total.get(body.name, 0.0) + e
         total.setdefault("hub", 0.0)
+        if self.base.moves:
+            total.setdefault("base", 0.0)
         for k, part, q, chart in self.parts(x, F):
             axes = self.root_axes(k, x, F)
             frame, rate = self._frame_and_rate(k, x, u, F)

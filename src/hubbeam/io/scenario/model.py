@@ -318,7 +318,8 @@ def _explain(err: dict) -> str:
         expected = str(ctx.get("expected"))
         if len(expected) > 200:  # a long list of choices (the sensor kinds) reads without its quotes
             expected = expected.replace("'", "")
-        return f"must be one of {expected} (got {value!r:.40})"
+        shown = repr(value)
+        return f"must be one of {expected} (got {shown if len(shown) <= 30 else shown[:27] + '...'})"
     if kind in ("too_short", "too_long"):
         n = ctx.get("min_length") if kind == "too_short" else ctx.get("max_length")
         bound = "at least" if kind == "too_short" else "at most"
