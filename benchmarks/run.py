@@ -162,7 +162,8 @@ def joints(reps: int, t_end: float, dt: float) -> None:
             runs[e].append(one_run(e, 6, t_end, dt))
     print(f"\nCase J (joints): exp1, 6 elements, {t_end:g} s at dt = {dt:g} s, clamped against a stiff flap hinge; "
           f"median of {reps}, {os.cpu_count()} cores")
-    print(f"{'engine':18s} {'integration s':>13s} {'Newton/step':>11s} {'LU/step':>8s} {'P1 peak':>11s} {'P1 end':>11s}")
+    print(f"{'engine':18s} {'integration s':>13s} {'Newton/step':>11s} {'LU/step':>8s} {'P1 peak':>11s} "
+          f"{'P1 end':>11s}")
     for e in runs:
         first = runs[e][0]
         print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {first['newton_per_step']:11.2f} "

@@ -99,7 +99,8 @@ def articulated():
     ], OUT / "example_articulated.png", "articulated: four hinged blades spun up to 40 rad/s")
     e = ds["energy_total"] + ds["energy_dissipated"] - ds["energy_drive"]
     print(f"  droop at rest {np.degrees(float(ds['hinge_flap'][0])):.2f} deg, coning at 40 rad/s "
-          f"{np.degrees(float(ds['hinge_flap'][-1])):.2f} deg; largest lag {np.degrees(float(ds['hinge_lag'].max())):.1f} "
+          f"{np.degrees(float(ds['hinge_flap'][-1])):.2f} deg; largest lag "
+          f"{np.degrees(float(ds['hinge_lag'].max())):.1f} "
           f"deg at t = {float(t[int(np.argmax(ds['hinge_lag'].values))]):.2f} s; drive torque peak "
           f"{float(ds['drive_torque'].max()):.2f} N m; total + dissipated - drive within "
           f"{float(abs(e - e[0]).max()):.3g} J of {float(ds['energy_drive'][-1]):.5g} J of drive work")
@@ -144,8 +145,9 @@ def deploy():
     before = ds.time < latch.time
     print(f"  latch at t = {latch.time:.3f} s, angle {np.degrees(latch.angle):.3f} deg, impulse {latch.impulse:.4f} "
           f"N m s, {latch.energy:.4f} J removed of {latch.kinetic_before:.4f} J of kinetic energy; hinge torque "
-          f"{float(ds['hinge_torque'][before][-1]):.3f} N m before, extremes after {float(ds['hinge_torque'].min()):.2f} "
-          f"and {float(ds['hinge_torque'].max()):.2f} N m; bus rate before {1e3 * float(ds['bus_rate_y'][before][-1]):.3f}"
+          f"{float(ds['hinge_torque'][before][-1]):.3f} N m before, extremes after "
+          f"{float(ds['hinge_torque'].min()):.2f} and {float(ds['hinge_torque'].max()):.2f} N m; bus rate before "
+          f"{1e3 * float(ds['bus_rate_y'][before][-1]):.3f}"
           f" mrad/s, at the end {1e3 * float(ds['bus_rate_y'][-1]):.4f} mrad/s")
     H = np.sqrt(ds["H_x"] ** 2 + ds["H_y"] ** 2 + ds["H_z"] ** 2)
     e = ds["energy_total"] + ds["energy_dissipated"] - ds["energy_drive"]

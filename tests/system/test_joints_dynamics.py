@@ -40,7 +40,8 @@ def _arm(forearm="ancf"):
 @pytest.mark.parametrize("forearm", ["ancf", "ffr"])
 def test_an_elbow_motor_on_a_free_hub_keeps_the_angular_momentum_and_the_energy_balance(forearm):
     """The motor's torque acts between the links: the angular momentum about the hub axis stays
-    at zero (to 1e-7 N m s, 1e-6 of the forearm's own, about 0.1 N m s: the integration error); total + dissipated - drive stays at
+    at zero (to 1e-7 N m s, 1e-6 of the forearm's own, about 0.1 N m s: the integration error);
+    total + dissipated - drive stays at
     its start, the drive being the motor's work and dissipated the damper's (full Newton, dt = 1 ms,
     rho_inf = 1: 1e-5 of the motor's work); the hub turns against the elbow."""
     system = _arm(forearm)

@@ -50,8 +50,9 @@ def cmd_run(args, scenario) -> dict:
     finally:
         finish()
     for event in getattr(traj, "latches", None) or []:
-        say(f"hubbeam: latch: beam {event.beam!r} locked at t = {event.time:.6g} s (angle {event.to_dict()['angle_deg']:.4g}"
-            f" deg): impulse {event.impulse:+.4g} N m s, {event.energy:.4g} J dissipated")
+        angle = event.to_dict()["angle_deg"]
+        say(f"hubbeam: latch: beam {event.beam!r} locked at t = {event.time:.6g} s (angle {angle:.4g} deg): impulse "
+            f"{event.impulse:+.4g} N m s, {event.energy:.4g} J dissipated")
     finish_run(targets, scenario, traj, failure, plot_vars, args.overrides)
     final = {name: values[-1] for name, values in traj.records.items()}
     summary = {"steps": traj.steps, "newton_iterations": traj.newton_iterations,

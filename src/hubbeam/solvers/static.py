@@ -10,11 +10,12 @@ within 60 degrees of its singular direction (see :mod:`hubbeam.elements.ancf.cha
 Free joint angles (:mod:`hubbeam.system.joints`) have no stiffness of their own where the
 loads that hold them vanish: a pendulum lying level under gravity, a hinged blade before the
 centrifugal tension builds up. Newton's matrix is then singular along the hinge. For systems
-with joints every iteration adds a relaxation r to the joint angles' diagonal, r = |T| / 0.2
-rad (T the largest torque left unbalanced on a joint angle, plus a floor of 1e-9 of the
-loads' torque), so a joint with no stiffness turns by at most about 0.2 rad per iteration, like
-a damped descent towards a stable equilibrium (the hanging one), while r vanishes with T and
-the last iterations are Newton's. The increment test stays valid: an increment below the
+with joints every iteration adds a relaxation r to each free joint angle's diagonal, r = |T| /
+0.2 rad (T the torque left unbalanced about the hinge: the residual's forces along the rigid
+rotation of the joint's beams about it, plus a floor of 1e-9 of the loads' torque), so a
+joint with no stiffness turns by at most about 0.2 rad per iteration, like a damped descent
+towards a stable equilibrium (the hanging one), while r vanishes with T and the last
+iterations are Newton's. The increment test stays valid: an increment below the
 tolerance with r of that size means T is below the tolerance times the joint's stiffness.
 """
 
@@ -61,6 +62,22 @@ RELAXED_STEP = 0.2
 RELAXATION_FLOOR = 1e-9
 
 
+def unbalanced_hinge_torques(system, x, F, res) -> list[tuple[int, float]]:
+    """(z row, torque T (N m)) of every free joint angle: T = g . r, the static residual's
+    forces r on x along the joint's rigid rotation g (its beam and the beams hanging on it
+    turning with it about the axis: :meth:`MultibodySystem.hinge_generators`), the torque left
+    unbalanced about the hinge whatever the clamps' multipliers are yet."""
+    layout = system.layout_for(True, static=True)
+    free = set(int(z) for z in joint_rows(system))
+    forces = res[layout.z_of_x]
+    out = []
+    for _, c, g in system.hinge_generators(x, F):
+        z = int(layout.z_of_x[c])
+        if z in free:
+            out.append((z, float(g @ forces)))
+    return out
+
+
 def joint_rows(system) -> np.ndarray:
     """The z rows (static layout) of the free joint angles (those not locked by a latch)."""
     layout = system.layout_for(True, static=True)
@@ -88,14 +105,13 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0, r
     scale_x = max(system.length_scale, 1e-12)
     reuse = reuse_state()
     norm = np.inf
-    rows = joint_rows(system) if relax > 0.0 else np.zeros(0, dtype=np.int64)
+    relaxing = relax > 0.0
     for it in range(1, max_iter + 1):
         res, matrix = system.static_equations(x, mu, F, factor, spin=spin)
         norm = np.max(np.abs(res))
-        if rows.size:
-            relaxed = relax + np.max(np.abs(res[rows])) / RELAXED_STEP
-            for z in rows:
-                matrix.add(int(z), int(z), relaxed)
+        if relaxing:
+            for z, torque in unbalanced_hinge_torques(system, x, F, res):
+                matrix.add(z, z, relax + abs(torque) / RELAXED_STEP)
         try:
             dz = matrix.factorise().solve(-res)
         except (LinAlgError, ValueError) as exc:

@@ -145,7 +145,8 @@ def ffr_tip(coordinate: int, length: float, displacement_rows, rotation_rows) ->
     rows = np.vstack([np.asarray(displacement_rows, dtype=float), np.asarray(rotation_rows, dtype=float)])
     if rows.shape[0] != FFR_TIP_VIRTUAL or rows.shape[1] < 1:
         raise ValueError(f"an FFR tip needs 3 + 3 rows over its coordinates (got {rows.shape})")
-    return Link(LinkKind.FFR_TIP, coordinate, length=float(length), rows=tuple(tuple(float(v) for v in r) for r in rows))
+    return Link(LinkKind.FFR_TIP, coordinate, length=float(length),
+                rows=tuple(tuple(float(v) for v in r) for r in rows))
 
 
 @dataclass(frozen=True)
