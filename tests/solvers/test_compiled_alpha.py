@@ -89,3 +89,34 @@ def test_cache_is_cold_reads_numbas_cache_index(tmp_path, monkeypatch):
     assert cache_is_cold(importlib.reload(module).f)
     sys.modules.pop("cold_probe", None)
     assert isinstance(cache_is_cold(), bool) and cache_is_cold() == cache_is_cold(advance)
+
+
+STACK_SCRIPT = """
+import resource, sys
+from hubbeam import api, simulation as S
+from hubbeam.io.scenario import load_example
+scenario = load_example("exp1", [])
+system = api.build_system(scenario, None)
+state = S.initial_state(system)
+params = S.ga.AlphaParameters.from_spectral_radius(0.8)
+steps = S.CompiledSteps(system, params, S.ga.NewtonOptions(), 1e-3, state, S.record_needs(scenario.sensors, system))
+state, done, its, limit, error, records = steps.advance(state, 5000, 0, 10, 5000)
+print(done, error)
+"""
+
+
+def test_one_long_chunk_keeps_the_stack_flat(tmp_path):
+    """5000 steps in one compiled call on a 1 MB stack: every step must give back the stack it
+    takes (a function inlined into the loop with literal_unroll once grew it by ~1.3 kB a step, so
+    a chunk of ~6000 steps overflowed the default 8 MB stack and a long run died of SIGSEGV)."""
+    import resource
+    import subprocess
+    import sys
+
+    def small_stack():
+        resource.setrlimit(resource.RLIMIT_STACK, (1 << 20, 1 << 20))
+
+    out = subprocess.run([sys.executable, "-c", STACK_SCRIPT], capture_output=True, text=True,
+                         preexec_fn=small_stack, timeout=600)
+    assert out.returncode == 0, (out.returncode, out.stderr[-2000:])
+    assert out.stdout.split() == ["5000", "None"]

@@ -23,12 +23,12 @@ from hubbeam.elements.ancf import kernels
 from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
 from hubbeam.elements.ancf.frame import section_frame
 from hubbeam.elements.ancf.strain import strain_measures
+from hubbeam.elements.section import COLUMN
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_element_blocks_banded
 from hubbeam.system.beam import NODE_DOFS, AncfBeam
 from hubbeam.system.clamp import ROOT_COORDINATES, add_clamp_matrix, clamp_residual, frame_clamp
-from hubbeam.elements.section import COLUMN
-from hubbeam.system.frames import Chain, ancf_tip, chain_columns, chain_kinematics, constant, displacement_in_reference
+from hubbeam.system.frames import Chain, ancf_tip, chain_state, constant, displacement_in_reference
 from hubbeam.system.loads import tip_moment_terms
 from hubbeam.system.mount import Mount, about_axis
 from hubbeam.system.parts import ChartedBeamPart
@@ -282,7 +282,6 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
     power = 0.0
     phi = np.empty(6)
     lam_k = np.empty(6)
-    r, R = np.empty(3), np.empty((3, 3))
     tip_jacobian = np.empty((4, 3))
     no_blocks = np.empty((0, 16, 16))
     order = 2 if want_matrix else 1
@@ -315,12 +314,8 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
         for j in range(nq):
             res[zx[x0 + j]] += coef_k * (fq[j] - term[j])
         # clamp of the root to its frame
-        chain = pack.chains[k, 0]
-        cols = chain_columns(ctx.chains, chain)
+        cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
         nc = cols.shape[0]
-        Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
-        Hr, Hw = np.empty((3, nc, nc)), np.empty((3, nc, nc))
-        chain_kinematics(ctx.chains, chain, x, F, order, r, R, Jr, Jw, Hr, Hw)
         jac = np.empty((6, nc + ROOT_COORDINATES))
         hess = np.empty((nc + ROOT_COORDINATES, nc + ROOT_COORDINATES))
         for i in range(6):

@@ -39,7 +39,7 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.frames import chain_columns, chain_kinematics, euler_parameters, rotation_vector_matrix
+from hubbeam.system.frames import chain_state, euler_parameters, rotation_vector_matrix
 from hubbeam.system.laws import DriveProfile, _interval, _poly2, drive_values
 
 #: rows a pose table needs (a not-a-knot cubic spline through them)
@@ -310,12 +310,8 @@ def driven_pose(pack, t):
 @njit(cache=True)
 def _base_state(pack, ctx, F, x, v):
     """(columns, R, Jw (3, 7), w_base (base axes)) of the base frame at (x, v)."""
-    cols = chain_columns(ctx.chains, pack.chain)
+    cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chain)
     nc = cols.shape[0]
-    r, R = np.empty(3), np.empty((3, 3))
-    Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
-    H = np.empty((3, 0, 0))
-    chain_kinematics(ctx.chains, pack.chain, x, F, 1, r, R, Jr, Jw, H, H)
     w = np.zeros(3)
     for a in range(3):
         for j in range(nc):

@@ -26,6 +26,7 @@ from numba import literal_unroll, njit
 
 from hubbeam.elements.ancf import kernels
 from hubbeam.elements.ancf.strain import strain_measures
+from hubbeam.system.frames import evaluate_chains
 from hubbeam.system.terms import (CHART_SINGULAR, Context, part_drive_power, part_energies, part_equations,
                                   part_events, part_momenta, part_power, part_tips)
 
@@ -63,10 +64,13 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     with kl = ku = model.bandwidth). ``F`` holds every beam's chart. The parts' terms:
     :mod:`hubbeam.system.terms`.
 
-    Returns (chart margin min(1 + d.tau) over all Gauss points, dissipated power W). A margin
-    at or below :data:`CHART_SINGULAR` means the residual is not valid.
+    Every frame's kinematics are evaluated first, once (:func:`~hubbeam.system.frames.evaluate_chains`),
+    and the parts read them. Returns (chart margin min(1 + d.tau) over all Gauss points,
+    dissipated power W). A margin at or below :data:`CHART_SINGULAR` means the residual is not
+    valid.
     """
     ctx = model.context
+    evaluate_chains(ctx.chains, x, F)
     for i in range(res.shape[0]):
         res[i] = 0.0
     if want_matrix:
@@ -86,15 +90,17 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     return margin, power
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def step_powers(model, F, t, x, v, lam):
     """(dissipated, drive) power at the state (t, x, v, lambda) in the charts F (W): the power
     of the drag of Eq. 37 and of the structural damping of every part (>= 0), and the power of
     the applied torques and the prescribed motions (the hub's drive reaction and torque law,
-    ...). One function for both, called after every step, and inlined into its compiled
-    callers: each compiled call that takes the model pays for passing it (reference counts of
-    its arrays; about 0.5 us on exp1)."""
+    ...). One function for both, called after every step. Not inlined into the compiled
+    loop (which would save the ~0.5 us of passing the model): inlined, its unrolled loop over
+    the parts took stack that the loop's frame never gave back, ~1.3 kB a step, and a chunk of
+    ~6000 steps died of SIGSEGV (tests/solvers/test_compiled_alpha.py)."""
     ctx = model.context
+    evaluate_chains(ctx.chains, x, F)
     dissipated = 0.0
     drive = 0.0
     for pack in literal_unroll(model.parts):
@@ -103,10 +109,12 @@ def step_powers(model, F, t, x, v, lam):
     return dissipated, drive
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def system_events(model, x):
     """Whether any part's event (a joint reaching its latch angle) is reached at x
-    (:func:`hubbeam.system.terms.part_events`); inlined into the time loop."""
+    (:func:`hubbeam.system.terms.part_events`), after every step of the time loop. Not inlined
+    into the loop, as :func:`step_powers`: its unrolled loop over the parts would take stack
+    that the loop's frame never gives back."""
     ctx = model.context
     event = False
     for pack in literal_unroll(model.parts):
@@ -121,6 +129,7 @@ def beam_energies(model, F, x, v, beams, hub):
     of beam k (its place among all beams; tip bodies in their beam's row), hub = (T, U, V)
     of every part's energy that belongs to no beam (the hub's rotor, the base)."""
     ctx = model.context
+    evaluate_chains(ctx.chains, x, F)
     beams[:, :] = 0.0
     hub[0] = 0.0
     hub[1] = 0.0
@@ -138,6 +147,7 @@ def tip_displacements(model, F, x, out):
     frame's axes at x (m; radial, along the hub axis, tangential): out[k] for beam k (its
     place among all beams)."""
     ctx = model.context
+    evaluate_chains(ctx.chains, x, F)
     for pack in literal_unroll(model.parts):
         part_tips(pack, ctx, F, x, out)
 
@@ -147,6 +157,7 @@ def system_momenta(model, F, x, v, out):
     """out (10,) = the system's mass (kg), first moment m r_cm (kg m), linear momentum (N s) and
     angular momentum about the global origin (N m s) at (x, v)."""
     ctx = model.context
+    evaluate_chains(ctx.chains, x, F)
     for i in range(out.shape[0]):
         out[i] = 0.0
     for pack in literal_unroll(model.parts):

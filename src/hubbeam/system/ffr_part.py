@@ -43,8 +43,8 @@ from hubbeam.elements.ffr.kernels import ffr_dissipated_power, ffr_energies, ffr
 from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.frames import (Chain, chain_columns, chain_kinematics, constant, displacement_in_reference,
-                                   ffr_tip, frame_motion, gather)
+from hubbeam.system.frames import (Chain, chain_columns, chain_kinematics, chain_state, constant,
+                                   displacement_in_reference, ffr_tip, frame_motion)
 from hubbeam.system.mount import Mount, about_axis
 from hubbeam.system.parts import BeamPart
 
@@ -305,6 +305,9 @@ class FfrBeams(NamedTuple):
     mean_stretch: np.ndarray
     mean_slope2: np.ndarray
     N_pts: np.ndarray
+    vectors_work: np.ndarray  # (8, L) scratch vectors (L = 6 + the largest nf + the widest frame's columns)
+    squares_work: np.ndarray  # (6, L, L) scratch matrices
+    rows_work: np.ndarray  # int64 (L,) scratch z rows
 
 
 def _stacked(values) -> np.ndarray:
@@ -330,7 +333,10 @@ def pack_ffr_beams(system, layout) -> FfrBeams | None:
     places = np.array([(k, layout.beam_x(k).start, b.beam.ndof) for k, b in ffr], dtype=np.int64).reshape(len(ffr), 3)
     chains = np.array([(system.frames.root(k), system.frames.reference(k)) for k, _ in ffr],
                       dtype=np.int64).reshape(len(ffr), 2)
-    return FfrBeams(places, chains, **fields)
+    widest = max(len(system.frames.chain(c).coordinates) for c in chains[:, 0])
+    size = 6 + max(b.beam.ndof for _, b in ffr) + widest
+    return FfrBeams(places, chains, **fields, vectors_work=np.zeros((8, size)), squares_work=np.zeros((6, size, size)),
+                    rows_work=np.zeros(size, dtype=np.int64))
 
 
 def ffr_bandwidth(system, layout) -> int:
@@ -369,49 +375,54 @@ def ffr_arguments(pack, k, drag_c):
 
 
 @njit(cache=True)
-def _frame_state(pack, ctx, F, k, x, order):
-    """(columns, r, R, Jr, Jw, Hr, Hw) of FFR beam k's body frame at x."""
-    chain = pack.chains[k, 0]
+def _fresh_frame(ctx, F, chain, x):
+    """(columns, r, R, Jr, Jw, Hr, Hw) of a chain evaluated at x (not the cached state: the
+    differences of the exact stiffness move x)."""
     cols = chain_columns(ctx.chains, chain)
     nc = cols.shape[0]
     r, R = np.empty(3), np.empty((3, 3))
     Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
     Hr, Hw = np.empty((3, nc, nc)), np.empty((3, nc, nc))
-    chain_kinematics(ctx.chains, chain, x, F, order, r, R, Jr, Jw, Hr, Hw)
+    chain_kinematics(ctx.chains, chain, x, F, 2, r, R, Jr, Jw, Hr, Hw)
     return cols, r, R, Jr, Jw, Hr, Hw
 
 
 @njit(cache=True)
-def _vspace_rates(R, Jr, Jw, Hr, Hw, cd, cdd, pd, pdd, vb, vdot):
-    """vb = H [c', p'] and vdot = H [c'', p''] + [h_r, A0^T h_w, 0] (module docstring)."""
-    vel, w, a, alpha = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-    frame_motion(Jr, Jw, Hr, Hw, cd, cdd, vel, w, a, alpha)
+def _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, motion, vb, vdot):
+    """vb = H [c', p'] and vdot = H [c'', p''] + [h_r, A0^T h_w, 0] (module docstring);
+    ``motion`` (4, 3) scratch."""
+    frame_motion(Jr, Jw, Hr, Hw, cols, v, acc, motion[0], motion[1], motion[2], motion[3])
     for i in range(3):
-        vb[i] = vel[i]
-        vdot[i] = a[i]
-        vb[3 + i] = R[0, i] * w[0] + R[1, i] * w[1] + R[2, i] * w[2]
-        vdot[3 + i] = R[0, i] * alpha[0] + R[1, i] * alpha[1] + R[2, i] * alpha[2]
-    for f in range(pd.shape[0]):
-        vb[6 + f] = pd[f]
-        vdot[6 + f] = pdd[f]
+        vb[i] = motion[0, i]
+        vdot[i] = motion[2, i]
+        vb[3 + i] = R[0, i] * motion[1, 0] + R[1, i] * motion[1, 1] + R[2, i] * motion[1, 2]
+        vdot[3 + i] = R[0, i] * motion[3, 0] + R[1, i] * motion[3, 1] + R[2, i] * motion[3, 2]
+    for f in range(nf):
+        vb[6 + f] = v[x0 + f]
+        vdot[6 + f] = acc[x0 + f]
 
 
 @njit(cache=True)
-def ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el, elastic=True):
+def ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el, elastic=True,
+                   fresh=False):
     """FFR beam k's generalized force on its columns [c (the frame's nc), p (nf)] into ``force``
     (nc + nf; module docstring), its projection H ((6 + nf) x (nc + nf)) and, when
     ``want_matrix``, M_v, C_v and K_el (:func:`ffr_vspace_terms`; ``elastic`` False leaves the
-    elastic force out). Returns (the frame's columns (x indices), the dissipated power (W))."""
+    elastic force out). The frame as the system evaluated it at x, or ``fresh`` at this x.
+    Returns (the frame's columns (x indices), the dissipated power (W))."""
     nf = pack.places[k, NF]
     x0 = pack.places[k, X0]
     n = 6 + nf
-    cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 2)
+    if fresh:
+        cols, r, R, Jr, Jw, Hr, Hw = _fresh_frame(ctx, F, pack.chains[k, 0], x)
+    else:
+        cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
     nc = cols.shape[0]
     p = x[x0:x0 + nf]
-    vb, vdot = np.empty(n), np.empty(n)
-    _vspace_rates(R, Jr, Jw, Hr, Hw, gather(v, cols), gather(acc, cols), v[x0:x0 + nf], acc[x0:x0 + nf], vb, vdot)
+    vecs = pack.vectors_work
+    vb, vdot, fv = vecs[0, :n], vecs[1, :n], vecs[2, :n]
+    _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, vecs[3:7, :3], vb, vdot)
     inv, tip, drag = ffr_arguments(pack, k, ctx.drag)
-    fv = np.empty(n)
     power = ffr_vspace_terms(inv, R, p, vb, vdot, ctx.gravity, tip, drag, load_factor, want_matrix, fv, Mv, Cv, K_el,
                              elastic)
     m = nc + nf
@@ -449,13 +460,13 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
         n = 6 + nf
         nc = ctx.chains.column_start[pack.chains[k, 0] + 1] - ctx.chains.column_start[pack.chains[k, 0]]
         m = nc + nf
-        force = np.empty(m)
-        H = np.empty((n, m))
-        nm = n if want_matrix else 0
-        Mv, Cv, K_el = np.empty((n, n)), np.empty((nm, nm)), np.empty((nf, nf))
+        sq = pack.squares_work
+        force = pack.vectors_work[7, :m]
+        H, Mv, K_el = sq[0, :n, :m], sq[1, :n, :n], sq[3, :nf, :nf]
+        Cv = sq[2, :n, :n] if want_matrix else sq[2, :0, :0]
         cols, pk = ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el)
         power += pk
-        rows = np.empty(m, dtype=np.int64)
+        rows = pack.rows_work[:m]
         for j in range(nc):
             rows[j] = zx[cols[j]]
         for f in range(nf):
@@ -465,14 +476,14 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
         if not want_matrix:
             continue
         # coef_m H^T M_v H + coef_c H^T C_v H: B = (coef_m M_v + coef_c C_v) H, then H^T B
-        B = np.empty((n, m))
+        B = sq[4, :n, :m]
         for i in range(n):
             for j in range(m):
                 s = 0.0
                 for a in range(n):
                     s += (coef_m * Mv[i, a] + coef_c * Cv[i, a]) * H[a, j]
                 B[i, j] = s
-        block = np.empty((m, m))
+        block = sq[5, :m, :m]
         for i in range(m):
             for j in range(m):
                 s = 0.0
@@ -495,9 +506,9 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
                 c = cols[j] if j < nc else x0 + j - nc
                 h = 1e-6 * max(1.0, abs(x[c]))
                 xp[c] = x[c] + h
-                ffr_beam_terms(pack, ctx, F, k, xp, v, acc, load_factor, False, fp, H2, M2, C2, K2, False)
+                ffr_beam_terms(pack, ctx, F, k, xp, v, acc, load_factor, False, fp, H2, M2, C2, K2, False, True)
                 xp[c] = x[c] - h
-                ffr_beam_terms(pack, ctx, F, k, xp, v, acc, load_factor, False, fm, H2, M2, C2, K2, False)
+                ffr_beam_terms(pack, ctx, F, k, xp, v, acc, load_factor, False, fm, H2, M2, C2, K2, False, True)
                 xp[c] = x[c]
                 for i in range(m):
                     block[i, j] += coef_k * (fp[i] - fm[i]) / (2.0 * h)
@@ -508,18 +519,25 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
     return 2.0, power
 
 
+@njit(cache=True)
+def _frame_rates(pack, ctx, k, x, v, F):
+    """(r, R, vb) of FFR beam k: its body frame and v-space rates (scratch of the pack)."""
+    nf = pack.places[k, NF]
+    x0 = pack.places[k, X0]
+    cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
+    vecs = pack.vectors_work
+    vb = vecs[0, :6 + nf]
+    _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, v, x0, nf, vecs[3:7, :3], vb, vecs[1, :6 + nf])
+    return r, R, vb
+
+
 def ffr_beam_energies(pack, ctx, F, x, v, beams):
     """Kinetic, strain and gravity energy of every FFR beam, tip body included (J)."""
     places = pack.places
     for k in range(places.shape[0]):
         nf = places[k, NF]
         x0 = places[k, X0]
-        n = 6 + nf
-        cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 1)
-        vb, vdot = np.empty(n), np.empty(n)
-        zero = np.zeros(cols.shape[0])
-        _vspace_rates(R, Jr, Jw, np.zeros((3, cols.shape[0], cols.shape[0])), np.zeros((3, cols.shape[0], cols.shape[0])),
-                      gather(v, cols), zero, v[x0:x0 + nf], np.zeros(nf), vb, vdot)
+        r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
         inv, _, _ = ffr_arguments(pack, k, ctx.drag)
         kinetic, strain, potential = ffr_energies(inv, R, r, x[x0:x0 + nf], vb, ctx.gravity)
         terms.add_beam_energy(beams, places[k, INDEX], kinetic, strain, potential)
@@ -532,12 +550,7 @@ def ffr_momenta(pack, ctx, F, x, v, out):
     for k in range(places.shape[0]):
         nf = places[k, NF]
         x0 = places[k, X0]
-        n = 6 + nf
-        cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 1)
-        nc = cols.shape[0]
-        vb, vdot = np.empty(n), np.empty(n)
-        _vspace_rates(R, Jr, Jw, np.zeros((3, nc, nc)), np.zeros((3, nc, nc)), gather(v, cols), np.zeros(nc),
-                      v[x0:x0 + nf], np.zeros(nf), vb, vdot)
+        r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
         inv, _, _ = ffr_arguments(pack, k, ctx.drag)
         ffr_momentum(inv, R, r, x[x0:x0 + nf], vb, out)
 
@@ -552,12 +565,7 @@ def ffr_power(pack, ctx, F, x, v):
             continue
         nf = places[k, NF]
         x0 = places[k, X0]
-        n = 6 + nf
-        cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 1)
-        nc = cols.shape[0]
-        vb, vdot = np.empty(n), np.empty(n)
-        _vspace_rates(R, Jr, Jw, np.zeros((3, nc, nc)), np.zeros((3, nc, nc)), gather(v, cols), np.zeros(nc),
-                      v[x0:x0 + nf], np.zeros(nf), vb, vdot)
+        r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
         power += ffr_dissipated_power(R, x[x0:x0 + nf], vb, pack.squares[k, 2], pack.scalars[k, 2],
                                       ffr_drag_arguments(pack, k, ctx.drag))
     return power
@@ -565,12 +573,11 @@ def ffr_power(pack, ctx, F, x, v):
 
 def ffr_tips(pack, ctx, F, x, out):
     """Each FFR beam's tip centroid displacement along its reference frame's axes (m)."""
-    r, R = np.empty(3), np.empty((3, 3))
     tip_at = np.empty(3)
     places = pack.places
     for k in range(places.shape[0]):
         x0 = places[k, X0]
-        cols, r, R, Jr, Jw, Hr, Hw = _frame_state(pack, ctx, F, k, x, 1)
+        cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
         length = pack.scalars[k, 3]
         local = tip_lever(pack.rows[k, 1], length, x[x0:x0 + places[k, NF]])
         for i in range(3):

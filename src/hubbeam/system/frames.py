@@ -16,12 +16,12 @@ either constant or moved by coordinates of the system:
   norm is fixed by a constraint elsewhere);
 - ``ANCF_TIP`` (first link only): the section frame of an ANCF node, from its position r0
   (3), slope r0' (3) and twist theta_1 (1) in a rotation chart F (:mod:`hubbeam.elements.ancf.frame`);
-- ``FFR_TIP``: the tip section of an FFR beam floating on the current frame, moved by its
-  nf elastic coordinates p: a translation by (L, 0, 0) + N_L p and a small rotation by
-  phi = Phi_L p (N_L, Phi_L: the tip's displacement and rotation rows of
-  :class:`~hubbeam.elements.ffr.body.FfrBeam`), turned as successive rotations by phi_1, phi_2,
-  phi_3 about the current x, y', z'' axes (equal to the rotation vector phi to first order,
-  FFR's own kinematics).
+- ``FFR_TIP`` (never first): the tip section of an FFR beam floating on the current frame,
+  moved by its nf elastic coordinates p: a translation by (L, 0, 0) + N_L p and a small
+  rotation by phi = Phi_L p (N_L, Phi_L: the tip's displacement and rotation rows of
+  :class:`~hubbeam.elements.ffr.body.FfrBeam`), turned as successive rotations by phi_1,
+  phi_2, phi_3 about the current x, y', z'' axes (equal to the rotation vector phi to first
+  order, FFR's own kinematics).
 
 For every coordinate c_i of a chain :func:`chain_kinematics` gives the frame's pose (r, R)
 and the velocity Jacobians: Jw[:, i], the frame's angular velocity per unit c_i' (global
@@ -38,11 +38,14 @@ serial-chain rule gives them all by cross products:
 same rule). The first link's own coordinates (``FREE``, ``ANCF_TIP``) are not such screws among
 each other: their mutual derivatives are written out below; with every later coordinate the
 rule holds (the first link carries the rest of the chain). An ``FFR_TIP`` link is six such
-screws in a row (three translations, three revolutes) whose *virtual* coordinates
-v = M p, M = [N_L; Phi_L] (6 x nf), are linear in its nf coordinates: the Jacobians and
-derivatives are computed over the virtual columns by the rule and then carried to the real
-ones, J_p = J_v M, H_pp = M^T H_vv M, H_pc = M^T H_vc (exact: v is linear in p). Tests check
-every Jacobian and derivative against finite differences of the pose.
+screws in a row (three translations t_a along the current axes, then three rotations w_a
+about the current x, y', z'', all through the tip's place o) whose *virtual* coordinates
+v = M p, M = [N_L; Phi_L] (6 x nf), are linear in its nf coordinates: its column j is the
+combination sum_a M[a, j] of the six screws (Jr_j = sum_{a<3} M[a, j] t_a + Jw_j x (r - o),
+Jw_j = sum_{a>=3} M[a, j] w_a), so with any other column the rule holds as it is; among its
+own columns, H_jm = sum_ab M[a, j] M[b, m] H_ab of the rule over the screws (only the
+rotations give terms) is written out below. Tests check every Jacobian and derivative
+against finite differences of the pose.
 """
 
 from __future__ import annotations
@@ -70,7 +73,7 @@ class LinkKind(enum.IntEnum):
 LINK_COORDINATES = {LinkKind.CONSTANT: 0, LinkKind.REVOLUTE: 1, LinkKind.FREE: 7, LinkKind.ANCF_TIP: 7}
 #: columns of a link row in :class:`ChainTable.links`
 KIND, COORD, PARAM = 0, 1, 2
-#: virtual columns of an FFR tip: translations along x, y, z, then rotations about x, y', z''
+#: virtual screws of an FFR tip: translations along x, y, z, then rotations about x, y', z''
 FFR_TIP_VIRTUAL = 6
 
 
@@ -79,7 +82,7 @@ class Link:
     """One elementary transform. ``coordinate``: where its first coordinate sits in x (-1 for a
     constant link); ``offset`` (m) and ``rotation`` (3 x 3) of a constant link; ``axis`` (unit,
     in the current frame) and ``sign`` of a revolute one; ``chart``: the index in F of an ANCF
-    tip's rotation chart."""
+    tip's rotation chart; ``length`` (m) and ``rows`` (M = [N_L; Phi_L], 6 x nf) of an FFR tip."""
 
     kind: LinkKind
     coordinate: int = -1
@@ -99,7 +102,8 @@ class Link:
 
     def params(self) -> np.ndarray:
         """The link's 13 numbers for compiled code: offset (3) and rotation (9, row-major) of a
-        constant link; axis (3) and sign of a revolute one; the chart's index of an ANCF tip."""
+        constant link; axis (3) and sign of a revolute one; the chart's index of an ANCF tip;
+        an FFR tip's length, its rows' place in :attr:`ChainTable.maps` (set there) and nf."""
         out = np.zeros(13)
         if self.kind == LinkKind.CONSTANT:
             out[0:3] = self.offset
@@ -110,7 +114,7 @@ class Link:
             out[3] = self.sign
         elif self.kind == LinkKind.ANCF_TIP:
             out[0] = self.chart
-        elif self.kind == LinkKind.FFR_TIP:  # the rows' place in ChainTable.maps is set by ChainTable.of
+        elif self.kind == LinkKind.FFR_TIP:
             out[0] = self.length
             out[2] = self.coordinates
         return out
@@ -151,7 +155,7 @@ def ffr_tip(coordinate: int, length: float, displacement_rows, rotation_rows) ->
 
 @dataclass(frozen=True)
 class Chain:
-    """A frame as a product of links (the first may be FREE or ANCF_TIP)."""
+    """A frame as a product of links (the first may be FREE or ANCF_TIP; an FFR_TIP never is)."""
 
     links: tuple = field(default_factory=tuple)
 
@@ -165,6 +169,19 @@ class Chain:
     def then(self, *links: Link) -> "Chain":
         """This chain continued by ``links``."""
         return Chain(self.links + tuple(links))
+
+    def merged(self) -> "Chain":
+        """The same frame with every run of constant links merged into one (fewer products to
+        evaluate; the pose and its derivatives are the same)."""
+        out: list[Link] = []
+        for link in self.links:
+            if link.kind == LinkKind.CONSTANT and out and out[-1].kind == LinkKind.CONSTANT:
+                prev = out.pop()
+                R1, t1 = np.array(prev.rotation), np.array(prev.offset)
+                R2, t2 = np.array(link.rotation), np.array(link.offset)
+                link = constant(t1 + R1 @ t2, R1 @ R2)
+            out.append(link)
+        return Chain(tuple(out))
 
     @property
     def coordinates(self) -> list[int]:
@@ -181,20 +198,26 @@ class Chain:
 
 
 class ChainTable(NamedTuple):
-    """Every chain of a system in arrays for compiled code (:meth:`of`)."""
+    """Every chain of a system in arrays for compiled code (:meth:`of`), and the place where
+    their kinematics at the current state are kept (:func:`evaluate_chains`: once per evaluation
+    of the system's equations, read by every part that hangs on a frame)."""
 
     links: np.ndarray  # int64 (n_links, 3): kind, first coordinate's x index, row in params
     params: np.ndarray  # (n_links, 13): Link.params
     start: np.ndarray  # int64 (n_chains + 1): chain k's links are links[start[k]:start[k + 1]]
     columns: np.ndarray  # int64 (n_columns,): the chains' coordinate columns' x indices
     column_start: np.ndarray  # int64 (n_chains + 1): chain k's columns are columns[column_start[k]:...]
+    pose: np.ndarray  # (n_chains, 3, 4): each chain's origin (column 0) and axes (1:4) at the state
+    jac: np.ndarray  # (n_chains, 2, 3, w): Jr, Jw of each chain's columns (w: the widest chain's)
+    hess: np.ndarray  # (n_chains, 2, 3, w, w): Hr, Hw
+    work: np.ndarray  # (w, W_WIDTH): scratch of :func:`chain_kinematics_into` for the widest chain
     maps: np.ndarray  # (n,): the FFR tips' rows M (6 x nf, row-major), each from its link's params[1]
 
     @classmethod
     def of(cls, chains) -> "ChainTable":
         links, params, start, columns, cstart, maps = [], [], [0], [], [0], []
         for chain in chains:
-            for link in chain.links:
+            for link in chain.merged().links:
                 links.append((int(link.kind), link.coordinate, len(params)))
                 row = link.params()
                 if link.kind == LinkKind.FFR_TIP:
@@ -205,8 +228,11 @@ class ChainTable(NamedTuple):
             columns += chain.coordinates
             cstart.append(len(columns))
         ints = lambda v, shape: np.array(v, dtype=np.int64).reshape(shape)  # noqa: E731
+        n = len(start) - 1
+        w = max((cstart[k + 1] - cstart[k] for k in range(n)), default=0)
         return cls(ints(links, (len(links), 3)), np.array(params, dtype=float).reshape(len(params), 13),
                    ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)),
+                   np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((w, W_WIDTH)),
                    np.array(maps, dtype=float))
 
     def width(self, k: int) -> int:
@@ -215,14 +241,6 @@ class ChainTable(NamedTuple):
 
 
 # ---------------------------------------------------------------------------- small pieces
-@njit(cache=True)
-def cross_into(a, b, out):
-    """out = a x b (3-vectors)."""
-    out[0] = a[1] * b[2] - a[2] * b[1]
-    out[1] = a[2] * b[0] - a[0] * b[2]
-    out[2] = a[0] * b[1] - a[1] * b[0]
-
-
 @njit(cache=True)
 def euler_rotation(e, R):
     """R = the rotation of the normalised Euler parameters e / |e| (columns: the body axes, global)."""
@@ -250,408 +268,430 @@ def euler_rate_matrix(e, E):
 
 
 @njit(cache=True)
-def _rotate_about(R, axis, angle, out):
-    """out = R Rot(axis, angle) (axis a unit vector of the frame R)."""
-    c, s = math.cos(angle), math.sin(angle)
-    a0, a1, a2 = axis[0], axis[1], axis[2]
-    C = 1.0 - c
-    Q = np.empty((3, 3))
-    Q[0, 0] = c + a0 * a0 * C
-    Q[0, 1] = a0 * a1 * C - a2 * s
-    Q[0, 2] = a0 * a2 * C + a1 * s
-    Q[1, 0] = a1 * a0 * C + a2 * s
-    Q[1, 1] = c + a1 * a1 * C
-    Q[1, 2] = a1 * a2 * C - a0 * s
-    Q[2, 0] = a2 * a0 * C - a1 * s
-    Q[2, 1] = a2 * a1 * C + a0 * s
-    Q[2, 2] = c + a2 * a2 * C
-    for i in range(3):
-        for j in range(3):
-            out[i, j] = R[i, 0] * Q[0, j] + R[i, 1] * Q[1, j] + R[i, 2] * Q[2, j]
+def _euler_into(e0, e1, e2, e3, P):
+    """P[:, 1:4] = the rotation of the normalised Euler parameters (:func:`euler_rotation`, scalars)."""
+    s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
+    P[0, 1] = (e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3) / s
+    P[1, 2] = (e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3) / s
+    P[2, 3] = (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) / s
+    P[0, 2] = 2.0 * (e1 * e2 - e0 * e3) / s
+    P[1, 1] = 2.0 * (e1 * e2 + e0 * e3) / s
+    P[0, 3] = 2.0 * (e1 * e3 + e0 * e2) / s
+    P[2, 1] = 2.0 * (e1 * e3 - e0 * e2) / s
+    P[1, 3] = 2.0 * (e2 * e3 - e0 * e1) / s
+    P[2, 2] = 2.0 * (e2 * e3 + e0 * e1) / s
 
 
 @njit(cache=True)
-def _ancf_section(F, u, phi, R):
-    """The section frame R = F [tau m n](F^T u, phi) (global columns) of slope u and twist phi."""
-    U = np.empty(3)
-    for a in range(3):
-        U[a] = F[0, a] * u[0] + F[1, a] * u[1] + F[2, a] * u[2]
-    L = math.sqrt(U[0] * U[0] + U[1] * U[1] + U[2] * U[2])
-    T0, T1, T2 = U[0] / L, U[1] / L, U[2] / L
+def _rotate_about(P, a0, a1, a2, angle):
+    """P[:, 1:4] = R Rot(a, angle) in place (R = P[:, 1:4]; a a unit vector of the frame R)."""
+    c, s = math.cos(angle), math.sin(angle)
+    C = 1.0 - c
+    q00, q01, q02 = c + a0 * a0 * C, a0 * a1 * C - a2 * s, a0 * a2 * C + a1 * s
+    q10, q11, q12 = a1 * a0 * C + a2 * s, c + a1 * a1 * C, a1 * a2 * C - a0 * s
+    q20, q21, q22 = a2 * a0 * C - a1 * s, a2 * a1 * C + a0 * s, c + a2 * a2 * C
+    for i in range(3):
+        r0, r1, r2 = P[i, 1], P[i, 2], P[i, 3]
+        P[i, 1] = r0 * q00 + r1 * q10 + r2 * q20
+        P[i, 2] = r0 * q01 + r1 * q11 + r2 * q21
+        P[i, 3] = r0 * q02 + r1 * q12 + r2 * q22
+
+
+@njit(cache=True, inline="always")
+def _ancf_section(F, x, c, P):
+    """The section frame R = F [tau m n](F^T u, phi) (global columns) of slope u = x[c:c+3] and
+    twist phi = x[c+3] into P[:, 1:4]; returns |u|."""
+    U0 = F[0, 0] * x[c] + F[1, 0] * x[c + 1] + F[2, 0] * x[c + 2]
+    U1 = F[0, 1] * x[c] + F[1, 1] * x[c + 1] + F[2, 1] * x[c + 2]
+    U2 = F[0, 2] * x[c] + F[1, 2] * x[c + 1] + F[2, 2] * x[c + 2]
+    L = math.sqrt(U0 * U0 + U1 * U1 + U2 * U2)
+    T0, T1, T2 = U0 / L, U1 / L, U2 / L
     den = 1.0 + T0
     h1, h2 = T1 / den, T2 / den
     # m0, n0 (chart components) of the untwisted chart frame
     m00, m01, m02 = -h1 * (T0 + 1.0), 1.0 - h1 * T1, -h1 * T2
     n00, n01, n02 = -h2 * (T0 + 1.0), -h2 * T1, 1.0 - h2 * T2
-    c, s = math.cos(phi), math.sin(phi)
-    loc = np.empty((3, 3))
-    loc[0, 0], loc[1, 0], loc[2, 0] = T0, T1, T2
-    loc[0, 1], loc[1, 1], loc[2, 1] = c * m00 + s * n00, c * m01 + s * n01, c * m02 + s * n02
-    loc[0, 2], loc[1, 2], loc[2, 2] = -s * m00 + c * n00, -s * m01 + c * n01, -s * m02 + c * n02
+    co, si = math.cos(x[c + 3]), math.sin(x[c + 3])
+    m0, m1, m2 = co * m00 + si * n00, co * m01 + si * n01, co * m02 + si * n02
+    n0, n1, n2 = -si * m00 + co * n00, -si * m01 + co * n01, -si * m02 + co * n02
     for i in range(3):
-        for j in range(3):
-            R[i, j] = F[i, 0] * loc[0, j] + F[i, 1] * loc[1, j] + F[i, 2] * loc[2, j]
+        P[i, 1] = F[i, 0] * T0 + F[i, 1] * T1 + F[i, 2] * T2
+        P[i, 2] = F[i, 0] * m0 + F[i, 1] * m1 + F[i, 2] * m2
+        P[i, 3] = F[i, 0] * n0 + F[i, 1] * n1 + F[i, 2] * n2
     return L
 
 
-@njit(cache=True)
-def _ancf_rate_columns(d, tau, L, y, out):
-    """out = A y, the angular velocity of the chart's untwisted frame for the slope rate y:
-    (tau x y - tau d.(tau x y) / (1 + d.tau)) / L."""
-    cross_into(tau, y, out)
-    k = (d[0] * out[0] + d[1] * out[1] + d[2] * out[2]) / (1.0 + d[0] * tau[0] + d[1] * tau[1] + d[2] * tau[2])
-    for i in range(3):
-        out[i] = (out[i] - tau[i] * k) / L
+@njit(cache=True, inline="always")
+def _cross_unit(a0, a1, a2, i):
+    """a x e_i (e_i the i-th unit vector), a 3-tuple."""
+    if i == 0:
+        return 0.0, a2, -a1
+    if i == 1:
+        return -a2, 0.0, a0
+    return a1, -a0, 0.0
 
 
-@njit(cache=True)
-def _ancf_rate_derivative(d, tau, L, y, b, out):
-    """out = d(A y)/d u_b (u = r0', y fixed): the derivative of :func:`_ancf_rate_columns` along
-    the slope's component b."""
-    dL = tau[b]
-    t = np.empty(3)  # d tau / d u_b
-    for i in range(3):
-        t[i] = ((1.0 if i == b else 0.0) - tau[i] * tau[b]) / L
-    den = 1.0 + d[0] * tau[0] + d[1] * tau[1] + d[2] * tau[2]
-    ty = np.empty(3)
-    cross_into(tau, y, ty)
-    dty = np.empty(3)
-    cross_into(t, y, dty)
-    k = (d[0] * ty[0] + d[1] * ty[1] + d[2] * ty[2]) / den
-    dk = (d[0] * dty[0] + d[1] * dty[1] + d[2] * dty[2]) / den \
-        - k * (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]) / den
-    for i in range(3):
-        Ay = (ty[i] - tau[i] * k) / L
-        out[i] = -dL / L * Ay + (dty[i] - t[i] * k - tau[i] * dk) / L
+@njit(cache=True, inline="always")
+def _ancf_rate_column(d0, d1, d2, t0, t1, t2, L, b):
+    """A e_b, the angular velocity of the chart's untwisted frame for a unit rate of the slope's
+    component b (a 3-tuple): (tau x e_b - tau d.(tau x e_b) / (1 + d.tau)) / L."""
+    c0, c1, c2 = _cross_unit(t0, t1, t2, b)
+    k = (d0 * c0 + d1 * c1 + d2 * c2) / (1.0 + d0 * t0 + d1 * t1 + d2 * t2)
+    return (c0 - t0 * k) / L, (c1 - t1 * k) / L, (c2 - t2 * k) / L
+
+
+@njit(cache=True, inline="always")
+def _ancf_rate_derivative(d0, d1, d2, t0, t1, t2, L, i, b):
+    """d(A e_i)/d u_b (u = r0'): the derivative of :func:`_ancf_rate_column` along the slope's
+    component b (a 3-tuple)."""
+    dL = (t0, t1, t2)[b]
+    # d tau / d u_b
+    s0 = ((1.0 if b == 0 else 0.0) - t0 * dL) / L
+    s1 = ((1.0 if b == 1 else 0.0) - t1 * dL) / L
+    s2 = ((1.0 if b == 2 else 0.0) - t2 * dL) / L
+    den = 1.0 + d0 * t0 + d1 * t1 + d2 * t2
+    y0, y1, y2 = _cross_unit(t0, t1, t2, i)
+    z0, z1, z2 = _cross_unit(s0, s1, s2, i)
+    k = (d0 * y0 + d1 * y1 + d2 * y2) / den
+    dk = (d0 * z0 + d1 * z1 + d2 * z2) / den - k * (d0 * s0 + d1 * s1 + d2 * s2) / den
+    f = -dL / L
+    return (f * (y0 - t0 * k) / L + (z0 - s0 * k - t0 * dk) / L,
+            f * (y1 - t1 * k) / L + (z1 - s1 * k - t1 * dk) / L,
+            f * (y2 - t2 * k) / L + (z2 - s2 * k - t2 * dk) / L)
 
 
 # ---------------------------------------------------------------------------- the kinematics
-#: column types: how a column moves the frame (for the derivative rules)
-SCREW, TRANSLATION, ROOT_ROTATION, PRISMATIC = 0, 1, 2, 3
-
-
-@njit(cache=True)
-def _virtual_columns(table, k):
-    """The number of virtual columns of chain k: its coordinate columns, each FFR tip's nf
-    replaced by its six screws."""
-    nv = table.column_start[k + 1] - table.column_start[k]
-    for li in range(table.start[k], table.start[k + 1]):
-        if table.links[li, KIND] == LinkKind.FFR_TIP:
-            nv += FFR_TIP_VIRTUAL - int(table.params[table.links[li, PARAM], 2])
-    return nv
-
-
-@njit(cache=True)
-def _virtual_entries(table, k, nv):
-    """The map from chain k's virtual columns to its real ones, by rows: virtual column v is
-    sum_e weight[e] (real column index[e]) over e in start[v]:start[v + 1] (one entry of weight 1
-    for an ordinary column; the FFR tip rows M for its six screws)."""
-    count = 0
-    for li in range(table.start[k], table.start[k + 1]):
-        kind = table.links[li, KIND]
-        if kind == LinkKind.FFR_TIP:
-            count += FFR_TIP_VIRTUAL * int(table.params[table.links[li, PARAM], 2])
-        elif kind == LinkKind.REVOLUTE:
-            count += 1
-        elif kind != LinkKind.CONSTANT:
-            count += 7
-    start = np.empty(nv + 1, dtype=np.int64)
-    index = np.empty(count, dtype=np.int64)
-    weight = np.empty(count)
-    v = 0
-    e = 0
-    real = 0
-    start[0] = 0
-    for li in range(table.start[k], table.start[k + 1]):
-        kind = table.links[li, KIND]
-        if kind == LinkKind.CONSTANT:
-            continue
-        if kind == LinkKind.FFR_TIP:
-            par = table.params[table.links[li, PARAM]]
-            off, nf = int(par[1]), int(par[2])
-            for a in range(FFR_TIP_VIRTUAL):
-                for j in range(nf):
-                    index[e] = real + j
-                    weight[e] = table.maps[off + a * nf + j]
-                    e += 1
-                v += 1
-                start[v] = e
-            real += nf
-        else:
-            n = 1 if kind == LinkKind.REVOLUTE else 7
-            for j in range(n):
-                index[e] = real + j
-                weight[e] = 1.0
-                e += 1
-                v += 1
-                start[v] = e
-            real += n
-    return start, index, weight
+#: column types: how a column moves the frame (for the derivative rules); TIP_COMBINATION: a
+#: column of an FFR tip (its translations and rotations combined, module docstring)
+SCREW, TRANSLATION, ROOT_ROTATION, TIP_COMBINATION = 0, 1, 2, 3
+#: columns of the scratch rows (one per coordinate column) of :func:`chain_kinematics_into`: the
+#: column's type, a translation's axis (an FFR tip's column: its link's params row), the point
+#: a rotation turns about (3); an FFR tip's column: its index j among the tip's columns, and on
+#: the tip's first column the tip's three rotation axes w_x, w_y', w_z'' (9)
+W_TYPE, W_DIRECTION, W_ORIGIN, W_INDEX, W_AXES = 0, 1, 2, 5, 6
+W_WIDTH = 15
 
 
 @njit(cache=True)
 def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
-    """The pose of chain k at the coordinates x (charts F for ANCF tips): its origin r (3, m)
-    and axes R (3 x 3, columns global), and, for each of its nc coordinate columns (the chain's
-    order: :attr:`ChainTable.columns`), Jr[:, i] (m or m/rad per unit coordinate) and
-    Jw[:, i] (rad per unit coordinate, global axes). With ``order`` 2 also Hr[:, i, l] =
-    dJr[:, i]/dc_l and Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). Jr, Jw (3, nc) and
-    Hr, Hw (3, nc, nc) are overwritten."""
+    """:func:`chain_kinematics_into` into r (3), R (3 x 3), Jr, Jw (3, nc), Hr, Hw (3, nc, nc)
+    (its arrays allocated here: for tests, front ends and differences, not for every step)."""
     nc = table.column_start[k + 1] - table.column_start[k]
-    nv = _virtual_columns(table, k)
-    has_tip = False
-    for li in range(table.start[k], table.start[k + 1]):
-        if table.links[li, KIND] == LinkKind.FFR_TIP:
-            has_tip = True
-    if not has_tip:
-        _screw_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw)
-        return
-    vJr, vJw = np.empty((3, nv)), np.empty((3, nv))
-    no = 0 if order < 2 else nv
-    vHr, vHw = np.empty((3, no, no)), np.empty((3, no, no))
-    _screw_kinematics(table, k, x, F, order, r, R, vJr, vJw, vHr, vHw)
-    start, index, weight = _virtual_entries(table, k, nv)
-    for a in range(3):
-        for j in range(nc):
-            Jr[a, j] = 0.0
-            Jw[a, j] = 0.0
-    for v in range(nv):
-        for e in range(start[v], start[v + 1]):
-            j, wt = index[e], weight[e]
-            for a in range(3):
-                Jr[a, j] += wt * vJr[a, v]
-                Jw[a, j] += wt * vJw[a, v]
-    if order < 2:
-        return
-    # T[:, v, l] = sum_w H[:, v, w] M[w, l], then H[:, i, l] = sum_v M[v, i] T[:, v, l]
-    Tr, Tw = np.zeros((3, nv, nc)), np.zeros((3, nv, nc))
-    for v in range(nv):
-        for w in range(nv):
-            for e in range(start[w], start[w + 1]):
-                l, wt = index[e], weight[e]
-                for a in range(3):
-                    Tr[a, v, l] += vHr[a, v, w] * wt
-                    Tw[a, v, l] += vHw[a, v, w] * wt
-    for a in range(3):
-        for i in range(nc):
-            for l in range(nc):
-                Hr[a, i, l] = 0.0
-                Hw[a, i, l] = 0.0
-    for v in range(nv):
-        for e in range(start[v], start[v + 1]):
-            i, wt = index[e], weight[e]
-            for a in range(3):
-                for l in range(nc):
-                    Hr[a, i, l] += wt * Tr[a, v, l]
-                    Hw[a, i, l] += wt * Tw[a, v, l]
-
-
-@njit(cache=True)
-def _screw_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
-    """:func:`chain_kinematics` over the virtual columns of chain k (its columns, each FFR tip
-    as its six screws: three translations along the current axes, three revolutes about the
-    current x, y', z''); Jr, Jw (3, nv), Hr, Hw (3, nv, nv)."""
-    l0, l1 = table.start[k], table.start[k + 1]
-    nc = Jr.shape[1]
+    P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
+    chain_kinematics_into(table, k, x, F, order, P, J, H, np.empty((nc, W_WIDTH)))
     for i in range(3):
-        r[i] = 0.0
+        r[i] = P[i, 0]
         for j in range(3):
-            R[i, j] = 1.0 if i == j else 0.0
-    kind_of = np.empty(nc, dtype=np.int64)  # SCREW, TRANSLATION or ROOT_ROTATION
-    direction = np.zeros(nc, dtype=np.int64)  # a translation column's global axis
-    prism = np.empty((nc, 3))  # a prismatic column's axis (global)
-    origin = np.empty((nc, 3))  # the point a rotation column turns about
+            R[i, j] = P[i, 1 + j]
+        for c in range(nc):
+            Jr[i, c] = J[0, i, c]
+            Jw[i, c] = J[1, i, c]
+            if order >= 2:
+                for l in range(nc):
+                    Hr[i, c, l] = H[0, i, c, l]
+                    Hw[i, c, l] = H[1, i, c, l]
+
+
+@njit(cache=True, inline="always")
+def _euler_rate_entry(e0, e1, e2, e3, a, i):
+    """E[a, i] of :func:`euler_rate_matrix` (E is linear in e)."""
+    if a == 0:
+        return (-e1, e0, -e3, e2)[i]
+    if a == 1:
+        return (-e2, e3, e0, -e1)[i]
+    return (-e3, -e2, e1, e0)[i]
+
+
+@njit(cache=True, inline="always")
+def _cross_columns(J, sa, ja, sb, jb, H, s, i, l, add):
+    """H[s, :, i, l] (+)= J[sa, :, ja] x J[sb, :, jb] (no views: scalars only)."""
+    a0, a1, a2 = J[sa, 0, ja], J[sa, 1, ja], J[sa, 2, ja]
+    b0, b1, b2 = J[sb, 0, jb], J[sb, 1, jb], J[sb, 2, jb]
+    c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+    if add:
+        H[s, 0, i, l] += c0
+        H[s, 1, i, l] += c1
+        H[s, 2, i, l] += c2
+    else:
+        H[s, 0, i, l] = c0
+        H[s, 1, i, l] = c1
+        H[s, 2, i, l] = c2
+
+
+@njit(cache=True, inline="always")
+def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
+    """The pose of chain k at the coordinates x (charts F for ANCF tips): P (3 x 4), its
+    origin r (column 0, m) and axes R (columns 1-3, global); for each of its nc coordinate
+    columns (the chain's order: :attr:`ChainTable.columns`) J[0, :, i] = Jr[:, i] (m or m/rad
+    per unit coordinate) and J[1, :, i] = Jw[:, i] (rad per unit coordinate, global axes).
+    With ``order`` 2 also H[0, :, i, l] = Hr[:, i, l] = dJr[:, i]/dc_l and H[1, :, i, l] =
+    Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). J (2, 3, >= nc) and H (2, 3, >= nc, >= nc)
+    are overwritten on their first nc columns; ``work`` (>= nc, W_WIDTH): scratch (a column's
+    type, a translation's axis, the point a rotation turns about, an FFR tip's axes). Scalars only: no allocation (a
+    step evaluates every chain), inlined into its callers."""
+    l0, l1 = table.start[k], table.start[k + 1]
+    nc = table.column_start[k + 1] - table.column_start[k]
+    par = table.params
+    maps = table.maps
+    for i in range(3):
+        P[i, 0] = 0.0
+        for j in range(3):
+            P[i, 1 + j] = 1.0 if i == j else 0.0
     root_columns = 0  # the first link's own columns (their mutual derivatives are explicit)
     root_kind = -1
     col = 0
-    tmp = np.empty((3, 3))
-    E = np.empty((3, 4))
-    d = np.empty(3)
-    tau = np.empty(3)
     slope_length = 1.0
+    tau0 = tau1 = tau2 = 0.0  # an ANCF tip's section axis (later links turn P)
     for li in range(l0, l1):
         kind = table.links[li, KIND]
         c0 = table.links[li, COORD]
-        par = table.params[table.links[li, PARAM]]
+        pr = table.links[li, PARAM]
         if kind == LinkKind.CONSTANT:
             for i in range(3):
-                r[i] += R[i, 0] * par[0] + R[i, 1] * par[1] + R[i, 2] * par[2]
-            for i in range(3):
-                for j in range(3):
-                    tmp[i, j] = R[i, 0] * par[3 + j] + R[i, 1] * par[6 + j] + R[i, 2] * par[9 + j]
-            for i in range(3):
-                for j in range(3):
-                    R[i, j] = tmp[i, j]
+                R0, R1, R2 = P[i, 1], P[i, 2], P[i, 3]
+                P[i, 0] += R0 * par[pr, 0] + R1 * par[pr, 1] + R2 * par[pr, 2]
+                P[i, 1] = R0 * par[pr, 3] + R1 * par[pr, 6] + R2 * par[pr, 9]
+                P[i, 2] = R0 * par[pr, 4] + R1 * par[pr, 7] + R2 * par[pr, 10]
+                P[i, 3] = R0 * par[pr, 5] + R1 * par[pr, 8] + R2 * par[pr, 11]
         elif kind == LinkKind.REVOLUTE:
-            axis = par[0:3]
+            a0, a1, a2, sign = par[pr, 0], par[pr, 1], par[pr, 2], par[pr, 3]
             for i in range(3):
-                Jw[i, col] = par[3] * (R[i, 0] * axis[0] + R[i, 1] * axis[1] + R[i, 2] * axis[2])
-                origin[col, i] = r[i]
-            kind_of[col] = SCREW
-            _rotate_about(R, axis, par[3] * x[c0], tmp)
-            for i in range(3):
-                for j in range(3):
-                    R[i, j] = tmp[i, j]
+                J[1, i, col] = sign * (P[i, 1] * a0 + P[i, 2] * a1 + P[i, 3] * a2)
+                work[col, W_ORIGIN + i] = P[i, 0]
+            work[col, W_TYPE] = SCREW
+            _rotate_about(P, a0, a1, a2, sign * x[c0])
             col += 1
         elif kind == LinkKind.FFR_TIP:
-            off, nf = int(par[1]), int(par[2])
-            moved = np.zeros(FFR_TIP_VIRTUAL)  # v = M p
-            for a in range(FFR_TIP_VIRTUAL):
-                for j in range(nf):
-                    moved[a] += table.maps[off + a * nf + j] * x[c0 + j]
-            for a in range(3):  # translations along the current axes (the beam's body frame)
+            length, off, nf = par[pr, 0], int(par[pr, 1]), int(par[pr, 2])
+            v0 = v1 = v2 = v3 = v4 = v5 = 0.0  # the virtual coordinates M p
+            for j in range(nf):
+                p = x[c0 + j]
+                v0 += maps[off + j] * p
+                v1 += maps[off + nf + j] * p
+                v2 += maps[off + 2 * nf + j] * p
+                v3 += maps[off + 3 * nf + j] * p
+                v4 += maps[off + 4 * nf + j] * p
+                v5 += maps[off + 5 * nf + j] * p
+            for j in range(nf):  # the translations' part of Jr along the current axes; Jw of the x rotation
+                m0, m1, m2, m3 = maps[off + j], maps[off + nf + j], maps[off + 2 * nf + j], maps[off + 3 * nf + j]
                 for i in range(3):
-                    prism[col + a, i] = R[i, a]
-                    Jw[i, col + a] = 0.0
-                kind_of[col + a] = PRISMATIC
-            shift0 = par[0] + moved[0]
+                    J[0, i, col + j] = P[i, 1] * m0 + P[i, 2] * m1 + P[i, 3] * m2
+                    J[1, i, col + j] = P[i, 1] * m3
+                work[col + j, W_TYPE] = TIP_COMBINATION
+                work[col + j, W_DIRECTION] = pr
+                work[col + j, W_INDEX] = j
             for i in range(3):
-                r[i] += R[i, 0] * shift0 + R[i, 1] * moved[1] + R[i, 2] * moved[2]
-            col += 3
-            unit = np.zeros(3)
-            for a in range(3):  # rotations about x, then y', then z''
-                unit[:] = 0.0
-                unit[a] = 1.0
+                P[i, 0] += P[i, 1] * (length + v0) + P[i, 2] * v1 + P[i, 3] * v2
+                work[col, W_AXES + i] = P[i, 1]
+                for j in range(nf):
+                    work[col + j, W_ORIGIN + i] = P[i, 0]
+            _rotate_about(P, 1.0, 0.0, 0.0, v3)
+            for j in range(nf):  # about y'
+                m4 = maps[off + 4 * nf + j]
                 for i in range(3):
-                    Jw[i, col] = R[i, a]
-                    origin[col, i] = r[i]
-                kind_of[col] = SCREW
-                _rotate_about(R, unit, moved[3 + a], tmp)
+                    J[1, i, col + j] += P[i, 2] * m4
+            for i in range(3):
+                work[col, W_AXES + 3 + i] = P[i, 2]
+            _rotate_about(P, 0.0, 1.0, 0.0, v4)
+            for j in range(nf):  # about z''
+                m5 = maps[off + 5 * nf + j]
                 for i in range(3):
-                    for j in range(3):
-                        R[i, j] = tmp[i, j]
-                col += 1
+                    J[1, i, col + j] += P[i, 3] * m5
+            for i in range(3):
+                work[col, W_AXES + 6 + i] = P[i, 3]
+            _rotate_about(P, 0.0, 0.0, 1.0, v5)
+            col += nf
         elif kind == LinkKind.FREE:
             root_kind = kind
             root_columns = 7
             for i in range(3):
-                r[i] = x[c0 + i]
+                P[i, 0] = x[c0 + i]
             for j in range(3):
                 for a in range(3):
-                    Jw[a, col + j] = 0.0
-                kind_of[col + j] = TRANSLATION
-                direction[col + j] = j
-            e = x[c0 + 3:c0 + 7]
-            euler_rotation(e, R)
-            euler_rate_matrix(e, E)
-            s = e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]
+                    J[1, a, col + j] = 0.0
+                work[col + j, W_TYPE] = TRANSLATION
+                work[col + j, W_DIRECTION] = j
+            e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
+            _euler_into(e0, e1, e2, e3, P)
+            s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
             for a in range(4):
                 for i in range(3):
-                    Jw[i, col + 3 + a] = 2.0 * E[i, a] / s
-                    origin[col + 3 + a, i] = r[i]
-                kind_of[col + 3 + a] = ROOT_ROTATION
+                    J[1, i, col + 3 + a] = 2.0 * _euler_rate_entry(e0, e1, e2, e3, i, a) / s
+                    work[col + 3 + a, W_ORIGIN + i] = P[i, 0]
+                work[col + 3 + a, W_TYPE] = ROOT_ROTATION
             col += 7
         else:  # ANCF_TIP
             root_kind = kind
             root_columns = 7
-            Fc = F[int(par[0])]
+            Fc = F[int(par[pr, 0])]
             for i in range(3):
-                r[i] = x[c0 + i]
-                d[i] = Fc[i, 0]
+                P[i, 0] = x[c0 + i]
             for j in range(3):
                 for a in range(3):
-                    Jw[a, col + j] = 0.0
-                kind_of[col + j] = TRANSLATION
-                direction[col + j] = j
-            slope_length = _ancf_section(Fc, x[c0 + 3:c0 + 6], x[c0 + 6], R)
-            for i in range(3):
-                tau[i] = R[i, 0]
-            y = np.zeros(3)
-            out = np.empty(3)
+                    J[1, a, col + j] = 0.0
+                work[col + j, W_TYPE] = TRANSLATION
+                work[col + j, W_DIRECTION] = j
+            slope_length = _ancf_section(Fc, x, c0 + 3, P)
+            tau0, tau1, tau2 = P[0, 1], P[1, 1], P[2, 1]
             for b in range(3):
-                y[:] = 0.0
-                y[b] = 1.0
-                _ancf_rate_columns(d, tau, slope_length, y, out)
+                o0, o1, o2 = _ancf_rate_column(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length, b)
+                J[1, 0, col + 3 + b], J[1, 1, col + 3 + b], J[1, 2, col + 3 + b] = o0, o1, o2
                 for i in range(3):
-                    Jw[i, col + 3 + b] = out[i]
-                    origin[col + 3 + b, i] = r[i]
-                kind_of[col + 3 + b] = ROOT_ROTATION
+                    work[col + 3 + b, W_ORIGIN + i] = P[i, 0]
+                work[col + 3 + b, W_TYPE] = ROOT_ROTATION
+            J[1, 0, col + 6], J[1, 1, col + 6], J[1, 2, col + 6] = tau0, tau1, tau2
             for i in range(3):
-                Jw[i, col + 6] = tau[i]
-                origin[col + 6, i] = r[i]
-            kind_of[col + 6] = ROOT_ROTATION
+                work[col + 6, W_ORIGIN + i] = P[i, 0]
+            work[col + 6, W_TYPE] = ROOT_ROTATION
             col += 7
-    # translational columns at the final origin
-    dr = np.empty(3)
+    # origin velocities: a translation's axis, or a rotation's axis x (r - the point it turns
+    # about) (added to an FFR tip column's translations)
+    has_tip = False
     for i in range(nc):
-        if kind_of[i] == TRANSLATION:
+        if work[i, W_TYPE] == TRANSLATION:
             for a in range(3):
-                Jr[a, i] = 1.0 if a == direction[i] else 0.0
-        elif kind_of[i] == PRISMATIC:
-            for a in range(3):
-                Jr[a, i] = prism[i, a]
+                J[0, a, i] = 1.0 if a == work[i, W_DIRECTION] else 0.0
         else:
-            for a in range(3):
-                dr[a] = r[a] - origin[i, a]
-            cross_into(Jw[:, i], dr, Jr[:, i])
+            d0 = P[0, 0] - work[i, W_ORIGIN]
+            d1 = P[1, 0] - work[i, W_ORIGIN + 1]
+            d2 = P[2, 0] - work[i, W_ORIGIN + 2]
+            w0, w1, w2 = J[1, 0, i], J[1, 1, i], J[1, 2, i]
+            if work[i, W_TYPE] == TIP_COMBINATION:
+                has_tip = True
+                J[0, 0, i] += w1 * d2 - w2 * d1
+                J[0, 1, i] += w2 * d0 - w0 * d2
+                J[0, 2, i] += w0 * d1 - w1 * d0
+            else:
+                J[0, 0, i] = w1 * d2 - w2 * d1
+                J[0, 1, i] = w2 * d0 - w0 * d2
+                J[0, 2, i] = w0 * d1 - w1 * d0
     if order < 2:
         return
-    v = np.empty(3)
     for i in range(nc):
         for l in range(nc):
             if i < root_columns and l < root_columns:
                 continue  # below
+            if (has_tip and work[i, W_TYPE] == TIP_COMBINATION and work[l, W_TYPE] == TIP_COMBINATION
+                    and work[i, W_DIRECTION] == work[l, W_DIRECTION]):
+                continue  # the same FFR tip's columns: below
             if l <= i:
-                cross_into(Jw[:, l], Jw[:, i], Hw[:, i, l])
-                cross_into(Jw[:, l], Jr[:, i], Hr[:, i, l])
+                _cross_columns(J, 1, l, 1, i, H, 1, i, l, False)
+                _cross_columns(J, 1, l, 0, i, H, 0, i, l, False)
             else:
                 for a in range(3):
-                    Hw[a, i, l] = 0.0
-                cross_into(Jw[:, i], Jr[:, l], Hr[:, i, l])
+                    H[1, a, i, l] = 0.0
+                _cross_columns(J, 1, i, 0, l, H, 0, i, l, False)
+    if has_tip:
+        _tip_blocks(table, P, work, nc, H)
     if root_columns == 0:
         return
     # the first link's own columns among each other
     for i in range(root_columns):
         for l in range(root_columns):
             for a in range(3):
-                Hw[a, i, l] = 0.0
-                Hr[a, i, l] = 0.0
+                H[1, a, i, l] = 0.0
+                H[0, a, i, l] = 0.0
     c0 = table.links[l0, COORD]
+    dr0, dr1, dr2 = P[0, 0] - x[c0], P[1, 0] - x[c0 + 1], P[2, 0] - x[c0 + 2]
     if root_kind == LinkKind.FREE:
-        e = x[c0 + 3:c0 + 7]
-        s = e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]
-        El = np.empty((3, 4))
-        unit = np.zeros(4)
+        e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
+        s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
         for l in range(4):
-            unit[:] = 0.0
-            unit[l] = 1.0
-            euler_rate_matrix(unit, El)  # dE/de_l (E is linear in e)
+            u0, u1, u2, u3 = 1.0 * (l == 0), 1.0 * (l == 1), 1.0 * (l == 2), 1.0 * (l == 3)  # dE/de_l: E of the unit
+            el = x[c0 + 3 + l]
             for i in range(4):
                 for a in range(3):
-                    Hw[a, 3 + i, 3 + l] = 2.0 * El[a, i] / s - 4.0 * e[l] * E[a, i] / (s * s)
-        for i in range(4):
-            for a in range(3):
-                dr[a] = r[a] - x[c0 + a]
-            for l in range(4):
-                cross_into(Hw[:, 3 + i, 3 + l], dr, v)
-                for a in range(3):
-                    Hr[a, 3 + i, 3 + l] = v[a]
-                cross_into(Jw[:, 3 + i], Jr[:, 3 + l], v)
-                for a in range(3):
-                    Hr[a, 3 + i, 3 + l] += v[a]
+                    H[1, a, 3 + i, 3 + l] = (2.0 * _euler_rate_entry(u0, u1, u2, u3, a, i) / s
+                                             - 4.0 * el * _euler_rate_entry(e0, e1, e2, e3, a, i) / (s * s))
     else:  # ANCF_TIP: rotation columns r0' (3) and theta_1 (1)
-        out = np.empty(3)
-        y = np.zeros(3)
+        Fc = F[int(par[table.links[l0, PARAM], 0])]
         for i in range(3):  # d(A e_i)/du_b
-            y[:] = 0.0
-            y[i] = 1.0
             for b in range(3):
-                _ancf_rate_derivative(d, tau, slope_length, y, b, out)
-                for a in range(3):
-                    Hw[a, 3 + i, 3 + b] = out[a]
+                o0, o1, o2 = _ancf_rate_derivative(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length, i, b)
+                H[1, 0, 3 + i, 3 + b], H[1, 1, 3 + i, 3 + b], H[1, 2, 3 + i, 3 + b] = o0, o1, o2
+        tau = (tau0, tau1, tau2)
         for b in range(3):  # d tau / d u_b
             for a in range(3):
-                Hw[a, 6, 3 + b] = ((1.0 if a == b else 0.0) - tau[a] * tau[b]) / slope_length
-        for a in range(3):
-            dr[a] = r[a] - x[c0 + a]
-        for i in range(3, 7):
-            for l in range(3, 7):
-                cross_into(Hw[:, i, l], dr, v)
-                for a in range(3):
-                    Hr[a, i, l] = v[a]
-                cross_into(Jw[:, i], Jr[:, l], v)
-                for a in range(3):
-                    Hr[a, i, l] += v[a]
+                H[1, a, 6, 3 + b] = ((1.0 if a == b else 0.0) - tau[a] * tau[b]) / slope_length
+    # Hr of the first link's rotations: dHw x (r - r_root) + Jw_i x Jr_l
+    for i in range(3, 7):
+        for l in range(3, 7):
+            h0, h1, h2 = H[1, 0, i, l], H[1, 1, i, l], H[1, 2, i, l]
+            H[0, 0, i, l] = h1 * dr2 - h2 * dr1
+            H[0, 1, i, l] = h2 * dr0 - h0 * dr2
+            H[0, 2, i, l] = h0 * dr1 - h1 * dr0
+            _cross_columns(J, 1, i, 0, l, H, 0, i, l, True)
+
+
+@njit(cache=True, inline="always")
+def _tip_blocks(table, P, work, nc, H):
+    """H among each FFR tip's own columns (j, m): with A_j = M[3:6, j] the weights of its rotations
+    w_0, w_1, w_2 (x, y', z'') about its place o and u_a = w_a x (r - o),
+    Hw_jm = sum_{b<a} A_j[a] A_m[b] w_b x w_a and Hr_jm = sum_ab A_j[a] A_m[b] w_min(a,b) x u_max(a,b)
+    (the serial rule over the screws; the translations give no terms among them)."""
+    maps = table.maps
+    for i in range(nc):
+        if work[i, W_TYPE] != TIP_COMBINATION or work[i, W_INDEX] != 0.0:
+            continue
+        pr = int(work[i, W_DIRECTION])
+        off, nf = int(table.params[pr, 1]), int(table.params[pr, 2])
+        d0 = P[0, 0] - work[i, W_ORIGIN]
+        d1 = P[1, 0] - work[i, W_ORIGIN + 1]
+        d2 = P[2, 0] - work[i, W_ORIGIN + 2]
+        a0, a1, a2 = work[i, W_AXES], work[i, W_AXES + 1], work[i, W_AXES + 2]
+        b0, b1, b2 = work[i, W_AXES + 3], work[i, W_AXES + 4], work[i, W_AXES + 5]
+        c0, c1, c2 = work[i, W_AXES + 6], work[i, W_AXES + 7], work[i, W_AXES + 8]
+        # u = w x d
+        ua0, ua1, ua2 = a1 * d2 - a2 * d1, a2 * d0 - a0 * d2, a0 * d1 - a1 * d0
+        ub0, ub1, ub2 = b1 * d2 - b2 * d1, b2 * d0 - b0 * d2, b0 * d1 - b1 * d0
+        uc0, uc1, uc2 = c1 * d2 - c2 * d1, c2 * d0 - c0 * d2, c0 * d1 - c1 * d0
+        # Hw pairs: w_a x w_b
+        ab0, ab1, ab2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+        ac0, ac1, ac2 = a1 * c2 - a2 * c1, a2 * c0 - a0 * c2, a0 * c1 - a1 * c0
+        bc0, bc1, bc2 = b1 * c2 - b2 * c1, b2 * c0 - b0 * c2, b0 * c1 - b1 * c0
+        # Hr pairs: w_min x u_max
+        qaa0, qaa1, qaa2 = a1 * ua2 - a2 * ua1, a2 * ua0 - a0 * ua2, a0 * ua1 - a1 * ua0
+        qbb0, qbb1, qbb2 = b1 * ub2 - b2 * ub1, b2 * ub0 - b0 * ub2, b0 * ub1 - b1 * ub0
+        qcc0, qcc1, qcc2 = c1 * uc2 - c2 * uc1, c2 * uc0 - c0 * uc2, c0 * uc1 - c1 * uc0
+        qab0, qab1, qab2 = a1 * ub2 - a2 * ub1, a2 * ub0 - a0 * ub2, a0 * ub1 - a1 * ub0
+        qac0, qac1, qac2 = a1 * uc2 - a2 * uc1, a2 * uc0 - a0 * uc2, a0 * uc1 - a1 * uc0
+        qbc0, qbc1, qbc2 = b1 * uc2 - b2 * uc1, b2 * uc0 - b0 * uc2, b0 * uc1 - b1 * uc0
+        for j in range(nf):
+            ja, jb, jc = maps[off + 3 * nf + j], maps[off + 4 * nf + j], maps[off + 5 * nf + j]
+            for m in range(nf):
+                ma, mb, mc = maps[off + 3 * nf + m], maps[off + 4 * nf + m], maps[off + 5 * nf + m]
+                fab, fac, fbc = jb * ma, jc * ma, jc * mb
+                H[1, 0, i + j, i + m] = fab * ab0 + fac * ac0 + fbc * bc0
+                H[1, 1, i + j, i + m] = fab * ab1 + fac * ac1 + fbc * bc1
+                H[1, 2, i + j, i + m] = fab * ab2 + fac * ac2 + fbc * bc2
+                gaa, gbb, gcc = ja * ma, jb * mb, jc * mc
+                gab, gac, gbc = ja * mb + jb * ma, ja * mc + jc * ma, jb * mc + jc * mb
+                H[0, 0, i + j, i + m] = gaa * qaa0 + gbb * qbb0 + gcc * qcc0 + gab * qab0 + gac * qac0 + gbc * qbc0
+                H[0, 1, i + j, i + m] = gaa * qaa1 + gbb * qbb1 + gcc * qcc1 + gab * qab1 + gac * qac1 + gbc * qbc1
+                H[0, 2, i + j, i + m] = gaa * qaa2 + gbb * qbb2 + gcc * qcc2 + gab * qab2 + gac * qac2 + gbc * qbc2
+
+
+@njit(cache=True, _nrt=False)
+def evaluate_chains(table, x, F):
+    """Every chain's kinematics at the coordinates x (charts F) into the table's pose, jac and
+    hess: once per evaluation of the system's functions, before its parts read them
+    (:func:`chain_state`). Compiled without numba's reference counting (it allocates nothing):
+    one call per evaluation, no count of the table's arrays per chain."""
+    for k in range(table.start.shape[0] - 1):
+        chain_kinematics_into(table, k, x, F, 2, table.pose[k], table.jac[k], table.hess[k], table.work)
+
+
+@njit(cache=True, inline="always")
+def chain_state(table, k):
+    """(columns, r, R, Jr, Jw, Hr, Hw) of chain k as :func:`evaluate_chains` left them (views of
+    the table's arrays: the chain's coordinate columns' x indices, its origin (m) and axes, the
+    Jacobians (3, nc) and their derivatives (3, nc, nc))."""
+    nc = table.column_start[k + 1] - table.column_start[k]
+    P = table.pose[k]
+    J = table.jac[k]
+    H = table.hess[k]
+    return (table.columns[table.column_start[k]:table.column_start[k + 1]], P[:, 0], P[:, 1:4], J[0, :, :nc],
+            J[1, :, :nc], H[0, :, :nc, :nc], H[1, :, :nc, :nc])
 
 
 def chain_pose(table: ChainTable, k: int, x, F=None, order: int = 1):
@@ -728,25 +768,28 @@ def gather(values, columns):
 
 
 @njit(cache=True)
-def frame_motion(Jr, Jw, Hr, Hw, cd, cdd, vel, w, acc, alpha):
+def frame_motion(Jr, Jw, Hr, Hw, cols, v, acc_x, vel, w, acc, alpha):
     """The frame's origin velocity vel = Jr c' and angular velocity w = Jw c' (global), and its
     accelerations acc = Jr c'' + sum_il Hr[:, i, l] c'_i c'_l and alpha likewise (the velocity
-    products of the chain, exact)."""
+    products of the chain, exact); c' = v[cols], c'' = acc_x[cols]."""
     nc = Jr.shape[1]
     for a in range(3):
         sv = sw = sa = sal = 0.0
         for i in range(nc):
-            sv += Jr[a, i] * cd[i]
-            sw += Jw[a, i] * cd[i]
-            sa += Jr[a, i] * cdd[i]
-            sal += Jw[a, i] * cdd[i]
-            if cd[i] != 0.0:
+            cd = v[cols[i]]
+            cdd = acc_x[cols[i]]
+            sv += Jr[a, i] * cd
+            sw += Jw[a, i] * cd
+            sa += Jr[a, i] * cdd
+            sal += Jw[a, i] * cdd
+            if cd != 0.0:
                 hr = hw = 0.0
                 for l in range(nc):
-                    hr += Hr[a, i, l] * cd[l]
-                    hw += Hw[a, i, l] * cd[l]
-                sa += hr * cd[i]
-                sal += hw * cd[i]
+                    cl = v[cols[l]]
+                    hr += Hr[a, i, l] * cl
+                    hw += Hw[a, i, l] * cl
+                sa += hr * cd
+                sal += hw * cd
         vel[a] = sv
         w[a] = sw
         acc[a] = sa
@@ -754,24 +797,15 @@ def frame_motion(Jr, Jw, Hr, Hw, cd, cdd, vel, w, acc, alpha):
 
 
 @njit(cache=True)
-def chain_origin_and_axes(table, k, x, F, r, R):
-    """The pose (r, R) of chain k at x, without Jacobians."""
-    nc = table.column_start[k + 1] - table.column_start[k]
-    Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
-    H = np.empty((3, 0, 0))
-    chain_kinematics(table, k, x, F, 1, r, R, Jr, Jw, H, H)
-
-
-@njit(cache=True)
 def displacement_in_reference(ctx, F, x, root_chain, reference_chain, length, tip, out):
     """out = R_ref^T (tip - r_root - length tau_root): a tip's displacement (m) from its
     undeformed place (the root frame's axis carried out to ``length``), along the axes of
-    the reference frame (the beam's hub frame: radial, along the hub axis, tangential)."""
-    r, R = np.empty(3), np.empty((3, 3))
-    chain_origin_and_axes(ctx.chains, root_chain, x, F, r, R)
-    d = np.empty(3)
-    for i in range(3):
-        d[i] = tip[i] - r[i] - length * R[i, 0]
-    chain_origin_and_axes(ctx.chains, reference_chain, x, F, r, R)
+    the reference frame (the beam's hub frame: radial, along the hub axis, tangential); the
+    frames as :func:`evaluate_chains` left them at x."""
+    P = ctx.chains.pose[root_chain]
+    d0 = tip[0] - P[0, 0] - length * P[0, 1]
+    d1 = tip[1] - P[1, 0] - length * P[1, 1]
+    d2 = tip[2] - P[2, 0] - length * P[2, 1]
+    Q = ctx.chains.pose[reference_chain]
     for j in range(3):
-        out[j] = R[0, j] * d[0] + R[1, j] * d[1] + R[2, j] * d[2]
+        out[j] = Q[0, 1 + j] * d0 + Q[1, 1 + j] * d1 + Q[2, 1 + j] * d2

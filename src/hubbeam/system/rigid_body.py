@@ -31,7 +31,7 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.frames import chain_columns, chain_kinematics, frame_motion, gather
+from hubbeam.system.frames import chain_state, frame_motion
 
 
 @dataclass(frozen=True)
@@ -77,19 +77,13 @@ def _global_inertia(R, I, out):
             out[i, j] = s
 
 
-@njit(cache=True)
-def _body_state(pack, ctx, F, b, x, order):
-    """(columns, r, R, Jr, Jw, Hr, Hw, I_g) of body b at x."""
-    k = pack.chain[b]
-    cols = chain_columns(ctx.chains, k)
-    nc = cols.shape[0]
-    r, R = np.empty(3), np.empty((3, 3))
-    Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
-    Hr, Hw = np.empty((3, nc, nc)), np.empty((3, nc, nc))
-    chain_kinematics(ctx.chains, k, x, F, order, r, R, Jr, Jw, Hr, Hw)
-    Ig = np.empty((3, 3))
+@njit(cache=True, inline="always")
+def _body_state(pack, ctx, b, x, F, Ig):
+    """(columns, r, R, Jr, Jw, Hr, Hw) of body b's frame (:func:`~hubbeam.system.frames.chain_state`),
+    and its inertia in global axes into Ig."""
+    cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chain[b])
     _global_inertia(R, pack.inertia[b], Ig)
-    return cols, r, R, Jr, Jw, Hr, Hw, Ig
+    return cols, r, R, Jr, Jw, Hr, Hw
 
 
 def rigid_body_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
@@ -99,11 +93,12 @@ def rigid_body_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
     g = ctx.gravity
     vel, w, a, alpha = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
     f, tq, Iw = np.empty(3), np.empty(3), np.empty(3)
+    Ig = np.empty((3, 3))
     for b in range(pack.chain.shape[0]):
-        cols, r, R, Jr, Jw, Hr, Hw, Ig = _body_state(pack, ctx, F, b, x, 2)
+        cols, r, R, Jr, Jw, Hr, Hw = _body_state(pack, ctx, b, x, F, Ig)
         nc = cols.shape[0]
         m = pack.mass[b]
-        frame_motion(Jr, Jw, Hr, Hw, gather(v, cols), gather(acc, cols), vel, w, a, alpha)
+        frame_motion(Jr, Jw, Hr, Hw, cols, v, acc, vel, w, a, alpha)
         for i in range(3):
             f[i] = m * (a[i] - load_factor * g[i])
             Iw[i] = Ig[i, 0] * w[0] + Ig[i, 1] * w[1] + Ig[i, 2] * w[2]
@@ -153,11 +148,11 @@ def rigid_body_energies(pack, ctx, F, x, v, beams):
     """Kinetic and gravity energy of the rigid bodies (J), none belonging to a beam."""
     T = V = 0.0
     g = ctx.gravity
+    Ig = np.empty((3, 3))
+    vel, w, a, alpha = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
     for b in range(pack.chain.shape[0]):
-        cols, r, R, Jr, Jw, Hr, Hw, Ig = _body_state(pack, ctx, F, b, x, 1)
-        cd = gather(v, cols)
-        vel = Jr @ cd
-        w = Jw @ cd
+        cols, r, R, Jr, Jw, Hr, Hw = _body_state(pack, ctx, b, x, F, Ig)
+        frame_motion(Jr, Jw, Hr, Hw, cols, v, v, vel, w, a, alpha)
         T += 0.5 * pack.mass[b] * (vel[0] ** 2 + vel[1] ** 2 + vel[2] ** 2) + 0.5 * (w @ (Ig @ w))
         V -= pack.mass[b] * (g[0] * r[0] + g[1] * r[1] + g[2] * r[2])
     return T, 0.0, V
@@ -165,12 +160,12 @@ def rigid_body_energies(pack, ctx, F, x, v, beams):
 
 def rigid_body_momenta(pack, ctx, F, x, v, out):
     """Mass, first moment, linear momentum and angular momentum about the origin of the bodies."""
+    Ig = np.empty((3, 3))
+    vel, w, a, alpha = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
     for b in range(pack.chain.shape[0]):
-        cols, r, R, Jr, Jw, Hr, Hw, Ig = _body_state(pack, ctx, F, b, x, 1)
-        cd = gather(v, cols)
+        cols, r, R, Jr, Jw, Hr, Hw = _body_state(pack, ctx, b, x, F, Ig)
+        frame_motion(Jr, Jw, Hr, Hw, cols, v, v, vel, w, a, alpha)
         m = pack.mass[b]
-        vel = Jr @ cd
-        w = Jw @ cd
         Iw = Ig @ w
         out[0] += m
         for i in range(3):
