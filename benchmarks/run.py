@@ -97,22 +97,36 @@ def compare(title: str, engines: list[str], elements: int, reps: int, t_end: flo
               f"{100 * abs(ours[0]['tip_end'] / peer['tip_end'] - 1):.3f} %")
 
 
-def formulations(reps: int, t_end: float, dt: float) -> None:
-    """Case F: ANCF, nodal FFR and modal FFR on experiment 1, alternating, medians."""
-    engines = ["exp1-ancf", "exp1-ffr", "exp1-ffr-modal4"]
+def exp1_runs(engines, reps: int, t_end: float, dt: float) -> dict:
+    """{engine: its runs} of experiment 1 (6 elements), the engines alternating in each of ``reps`` rounds."""
     runs = {e: [] for e in engines}
     for _ in range(reps):
         for e in engines:
             runs[e].append(one_run(e, 6, t_end, dt))
+    return runs
+
+
+def print_exp1_runs(runs: dict, process: bool) -> None:
+    """One row per engine of experiment 1's runs: median integration (and process) time, the first
+    run's Newton iterations and factorisations per step and its P1 strain peak and end."""
+    head = f" {'process s':>10s}" if process else ""
+    print(f"{'engine':18s} {'integration s':>13s}{head} {'Newton/step':>11s} {'LU/step':>8s} {'P1 peak':>11s} "
+          f"{'P1 end':>11s}")
+    for e, done in runs.items():
+        first = done[0]
+        cell = f" {median(done, 'process_s'):10.3f}" if process else ""
+        print(f"{e:18s} {median(done, 'integration_s'):13.3f}{cell} {first['newton_per_step']:11.2f} "
+              f"{first['factorisations_per_step']:8.2f} {first['peak']:11.4e} {first['end']:11.4e}")
+
+
+def formulations(reps: int, t_end: float, dt: float) -> None:
+    """Case F: ANCF, nodal FFR and modal FFR on experiment 1, alternating, medians."""
+    engines = ["exp1-ancf", "exp1-ffr", "exp1-ffr-modal4"]
+    runs = exp1_runs(engines, reps, t_end, dt)
     print(f"\nCase F (exp1, three formulations): 6 elements, {t_end:g} s at dt = {dt:g} s; median of {reps}, "
           f"{os.cpu_count()} cores")
-    print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'Newton/step':>11s} {'LU/step':>8s} "
-          f"{'P1 peak':>11s} {'P1 end':>11s}")
-    for e in engines:
-        first = runs[e][0]
-        print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {median(runs[e], 'process_s'):10.3f} "
-              f"{first['newton_per_step']:11.2f} {first['factorisations_per_step']:8.2f} {first['peak']:11.4e} "
-              f"{first['end']:11.4e}")
+    print_exp1_runs(runs, process=True)
+
     base = median(runs["exp1-ancf"], "integration_s")
     for e in engines[1:]:
         print(f"{e} / exp1-ancf: integration {median(runs[e], 'integration_s') / base:.2f}")
@@ -156,18 +170,10 @@ def joints(reps: int, t_end: float, dt: float) -> None:
     pairs = [("exp1-ancf", "exp1-ancf-hinge"), ("exp1-ffr", "exp1-ffr-hinge")]
     for e in ("exp1-ancf-hinge", "exp1-ffr-hinge"):
         one_run(e, 6, 2 * dt, dt)  # warm the numba cache of the joints' code
-    runs = {e: [] for pair in pairs for e in pair}
-    for _ in range(reps):
-        for e in runs:
-            runs[e].append(one_run(e, 6, t_end, dt))
+    runs = exp1_runs([e for pair in pairs for e in pair], reps, t_end, dt)
     print(f"\nCase J (joints): exp1, 6 elements, {t_end:g} s at dt = {dt:g} s, clamped against a stiff flap hinge; "
           f"median of {reps}, {os.cpu_count()} cores")
-    print(f"{'engine':18s} {'integration s':>13s} {'Newton/step':>11s} {'LU/step':>8s} {'P1 peak':>11s} "
-          f"{'P1 end':>11s}")
-    for e in runs:
-        first = runs[e][0]
-        print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {first['newton_per_step']:11.2f} "
-              f"{first['factorisations_per_step']:8.2f} {first['peak']:11.4e} {first['end']:11.4e}")
+    print_exp1_runs(runs, process=False)
     for clamped, hinged in pairs:
         ratio = median(runs[hinged], "integration_s") / median(runs[clamped], "integration_s")
         print(f"{hinged} / {clamped}: integration {ratio:.3f}")

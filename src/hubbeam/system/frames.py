@@ -472,34 +472,27 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
                 v3 += maps[off + 3 * nf + j] * p
                 v4 += maps[off + 4 * nf + j] * p
                 v5 += maps[off + 5 * nf + j] * p
-            for j in range(nf):  # the translations' part of Jr along the current axes; Jw of the x rotation
-                m0, m1, m2, m3 = maps[off + j], maps[off + nf + j], maps[off + 2 * nf + j], maps[off + 3 * nf + j]
+            for j in range(nf):  # the translations' part of Jr, along the current axes
+                m0, m1, m2 = maps[off + j], maps[off + nf + j], maps[off + 2 * nf + j]
                 for i in range(3):
                     J[0, i, col + j] = P[i, 1] * m0 + P[i, 2] * m1 + P[i, 3] * m2
-                    J[1, i, col + j] = P[i, 1] * m3
+                    J[1, i, col + j] = 0.0
                 work[col + j, W_TYPE] = TIP_COMBINATION
                 work[col + j, W_DIRECTION] = pr
                 work[col + j, W_INDEX] = j
             for i in range(3):
                 P[i, 0] += P[i, 1] * (length + v0) + P[i, 2] * v1 + P[i, 3] * v2
-                work[col, W_AXES + i] = P[i, 1]
                 for j in range(nf):
                     work[col + j, W_ORIGIN + i] = P[i, 0]
-            _rotate_about(P, 1.0, 0.0, 0.0, v3)
-            for j in range(nf):  # about y'
-                m4 = maps[off + 4 * nf + j]
+            for a in range(3):  # the rotations about x, then y', then z'': Jw and the axes kept
+                for j in range(nf):
+                    m = maps[off + (3 + a) * nf + j]
+                    for i in range(3):
+                        J[1, i, col + j] += P[i, 1 + a] * m
                 for i in range(3):
-                    J[1, i, col + j] += P[i, 2] * m4
-            for i in range(3):
-                work[col, W_AXES + 3 + i] = P[i, 2]
-            _rotate_about(P, 0.0, 1.0, 0.0, v4)
-            for j in range(nf):  # about z''
-                m5 = maps[off + 5 * nf + j]
-                for i in range(3):
-                    J[1, i, col + j] += P[i, 3] * m5
-            for i in range(3):
-                work[col, W_AXES + 6 + i] = P[i, 3]
-            _rotate_about(P, 0.0, 0.0, 1.0, v5)
+                    work[col, W_AXES + 3 * a + i] = P[i, 1 + a]
+                _rotate_about(P, 1.0 if a == 0 else 0.0, 1.0 if a == 1 else 0.0, 1.0 if a == 2 else 0.0,
+                              v3 if a == 0 else (v4 if a == 1 else v5))
             col += nf
         elif kind == LinkKind.FREE:
             root_kind = kind
@@ -624,6 +617,12 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
 
 
 @njit(cache=True, inline="always")
+def _cross3(a0, a1, a2, b0, b1, b2):
+    """a x b of two vectors given by their components (a 3-tuple)."""
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+@njit(cache=True, inline="always")
 def _tip_blocks(table, P, work, nc, H):
     """H among each FFR tip's own columns (j, m): with A_j = M[3:6, j] the weights of its rotations
     w_0, w_1, w_2 (x, y', z'') about its place o and u_a = w_a x (r - o),
@@ -641,21 +640,18 @@ def _tip_blocks(table, P, work, nc, H):
         a0, a1, a2 = work[i, W_AXES], work[i, W_AXES + 1], work[i, W_AXES + 2]
         b0, b1, b2 = work[i, W_AXES + 3], work[i, W_AXES + 4], work[i, W_AXES + 5]
         c0, c1, c2 = work[i, W_AXES + 6], work[i, W_AXES + 7], work[i, W_AXES + 8]
-        # u = w x d
-        ua0, ua1, ua2 = a1 * d2 - a2 * d1, a2 * d0 - a0 * d2, a0 * d1 - a1 * d0
-        ub0, ub1, ub2 = b1 * d2 - b2 * d1, b2 * d0 - b0 * d2, b0 * d1 - b1 * d0
-        uc0, uc1, uc2 = c1 * d2 - c2 * d1, c2 * d0 - c0 * d2, c0 * d1 - c1 * d0
-        # Hw pairs: w_a x w_b
-        ab0, ab1, ab2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
-        ac0, ac1, ac2 = a1 * c2 - a2 * c1, a2 * c0 - a0 * c2, a0 * c1 - a1 * c0
-        bc0, bc1, bc2 = b1 * c2 - b2 * c1, b2 * c0 - b0 * c2, b0 * c1 - b1 * c0
-        # Hr pairs: w_min x u_max
-        qaa0, qaa1, qaa2 = a1 * ua2 - a2 * ua1, a2 * ua0 - a0 * ua2, a0 * ua1 - a1 * ua0
-        qbb0, qbb1, qbb2 = b1 * ub2 - b2 * ub1, b2 * ub0 - b0 * ub2, b0 * ub1 - b1 * ub0
-        qcc0, qcc1, qcc2 = c1 * uc2 - c2 * uc1, c2 * uc0 - c0 * uc2, c0 * uc1 - c1 * uc0
-        qab0, qab1, qab2 = a1 * ub2 - a2 * ub1, a2 * ub0 - a0 * ub2, a0 * ub1 - a1 * ub0
-        qac0, qac1, qac2 = a1 * uc2 - a2 * uc1, a2 * uc0 - a0 * uc2, a0 * uc1 - a1 * uc0
-        qbc0, qbc1, qbc2 = b1 * uc2 - b2 * uc1, b2 * uc0 - b0 * uc2, b0 * uc1 - b1 * uc0
+        ua0, ua1, ua2 = _cross3(a0, a1, a2, d0, d1, d2)  # u = w x d
+        ub0, ub1, ub2 = _cross3(b0, b1, b2, d0, d1, d2)
+        uc0, uc1, uc2 = _cross3(c0, c1, c2, d0, d1, d2)
+        ab0, ab1, ab2 = _cross3(a0, a1, a2, b0, b1, b2)  # Hw's pairs w_a x w_b
+        ac0, ac1, ac2 = _cross3(a0, a1, a2, c0, c1, c2)
+        bc0, bc1, bc2 = _cross3(b0, b1, b2, c0, c1, c2)
+        qaa0, qaa1, qaa2 = _cross3(a0, a1, a2, ua0, ua1, ua2)  # Hr's pairs w_min x u_max
+        qbb0, qbb1, qbb2 = _cross3(b0, b1, b2, ub0, ub1, ub2)
+        qcc0, qcc1, qcc2 = _cross3(c0, c1, c2, uc0, uc1, uc2)
+        qab0, qab1, qab2 = _cross3(a0, a1, a2, ub0, ub1, ub2)
+        qac0, qac1, qac2 = _cross3(a0, a1, a2, uc0, uc1, uc2)
+        qbc0, qbc1, qbc2 = _cross3(b0, b1, b2, uc0, uc1, uc2)
         for j in range(nf):
             ja, jb, jc = maps[off + 3 * nf + j], maps[off + 4 * nf + j], maps[off + 5 * nf + j]
             for m in range(nf):
