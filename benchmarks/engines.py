@@ -12,7 +12,9 @@ exudyn-spacecraft (series of the bus's angular velocity and the panels' tips). C
 with modal reduction: hubbeam-ffr-modal (the FFR beam, its 4
 lowest clamped modes) and exudyn-ffrf (Exudyn's ObjectFFRFreducedOrder on a Hex20 solid mesh
 of the plate, benchmarks/solid_plate.py, its 4 lowest clamped modes; ELEMENTS counts the
-hexahedra along the length). Output: integration wall time (s), steps, Newton iterations and LU
+hexahedra along the length). Case J (joints): exp1-ancf-hinge and exp1-ffr-hinge (experiment 1 with
+the plate on a stiff flap hinge) and chain (ELEMENTS counts the links of a chain on lag hinges,
+4 elements each). Output: integration wall time (s), steps, Newton iterations and LU
 factorisations per step (when the engine reports them) and the tip deflection (case A:
 vertical, case B: tangential, m) at the end and its minimum over the run, so that equal
 accuracy can be checked. Exudyn's Newton tolerances are set as issue 6 prescribes.
@@ -459,6 +461,58 @@ def _solve_exudyn(mbs, sensor, t_end: float, dt: float, component: int | None = 
     return result
 
 
+#: case J's hinge: a flap joint at the plate's root with a spring stiff enough that the motion is
+#: the clamped one to 1e-3 (the gravity moment turns it by 4e-4 rad)
+HINGE = 'beam.joint={kind="revolute", axis="flap", stiffness=1.0e4}'
+
+
+def run_exp1_ancf_hinge(elements: int, t_end: float, dt: float) -> dict:
+    """Case J: exp1 with the ANCF beam on a stiff flap hinge (:data:`HINGE`) instead of clamped."""
+    return _run_exp1(elements, t_end, dt, [HINGE])
+
+
+def run_exp1_ffr_hinge(elements: int, t_end: float, dt: float) -> dict:
+    """Case J: exp1 with the nodal FFR beam on the stiff flap hinge."""
+    return _run_exp1(elements, t_end, dt, ['beam.formulation="ffr"', HINGE])
+
+
+def run_chain(links: int, t_end: float, dt: float) -> dict:
+    """Case J: a chain of ``links`` equal links of the plate's section (0.4 m, 4 ANCF elements each,
+    laid flat: gravity bends the weak axis) on a fixed hub, the first on the hub, each next on the
+    tip of the one before, every root on a lag hinge (about the vertical) with a spring of
+    5 N m/rad, every hinge started at 1 rad/s; the last link's vertical tip deflection."""
+    import numpy as np
+
+    from hubbeam import api
+    from hubbeam.io.scenario import validate
+
+    beams = []
+    for k in range(links):
+        beam = {"name": f"link{k}", "elements": 4, "length": 0.4, "width": B, "thickness": H, "density": RHO,
+                "youngs_modulus": E, "twist": 90.0,
+                "joint": {"kind": "revolute", "axis": "lag", "stiffness": 5.0, "initial_rate": 1.0}}
+        if k:
+            beam["parent"] = f"link{k - 1}"
+        else:
+            beam["radius"] = 0.35
+        beams.append(beam)
+
+    def scenario(end):
+        return validate({"name": "chain", "hub": {"motion": "fixed"}, "beams": beams,
+                         "analysis": {"kind": "dynamic", "t_end": end, "dt": dt, "spectral_radius": 0.8},
+                         "sensors": [{"name": "tip", "kind": "tip_deflection", "beam": f"link{links - 1}"}]})
+
+    api.run(scenario(2 * dt))  # loads the compiled code
+    traj, failure = api.run(scenario(t_end))
+    if failure is not None:
+        raise failure
+    values = np.array([r["vertical"] for r in traj.records["tip"]])
+    return {"integration_s": traj.wall_time_s, "steps": traj.steps,
+            "newton_per_step": traj.newton_iterations / traj.steps,
+            "factorisations_per_step": traj.factorisations / traj.steps,
+            "tip_end": float(values[-1]), "tip_min": float(values.min())}
+
+
 ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge": run_exudyn_ge,
            "hubbeam-kane": run_hubbeam_kane, "exudyn-cable-kane": run_exudyn_cable_kane,
            "exp1-ancf": run_exp1_ancf, "exp1-ffr": run_exp1_ffr, "exp1-ffr-modal4": run_exp1_ffr_modal,
@@ -466,7 +520,8 @@ ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge"
            "hubbeam-spacecraft": run_hubbeam_spacecraft, "exudyn-spacecraft": run_exudyn_spacecraft,
            "spacecraft-free-base": run_spacecraft_free_base, "spacecraft-free-hub": run_spacecraft_free_hub,
            "spacecraft-modal-free-base": run_spacecraft_modal_free_base,
-           "spacecraft-modal-free-hub": run_spacecraft_modal_free_hub}
+           "spacecraft-modal-free-hub": run_spacecraft_modal_free_hub,
+           "exp1-ancf-hinge": run_exp1_ancf_hinge, "exp1-ffr-hinge": run_exp1_ffr_hinge, "chain": run_chain}
 
 if __name__ == "__main__":
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -1,6 +1,6 @@
 """Speed benchmark: hubbeam against Exudyn on the same models (issue 6), run side by side.
 
-    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R,S,M] [--quick]
+    python benchmarks/run.py [--reps 3] [--t-end 10] [--cases A,B,C,P,F,R,S,M,J] [--quick]
 
 Every run is a fresh process (benchmarks/engines.py; ``hubbeam run`` for case P), the
 engines of a case alternate within each repetition, and the tables show medians: the
@@ -35,6 +35,11 @@ deflection, with their differences.
 Case M (issue 24, issue 26): case S's panels on the free bus against the same panels on a free
 1-DOF hub, ANCF and FFR on 4 modes, 60 s at 1 ms (what a moving base costs; the modal
 spacecraft's time per step).
+
+Case J (joints): experiment 1 (free hub, 6 elements) clamped against the same plate on a revolute
+(flap) joint with a stiff spring (its motion the clamped one's), ANCF and nodal FFR, alternating,
+medians: what a joint adds to the integration time; and a chain of 1, 2, 4 and 8 equal links (4 ANCF elements each) on
+lag hinges, its cost per step against n times one link's. No peer needed.
 """
 
 from __future__ import annotations
@@ -109,19 +114,32 @@ def compare(title: str, engines: list[str], elements: int, reps: int, t_end: flo
               f"{100 * abs(ours[0]['tip_end'] / peer['tip_end'] - 1):.3f} %")
 
 
+def exp1_runs(engines, reps: int, t_end: float, dt: float) -> dict:
+    """{engine: its runs} of experiment 1 (6 elements), the engines alternating in each of ``reps`` rounds."""
+    return alternate({e: 6 for e in engines}, reps, t_end, dt)
+
+
+def print_exp1_runs(runs: dict, process: bool) -> None:
+    """One row per engine of experiment 1's runs: median integration (and process) time, the first
+    run's Newton iterations and factorisations per step and its P1 strain peak and end."""
+    head = f" {'process s':>10s}" if process else ""
+    print(f"{'engine':18s} {'integration s':>13s}{head} {'Newton/step':>11s} {'LU/step':>8s} {'P1 peak':>11s} "
+          f"{'P1 end':>11s}")
+    for e, done in runs.items():
+        first = done[0]
+        cell = f" {median(done, 'process_s'):10.3f}" if process else ""
+        print(f"{e:18s} {median(done, 'integration_s'):13.3f}{cell} {first['newton_per_step']:11.2f} "
+              f"{first['factorisations_per_step']:8.2f} {first['peak']:11.4e} {first['end']:11.4e}")
+
+
 def formulations(reps: int, t_end: float, dt: float) -> None:
     """Case F: ANCF, nodal FFR and modal FFR on experiment 1, alternating, medians."""
     engines = ["exp1-ancf", "exp1-ffr", "exp1-ffr-modal4"]
-    runs = alternate({e: 6 for e in engines}, reps, t_end, dt)
+    runs = exp1_runs(engines, reps, t_end, dt)
     print(f"\nCase F (exp1, three formulations): 6 elements, {t_end:g} s at dt = {dt:g} s; median of {reps}, "
           f"{os.cpu_count()} cores")
-    print(f"{'engine':18s} {'integration s':>13s} {'process s':>10s} {'Newton/step':>11s} {'LU/step':>8s} "
-          f"{'P1 peak':>11s} {'P1 end':>11s}")
-    for e in engines:
-        first = runs[e][0]
-        print(f"{e:18s} {median(runs[e], 'integration_s'):13.3f} {median(runs[e], 'process_s'):10.3f} "
-              f"{first['newton_per_step']:11.2f} {first['factorisations_per_step']:8.2f} {first['peak']:11.4e} "
-              f"{first['end']:11.4e}")
+    print_exp1_runs(runs, process=True)
+
     base = median(runs["exp1-ancf"], "integration_s")
     for e in engines[1:]:
         print(f"{e} / exp1-ancf: integration {median(runs[e], 'integration_s') / base:.2f}")
@@ -215,12 +233,34 @@ def moving_base(reps: int, t_end: float, dt: float, elements: int = 8) -> None:
         print(f"spacecraft-{kind}free-base / spacecraft-{kind}free-hub: integration {ratio:.2f}")
 
 
+def joints(reps: int, t_end: float, dt: float) -> None:
+    """Case J: a joint's cost against the same beam clamped, and chains of n links."""
+    pairs = [("exp1-ancf", "exp1-ancf-hinge"), ("exp1-ffr", "exp1-ffr-hinge")]
+    for e in ("exp1-ancf-hinge", "exp1-ffr-hinge"):
+        one_run(e, 6, 2 * dt, dt)  # warm the numba cache of the joints' code
+    runs = exp1_runs([e for pair in pairs for e in pair], reps, t_end, dt)
+    print(f"\nCase J (joints): exp1, 6 elements, {t_end:g} s at dt = {dt:g} s, clamped against a stiff flap hinge; "
+          f"median of {reps}, {os.cpu_count()} cores")
+    print_exp1_runs(runs, process=False)
+    for clamped, hinged in pairs:
+        ratio = median(runs[hinged], "integration_s") / median(runs[clamped], "integration_s")
+        print(f"{hinged} / {clamped}: integration {ratio:.3f}")
+    print(f"\nCase J (chains): n links on lag hinges, 4 ANCF elements each, 1 s at dt = {dt:g} s; best of {reps}")
+    one = None
+    for n in (1, 2, 4, 8):
+        best = min((one_run("chain", n, 1.0, dt) for _ in range(reps)), key=lambda r: r["integration_s"])
+        per = best["integration_s"] / best["steps"]
+        one = per if n == 1 else one
+        print(f"  {n} link{'s' if n > 1 else ' '}: {1e3 * per:.3f} ms per step, {best['newton_per_step']:.2f} Newton "
+              f"iterations per step ({per / (n * one):.2f} x n times one link)")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--t-end", type=float, default=10.0)
     p.add_argument("--dt", type=float, default=1e-3)
-    p.add_argument("--cases", default="A,B,C,P,F,R,S,M", help="comma-separated subset of A, B, C, P, F, R, S, M")
+    p.add_argument("--cases", default="A,B,C,P,F,R,S,M,J", help="comma-separated subset of A, B, C, P, F, R, S, M, J")
     p.add_argument("--quick", action="store_true", help="1 s simulated, one repetition")
     a = p.parse_args()
     if a.quick:
@@ -251,6 +291,8 @@ def main() -> None:
         spacecraft(a.reps, 10.0 if not a.quick else 1.0, 2e-3)
     if "M" in cases:
         moving_base(a.reps, 60.0 if not a.quick else 1.0, 1e-3)
+    if "J" in cases:
+        joints(a.reps, a.t_end, a.dt)
     if "P" in cases:
         times = [cli_run(a.t_end) for _ in range(a.reps)]
         print(f"\nCase P: `hubbeam run benchmarks/case_a.toml -o OUT.nc` ({a.t_end:g} s simulated), whole process: "

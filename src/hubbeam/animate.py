@@ -5,7 +5,8 @@ ribbon, its centre line -+ (b/2) m at every stored station (b the station's widt
 section's unit vector along it), so twist and bending of the sections show; the rigid bodies
 (:func:`hubbeam.io.bodies.rigid_bodies`) by their glyphs: the hub a disc of the hub radius
 (the largest root radius) normal to j0, with a spoke along i_h(theta) that turns with it,
-each tip body the box of its mass and inertia. Axes: global x, -z and y (so the hub axis j0
+each tip body the box of its mass and inertia; a hinge (a beam's root on a revolute joint) a
+black dot at the beam's root. Axes: global x, -z and y (so the hub axis j0
 points up and the view stays right-handed), the same limits in every frame (the whole run's
 extent) and equal scales. One frame per stored output time, or every ``stride``-th.
 
@@ -161,6 +162,7 @@ def build(state: RunState, color: str = "strain", stride: int = 1, size=(7.0, 5.
                              facecolor=f"C{k % 10}")
         ax.add_collection3d(r)
         ribbons.append(r)
+    (hinges,) = ax.plot([], [], [], linestyle="none", marker="o", color="k", markersize=5)
     label = ax.text2D(0.02, 0.95, "", transform=ax.transAxes)
     ax.set_title(state.name + (f" (deflections \u00d7 {scale:g})" if scale != 1.0 else ""))
     hub = bodies[0]
@@ -175,8 +177,11 @@ def build(state: RunState, color: str = "strain", stride: int = 1, size=(7.0, 5.
             if values is not None:
                 v = values[k][np.searchsorted(frames, i)]
                 r.set_facecolor(cmap(norm(0.5 * (v[:-1] + v[1:]))))
+        if state.joints:  # each hinge at its beam's drawn root: the middle of the ribbon's first edge
+            at = _view(np.array([ribbon_quads(state, k, i, scale)[0, :2].mean(axis=0) for k in state.joints]))
+            hinges.set_data_3d(at[:, 0], at[:, 1], at[:, 2])
         label.set_text(f"t = {state.times[i]:.3f} s")
-        return [spoke, label, *ribbons, *(solid for _, solid in solids)]
+        return [spoke, hinges, label, *ribbons, *(solid for _, solid in solids)]
 
     update(frames[0])
     return fig, update, frames

@@ -18,6 +18,7 @@ from hubbeam.system.base import Base, BaseMotion, HubPlacement
 from hubbeam.system.base_laws import AttitudeLaw
 from hubbeam.system.multibody import Hub, MultibodySystem
 from hubbeam.system.laws import DriveProfile, TorqueLaw
+from hubbeam.system.joints import NAMED_AXES, Joint
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody
 
@@ -74,11 +75,24 @@ def as_scenario(scenario) -> Scenario:
     return scenario
 
 
-def beam_part(spec):
-    """The system part of one resolved beam of a scenario (:class:`hubbeam.io.scenario.ResolvedBeam`)."""
+def joint_of(spec, key: str) -> Joint | None:
+    """The :class:`~hubbeam.system.joints.Joint` of a resolved beam's joint (None: clamped);
+    ``key`` names its table in errors (``beams[k].joint``)."""
+    j = spec.joint
+    if j is None:
+        return None
+    axes = tuple(NAMED_AXES[a] if isinstance(a, str) else a for a in j.axes)
+    return Joint(axes, j.names, j.stiffness, j.damping, j.neutral, j.initial_angle, j.initial_rate, j.latch,
+                 None if j.torque is None else torque_law(j.torque, f"{key}.torque"))
+
+
+def beam_part(spec, key: str = "beams[0]"):
+    """The system part of one resolved beam of a scenario (:class:`hubbeam.io.scenario.ResolvedBeam`);
+    ``key`` names its table in errors."""
     section = Section(spec.width, spec.thickness, spec.density, spec.youngs_modulus, spec.shear_modulus,
                       spec.torsion_constant)
-    mount = Mount(spec.radius, spec.twist, spec.azimuth, spec.precone)
+    mount = Mount(spec.radius, spec.twist, spec.azimuth, spec.precone, getattr(spec, "parent", None),
+                  joint_of(spec, f"{key}.joint") if getattr(spec, "joint", None) is not None else None)
     tip = None
     if spec.tip_body is not None:
         tb = spec.tip_body
@@ -105,8 +119,9 @@ def drive_profile(drive, key: str) -> DriveProfile:
     return DriveProfile(drive.profile, drive.omega_s, drive.T, drive.t1)
 
 
-def torque_law(law) -> TorqueLaw:
-    """The torque law of a scenario's [hub.torque] (None: no torque)."""
+def torque_law(law, key: str = "hub.torque") -> TorqueLaw:
+    """The torque law of a scenario's [hub.torque] (None: no torque), or of another torque table
+    named ``key`` in errors (a joint's motor)."""
     if law is None:
         return TorqueLaw()
     if law.law == "constant":
@@ -114,8 +129,8 @@ def torque_law(law) -> TorqueLaw:
     if law.law == "table":
         from hubbeam.io.tables import read_torque_table
 
-        return read_torque_table(law.file, "hub.torque.file")
-    return TorqueLaw.pd(law.kp, law.kd, drive_profile(law.reference, "hub.torque.reference"))
+        return read_torque_table(law.file, f"{key}.file")
+    return TorqueLaw.pd(law.kp, law.kd, drive_profile(law.reference, f"{key}.reference"))
 
 
 def torque_argument(torque, scenario: Scenario) -> TorqueLaw | None:
@@ -188,7 +203,7 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> Multibo
     # a hub fixed to a base that moves is part of it: no rotor of its own (a free base's body holds
     # its inertia; on a table base hub.inertia of a fixed hub is unused, as on a fixed base)
     inertia = 0.0 if (base.moves and hub.motion == "fixed") else hub.inertia
-    return MultibodySystem([beam_part(spec) for spec in scenario.resolved_beams()],
+    return MultibodySystem([beam_part(spec, scenario.beam_key(spec.index)) for spec in scenario.resolved_beams()],
                            Hub(hub.motion, inertia, law, drive),
                            gravity=np.array(scenario.environment.gravity),
                            damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
@@ -296,10 +311,11 @@ class ModalResult:
 
         import xarray as xr
 
-        from hubbeam.solvers.mode_shapes import MOTIONS, mode_label, span_shapes
+        from hubbeam.solvers.mode_shapes import mode_label, motions_of, span_shapes
 
         system, sol, modes = self.static.system, self.static.solution, self.modes
         fractions = self.energy_fractions()
+        motions = motions_of(system)
         spans = span_shapes(system, sol.x, sol.chart, modes.shapes)
         n = max(xs.size for xs, _, _ in spans)
         nm, nb = modes.shapes.shape[1], len(spans)
@@ -311,7 +327,7 @@ class ModalResult:
         unit = "per unit modal coordinate (kinetic energy eta'^2/2)"
         data = {"frequency_hz": ("mode", modes.frequencies_hz, {"units": "Hz"}),
                 "label": ("mode", np.array([mode_label(f) for f in fractions], dtype=object)),
-                "energy_fraction": (("mode", "motion"), np.array([[f.get(k, 0.0) for k in MOTIONS] for f in fractions]),
+                "energy_fraction": (("mode", "motion"), np.array([[f.get(k, 0.0) for k in motions] for f in fractions]),
                                     {"units": "1"}),
                 "x": (("beam", "station"), x, {"units": "m", "long_name": "station from the root"})}
         arrays = {"shape": (("mode", "coordinate"), modes.shapes.T, {"units": "coordinates' units kg^-1/2"}),
@@ -321,7 +337,7 @@ class ModalResult:
             data[name] = (dims, np.real(values), attrs)
             if np.iscomplexobj(values):
                 data[name + "_imag"] = (dims, np.imag(values), attrs)
-        ds = xr.Dataset(data, coords={"mode": np.arange(1, nm + 1), "motion": list(MOTIONS),
+        ds = xr.Dataset(data, coords={"mode": np.arange(1, nm + 1), "motion": list(motions),
                                       "beam": [b.name for b in system.beams],
                                       "component": ["axial", "flap", "lag"]})
         ds.attrs.update({"about": self.about, "normalisation": "u^H M u = 1 (mass-normalised); complex shapes "
@@ -385,10 +401,12 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     (:class:`hubbeam.analysis.state_space.LinearModel`): about the static equilibrium under its
     loads or, for a hub driven at a constant omega_s, about the steadily rotating state (other
     prescribed profiles: at rest with the hub held). ``inputs``: a list of "hub_torque" (free
-    hub, N m, added to the torque law) and "tip_force:BEAM" (N, three components); default: the
-    hub torque of a free hub, the first beam's tip force on a held one. Outputs: the scenario's
-    sensors (``outputs``: only those columns, in that order). ``open_loop``: leave the
-    scenario's torque law out (the plant a controller is designed for).
+    hub, N m, added to the torque law), "joint_torque:BEAM" (N m, in the joint of BEAM, added to
+    its motor law) and "tip_force:BEAM" (N, three components); default: the hub torque of a free
+    hub (the first beam's tip force on a held one) and every joint motor's torque. Outputs: the
+    scenario's sensors (``outputs``: only those columns, in that order). ``open_loop``: leave
+    the scenario's torque laws out, the hub's and the joints' motors (the plant a controller is
+    designed for).
 
     Reduced models (docs/state_space.md): ``reduce=N`` keeps the N lowest modes (modal
     truncation, the rest residualised: :meth:`LinearModel.reduced`), ``balanced=N`` N balanced
@@ -422,8 +440,10 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
                             f"{type(bad[0]).__name__} {bad[0]!r:.60})")
     notes: list[str] = []
     system = equilibrium_system(scenario, notes)
+    motors = [f"joint_torque:{b.name}" for b in system.beams if b.mount.joint is not None
+              and b.mount.joint.torque is not None]
     if open_loop:
-        system = system.with_hub(torque=TorqueLaw())
+        system = system.with_hub(torque=TorqueLaw()).without_motors()
     load_steps = scenario.analysis.load_steps
     if inputs is None:
         from hubbeam.analysis.state_space import BASE_TORQUE_INPUTS
@@ -433,6 +453,7 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
             inputs += list(BASE_TORQUE_INPUTS)
         if not inputs:
             inputs = [f"tip_force:{system.beams[0].name}"]
+        inputs += motors
     omega = 0.0
     if scenario.hub.motion == "prescribed" and system.drive.kind == "constant":
         omega = float(system.drive(0.0)[1])

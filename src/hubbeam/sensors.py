@@ -6,6 +6,7 @@ it names one) measure the beam their ``beam`` key names (default: the first).
 
 from __future__ import annotations
 
+from hubbeam.system.joints import joint_torques
 from hubbeam.system.multibody import MultibodySystem, energy_sums
 
 UNITS = {
@@ -13,7 +14,8 @@ UNITS = {
     "applied_torque": "N m", "tip_deflection": "m", "energy": "J", "angular_momentum": "N m s",
     "constraint_violation": "m", "base_position": "m", "base_rotation": "rad", "base_velocity": "m/s",
     "base_angular_velocity": "rad/s", "centre_of_mass": "m", "linear_momentum": "N s",
-    "system_angular_momentum": "N m s", "base_torque": "N m",
+    "system_angular_momentum": "N m s", "base_torque": "N m", "joint_angle": "rad", "joint_rate": "rad/s",
+    "joint_torque": "N m",
 }
 
 #: the sensors of a base and of the whole system in space: three components each
@@ -30,6 +32,8 @@ def columns(sensor) -> list[str]:
     """The result columns of a sensor: its name, or NAME_PART for each of its parts (the energy
     of one beam has no dissipated or drive part)."""
     parts = PARTS.get(sensor.kind)
+    if sensor.kind in JOINT_SENSORS:
+        parts = getattr(sensor, "parts", None)  # a multi-axis joint's axes (the scenario's sensor knows them)
     if parts is None:
         return [sensor.name]
     if sensor.kind == "energy" and getattr(sensor, "beam", None) is not None:
@@ -89,6 +93,40 @@ def _tip_deflection(sensor, system):
     return lambda state, work: system.tip_displacement(state.x, beam, state.chart)
 
 
+#: the sensors of a beam's joint (one part per axis of a multi-axis joint)
+JOINT_SENSORS = ("joint_angle", "joint_rate", "joint_torque")
+
+
+def _joint(sensor, system: MultibodySystem):
+    """(the joint of the sensor's beam, where its angles start in x, the beam's index); ValueError
+    for a clamped beam."""
+    k = _beam(sensor, system)
+    joint = system.beams[k].mount.joint
+    if joint is None:
+        raise ValueError(f"sensor {sensor.name!r}: beam {system.beams[k].name!r} is clamped (no joint to measure)")
+    return joint, system.layout.joint_x(k).start, k
+
+
+def _joint_values(joint, values):
+    """One float, or {axis name: value} for a multi-axis joint."""
+    if joint.count == 1:
+        return float(values[0])
+    return {name: float(v) for name, v in zip(joint.names, values)}
+
+
+def _joint_coordinate(which: str):
+    """joint_angle (x) or joint_rate (v) of the sensor's beam's joint axes."""
+    def factory(sensor, system):
+        joint, first, _ = _joint(sensor, system)
+        return lambda state, work: _joint_values(joint, getattr(state, which)[first:first + joint.count])
+    return factory
+
+
+def _joint_torque(sensor, system):
+    joint, _, k = _joint(sensor, system)
+    return lambda state, work: _joint_values(joint, joint_torques(system, state.t, state.x, state.v, state.lam)[k])
+
+
 def _vector(measure):
     """A three-component sensor: the function(system, state) of a 3-vector as {x, y, z}."""
     def factory(sensor, system):
@@ -130,6 +168,9 @@ MEASURES = {
                                                                                             state.chart),
     "constraint_violation": lambda sensor, system: lambda state, work: system.constraint_violation(
         state.x, state.chart, state.t),
+    "joint_angle": _joint_coordinate("x"),
+    "joint_rate": _joint_coordinate("v"),
+    "joint_torque": _joint_torque,
 }
 
 

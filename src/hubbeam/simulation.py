@@ -37,6 +37,7 @@ class Trajectory:
     wall_time_s: float = 0.0
     #: the scenario the run was made with (set by :func:`hubbeam.api.run`; results check it)
     scenario: object = None
+    latches: list = field(default_factory=list)  # the joints' latch events (:class:`hubbeam.system.joints.LatchEvent`)
 
     def extend(self, times, values, snapshots=None):
         """Add the records at ``times``: ``values`` {sensor name: its values, one per time},
@@ -163,17 +164,18 @@ class PythonSteps:
     it, each with the work done up to then."""
 
     def __init__(self, system: MultibodySystem, params, newton, dt, state: ga.AlphaState,
-                 measures: tuple[bool, bool, list] = (False, False, [])) -> None:
+                 measures: tuple[bool, bool, list] = (False, False, []), work: dict | None = None) -> None:
         self.system, self.params, self.newton, self.dt = system, params, newton, dt
         # (energies, tip displacements, strain gauges) (:func:`hubbeam.sensors.record_needs`):
         # the compiled steps compute them for a chunk's records (:class:`RecordChunk`), where the sensors read them
         self.measures = measures
-        self.work = {"dissipated": 0.0, "drive": 0.0}
+        self.work = dict(work) if work is not None else {"dissipated": 0.0, "drive": 0.0}
         self.kept = None  # the iteration matrix kept between steps
         # at rest both powers are exactly 0 (drag ~ |v| v, structural damping ~ e', hub power
         # ~ theta'): no call then (each is a compiled function loaded from numba's cache)
         self.power = (0.0, 0.0) if not np.any(state.v) else self._power(state)
         self.factorisations = None  # counted by the compiled steps only
+        self.event = False  # the last advance stopped at an event (a joint at its latch angle)
 
     def _power(self, st):
         return self.system.step_powers(st.t, st.x, st.v, st.lam, st.chart)
@@ -181,9 +183,11 @@ class PythonSteps:
     def advance(self, state, n_steps, step0, every, total):
         """Up to n_steps steps after step0 of total; states after steps that are multiples of
         ``every`` (and the last) are returned. Returns (state, steps taken, Newton
-        iterations, chart limit reached, error or None, the records' :class:`RecordChunk` or None)."""
+        iterations, chart limit reached, error or None, the records' :class:`RecordChunk` or None);
+        :attr:`event` says whether the last step reached an event (a joint at its latch angle)."""
         iterations = 0
         records = []
+        self.event = False
         for k in range(n_steps):
             try:
                 state, its, self.kept = ga.step(self.system, state, self.dt, self.params, self.newton, self.kept)
@@ -197,6 +201,9 @@ class PythonSteps:
             step = step0 + k + 1
             if step % every == 0 or step == total:
                 records.append((state, dict(self.work)))
+            if self.system.event_reached(state.x):
+                self.event = True
+                return state, k + 1, iterations, False, None, RecordChunk.of_states(records)
             if self.system.chart_margin(state.x, state.chart) < CHART_LIMIT:
                 return state, k + 1, iterations, True, None, RecordChunk.of_states(records)
         return state, n_steps, iterations, False, None, RecordChunk.of_states(records)
@@ -209,9 +216,9 @@ class CompiledSteps(PythonSteps):
     """The same steps in compiled code (:func:`hubbeam.solvers.compiled_alpha.advance`) for
     systems whose every term compiles (every beam ANCF): a chunk of steps is one call."""
 
-    def __init__(self, system, params, newton, dt, state, measures: tuple[bool, bool, list] = (False, False, [])
-                 ) -> None:
-        super().__init__(system, params, newton, dt, state, measures)
+    def __init__(self, system, params, newton, dt, state, measures: tuple[bool, bool, list] = (False, False, []),
+                 work: dict | None = None) -> None:
+        super().__init__(system, params, newton, dt, state, measures, work)
         self.gauges, self.gauge_list = system.gauge_table(measures[2])
         # the gauges the compiled measures leave out (FFR beams'): read over a chunk's records at once
         self.other_gauges = [g for g in dict.fromkeys(measures[2]) if g not in self.gauge_list]
@@ -223,7 +230,7 @@ class CompiledSteps(PythonSteps):
                        np.zeros((layout.border, m)), np.zeros((layout.border, layout.border)))
         self.reuse = ga.reuse_state()
         self.factorisations = 0
-        self.work_done = np.zeros(2)
+        self.work_done = np.array([self.work["dissipated"], self.work["drive"]], dtype=float)
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
         tol = newton.tolerance * max(system.length_scale, 1.0)
         self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations,
@@ -268,10 +275,29 @@ class CompiledSteps(PythonSteps):
         if message is not None:
             text = message.format(its=self.newton.max_iterations, size=size)
             error = (ChartSingularityError if status == ga.Outcome.CHART_SINGULARITY else ConvergenceError)(text)
+        self.event = status == ga.Outcome.EVENT_REACHED
         return new, steps, its, status == ga.Outcome.CHART_LIMIT_REACHED, error, chunk
 
     def chart_changed(self):
         self.reuse[ga.REUSE_VALID] = 0
+
+
+def latch(system: MultibodySystem, state: ga.AlphaState, work: dict, time: float | None = None):
+    """The joints whose latch angle ``state`` reached, locked (:func:`hubbeam.system.joints.latch_joints`):
+    (the locked system, its state (velocities projected, accelerations and multipliers
+    consistent with them), the :class:`~hubbeam.system.joints.LatchEvent` of each, the work so
+    far with the energy the projection removed added to ``dissipated`` and the impulsive work
+    of prescribed motions to ``drive``). ``time``: the event's time as the records give it (the
+    decimal time of its step; default the state's)."""
+    from hubbeam.system.joints import latch_joints, reached_latches
+
+    new, v_plus, events, drive = latch_joints(system, reached_latches(system, state.x), state.t, state.x, state.v,
+                                              state.chart)
+    if time is not None:
+        events = [replace(e, time=float(time)) for e in events]
+    work = {"dissipated": float(work["dissipated"]) + sum(e.energy for e in events),
+            "drive": float(work["drive"]) + drive}
+    return new, ga.init(new, state.x, state.chart, state.t, v_plus), events, work
 
 
 #: a run reports progress (and takes a chunk of compiled steps) about this many times
@@ -325,6 +351,7 @@ def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral
     chunk = min(chunk_size, 8)  # the first chunks are short; later ones last about CHUNK_SECONDS
     start = time.perf_counter()
     k = 0
+    earlier = 0  # factorisations of the steppers before a latch changed the system
     try:  # interruption: see the except clause below
         while k < n_steps:
             chunk_start = time.perf_counter()
@@ -347,6 +374,14 @@ def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral
                     f"Try a smaller analysis.dt (now {dt:g} s), more beam.elements or a smaller analysis.spectral_radius.",
                     partial=traj,
                 ) from error
+            if stepper.event:  # a joint reached its latch: the system changes (its lock), the stepper with it
+                system, state, latches, work = latch(system, state, stepper.work, (t0_units + dt_units * k) / scale)
+                traj.latches.extend(latches)
+                measures = [(s.name, prepare_chunk(s, system)) for s in sensors]
+                if stepper.factorisations is not None:
+                    earlier += stepper.factorisations
+                stepper = steps_class(system, params, newton, dt, state, record_needs(sensors, system), work)
+                chart_limit = system.chart_margin(state.x, state.chart) < CHART_LIMIT
             if chart_limit:
                 state = change_chart(system, state, system.better_chart(state.x, state.chart, CHART_LIMIT))
                 stepper.chart_changed()
@@ -357,7 +392,7 @@ def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral
     # chart change, KeyboardInterrupt) carries the trajectory so far in ``partial``
     except BaseException as exc:
         traj.wall_time_s = time.perf_counter() - start
-        traj.factorisations = stepper.factorisations
+        traj.factorisations = None if stepper.factorisations is None else earlier + stepper.factorisations
         if getattr(exc, "partial", None) is None:
             try:
                 exc.partial = traj
@@ -365,5 +400,5 @@ def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral
                 pass
         raise
     traj.wall_time_s = time.perf_counter() - start
-    traj.factorisations = stepper.factorisations
+    traj.factorisations = None if stepper.factorisations is None else earlier + stepper.factorisations
     return traj

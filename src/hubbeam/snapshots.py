@@ -7,7 +7,9 @@ the one place that reads them). At each output time it records the hub angle the
 every beam, at those stations: the deformed centre line, the section frame's unit vectors m
 (along the width) and n (along the thickness), and the axial strain on the upper surface
 (z = +h/2, h the station's thickness), and the frames of the hub (its origin and axes at
-theta: R R_h A_h(theta)) and of the base. Everything is global and SI: m, rad, strain 1.
+theta: R R_h A_h(theta)) and of the base. Everything is global and SI: m, rad, strain 1. The
+beams whose root is on a revolute joint (:mod:`hubbeam.system.joints`) are listed
+(``joints``): their first station is the hinge, which drawings mark.
 """
 
 from __future__ import annotations
@@ -53,6 +55,8 @@ class StateRecorder:
             raise ValueError(f"points_per_element must be >= 1 (got {points_per_element})")
         self.points_per_element = int(points_per_element)
         self.names = tuple(part.name for part in system.beams)
+        #: the beams whose root is a hinge (on a revolute joint): drawn with a marker at their first station
+        self.joints = tuple(part.name for part in system.beams if part.mount.joint is not None)
         self.formulations = tuple(part.formulation for part in system.beams)
         self.stations = tuple(part.stations(self.points_per_element) for part in system.beams)
         sizes = [np.array([part.section_size(s) for s in st], dtype=float).reshape(-1, 2)

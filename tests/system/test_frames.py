@@ -33,7 +33,15 @@ def _chains(rng):
     base = fr.Chain((fr.free(0), const(), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), const(),
                      fr.revolute(11, rng.normal(size=3)), fr.revolute(12, rng.normal(size=3)), const()))
     tip = fr.Chain((fr.ancf_tip(20, 1), const(), fr.revolute(13, (1.0, 0.0, 0.0)), const()))
-    return [("hub", hub, x, F), ("base", base, x, F), ("ancf tip", tip, x, F)]
+    # FFR tips: an elastic beam's tip moved by its coordinates (5 at x[30:35], 4 at x[35:39])
+    x[30:39] *= 0.3
+    ffr = lambda c, nf: fr.ffr_tip(c, 1.7, rng.normal(size=(3, nf)), rng.normal(size=(3, nf)))  # noqa: E731
+    on_hub = fr.Chain((const(), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), const(), fr.revolute(11, (0.0, 0.0, 1.0)),
+                       ffr(30, 5), const(), fr.revolute(12, (0.0, 1.0, 0.0)), ffr(35, 4), const()))
+    on_ancf = fr.Chain((fr.ancf_tip(20, 1), ffr(30, 5), fr.revolute(13, rng.normal(size=3)), const()))
+    on_base = fr.Chain((fr.free(0), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), ffr(30, 5), ffr(35, 4)))
+    return [("hub", hub, x, F), ("base", base, x, F), ("ancf tip", tip, x, F), ("ffr tips on a hub", on_hub, x, F),
+            ("ffr tip on an ancf tip", on_ancf, x, F), ("ffr tips on a free base", on_base, x, F)]
 
 
 def _pose(chain, x, F):
@@ -58,6 +66,12 @@ def _reference_pose(chain, x, F):
             V = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
             r = x[link.coordinate : link.coordinate + 3].copy()
             R = (e0 * e0 - v @ v) * np.eye(3) + 2 * np.outer(v, v) + 2 * e0 * V
+        elif link.kind == fr.LinkKind.FFR_TIP:
+            M = np.array(link.rows)
+            v = M @ x[link.coordinate : link.coordinate + M.shape[1]]
+            r = r + R @ (np.array([link.length, 0.0, 0.0]) + v[0:3])
+            for a in range(3):  # x, then y', then z''
+                R = R @ fr.rotation_vector_matrix(v[3 + a] * np.eye(3)[a])
         else:
             c = link.coordinate
             r = x[c : c + 3].copy()
@@ -65,7 +79,7 @@ def _reference_pose(chain, x, F):
     return r, R
 
 
-@pytest.mark.parametrize("which", [0, 1, 2])
+@pytest.mark.parametrize("which", range(6))
 def test_pose_jacobians_and_derivatives_against_differences(which):
     rng = np.random.default_rng(7 + which)
     name, chain, x, F = _chains(rng)[which]
@@ -104,3 +118,18 @@ def test_euler_parameters_and_rotation_vectors_round_trip():
         R2 = np.empty((3, 3))
         fr.euler_rotation(e, R2)
         assert np.allclose(R2, R, atol=1e-13)
+
+
+def test_an_ffr_tip_turns_by_its_rotation_vector_to_first_order():
+    """The tip link's x-y'-z'' rotation of phi = Phi p and the rotation vector phi (FFR's
+    kinematics, Eq. 43) differ at second order in phi only; an FFR tip cannot start a chain."""
+    rows = np.vstack([np.zeros((3, 3)), np.eye(3)])
+    chain = fr.Chain((fr.constant(), fr.ffr_tip(0, 2.0, rows[:3], rows[3:])))
+    phi = np.array([0.3, -0.2, 0.5])
+    for eps in (1e-2, 1e-3):
+        r, R = _pose(chain, eps * phi, None)
+        assert np.allclose(r, [2.0, 0.0, 0.0])
+        gap = np.max(np.abs(R - fr.rotation_vector_matrix(eps * phi)))
+        assert gap < 0.2 * eps**2
+    with pytest.raises(ValueError, match="cannot be the first"):
+        fr.Chain((fr.ffr_tip(0, 2.0, rows[:3], rows[3:]),))

@@ -25,7 +25,9 @@ residual in co-rotating coordinates (as the Campbell diagram's, :mod:`hubbeam.so
 M the Newton matrix with coef_m = 1.
 
 Inputs: ``hub_torque`` (N m), a torque on a free hub added to its torque law: B_x is the unit
-vector of theta (the hub row of the equations is J theta'' - T - u + ...); ``tip_force:NAME``
+vector of theta (the hub row of the equations is J theta'' - T - u + ...); ``joint_torque:NAME``
+(N m), a torque in the single-axis joint of beam NAME added to its motor law (on the beam about
+the axis, its reaction on the parent): B_x the unit vector of its angle psi; ``tip_force:NAME``
 (N): a force at the tip centroid of beam NAME, three inputs along the global x, y, z (about
 steady rotation: the axes of the hub frame, which turn with the hub; at t = 0 they are the
 global ones), its B_x column the difference of the residuals with and without a unit tip force
@@ -280,6 +282,18 @@ def input_columns(system: MultibodySystem, names, x, v, acc, lam, F) -> tuple[np
             columns.append(e)
             labels.append("hub_torque")
             units.append("N m")
+        elif kind == "joint_torque":
+            names_ = [b.name for b in system.beams]
+            k = names_.index(beam) if beam in names_ else None
+            joint = None if k is None else system.beams[k].mount.joint
+            if joint is None or joint.count != 1 or joint.locked_at is not None:
+                raise ScenarioError(f"inputs: {spec!r}: needs a beam on a single-axis revolute joint (beams on one: "
+                                    f"{', '.join(b.name for b in system.beams if b.mount.joint_count == 1) or 'none'})")
+            e = np.zeros(system.nx)
+            e[system.layout.joint_x(k).start] = 1.0  # the joint row is ... - T - u: u enters as the motor's torque
+            columns.append(e)
+            labels.append(f"joint_torque_{beam}")
+            units.append("N m")
         elif kind in BASE_TORQUE_INPUTS and not beam:
             if system.base.motion.value != "free":
                 raise ScenarioError(f"inputs: {kind} needs a free base (base.motion = {system.base.motion.value!r})")
@@ -300,7 +314,8 @@ def input_columns(system: MultibodySystem, names, x, v, acc, lam, F) -> tuple[np
                 labels.append(f"tip_force_{axis}_{system.beams[k].name}")
                 units.append("N")
         else:
-            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque, base_torque_x|y|z or tip_force:BEAM)")
+            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque, base_torque_x|y|z, joint_torque:BEAM "
+                                f"or tip_force:BEAM)")
     if len(set(labels)) != len(labels):
         raise ScenarioError(f"inputs: an input is given twice ({', '.join(map(str, names))})")
     return np.array(columns).T.reshape(system.nx, len(columns)), labels, units

@@ -93,9 +93,10 @@ def cmd_linearize(args, scenario) -> dict:
     from hubbeam.io.targets import Target
 
     targets = check_targets([Target("-o", args.output)], args)
-    if args.open_loop and scenario.hub.torque_law is None:
+    motors = [b for b in scenario.beam_tables if b.joint is not None and b.joint.torque is not None]
+    if args.open_loop and scenario.hub.torque_law is None and not motors:
         raise ScenarioError(f"--open-loop: hub.motion = {scenario.hub.motion!r} has no torque law to leave out (only a "
-                            "free hub has one)")
+                            "free hub has one) and no joint has a motor ([beams.joint.torque])")
     for option, value in (("--reduce", args.reduce), ("--balanced", args.balanced)):
         if value is not None and value < 1:
             raise ScenarioError(f"{option}: must be >= 1 (got {value})")

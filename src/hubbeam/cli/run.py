@@ -49,12 +49,18 @@ def cmd_run(args, scenario) -> dict:
         traj, failure = exc.partial, exc
     finally:
         finish()
+    for event in getattr(traj, "latches", None) or []:
+        angle = event.to_dict()["angle_deg"]
+        say(f"hubbeam: latch: beam {event.beam!r} locked at t = {event.time:.6g} s (angle {angle:.4g} deg): impulse "
+            f"{event.impulse:+.4g} N m s, {event.energy:.4g} J dissipated")
     finish_run(targets, scenario, traj, failure, plot_vars, args.overrides)
     final = {name: values[-1] for name, values in traj.records.items()}
     summary = {"steps": traj.steps, "newton_iterations": traj.newton_iterations,
                "newton_iterations_per_step": traj.newton_iterations / max(traj.steps, 1),
                "lu_factorisations": traj.factorisations,
                "wall_time_s": traj.wall_time_s, "chart_switches": traj.chart_switches, "final": final}
+    if any(b.joint is not None and b.joint.latch is not None for b in scenario.beam_tables):
+        summary["latches"] = [event.to_dict() for event in traj.latches]
     if not args.json:
         print(f"{traj.steps} steps, {summary['newton_iterations_per_step']:.2f} Newton iterations per step, "
               f"{traj.wall_time_s:.2f} s of integration")

@@ -13,7 +13,7 @@ from hubbeam.errors import ScenarioError
 
 #: the bundled scenarios (package data in hubbeam/examples)
 EXAMPLES = ("cantilever", "exp1", "exp1_h4", "exp1_h1", "exp2", "rotor3", "spacecraft", "arm", "blade",
-            "spacecraft3d", "platform", "tilted", "explorer")
+            "spacecraft3d", "platform", "tilted", "explorer", "articulated", "deploy", "arm2")
 #: the bundled data files, by their file names: tables a bundled scenario reads (next to it) and
 #: measured samples
 DATA_FILES = ("platform_motion.csv", "exp1_strain_P1.csv")

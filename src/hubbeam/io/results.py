@@ -64,7 +64,8 @@ def state_table(trajectory):
     ``state_beams`` (JSON list of the beam names in order), ``state_formulations``,
     ``state_hub_radius`` (m), ``state_points_per_element``, ``state_tip_bodies`` (JSON list,
     per beam: null or its tip body's mass (kg), inertia (kg m^2) and offset (m, tip section
-    frame))."""
+    frame)) and, with joints, ``state_joints`` (JSON list of the beams whose root is a hinge: their
+    first station)."""
     rec = getattr(trajectory, "recorder", None)
     if rec is None:
         return {}, {}, {}
@@ -111,6 +112,8 @@ def state_table(trajectory):
     attrs = {"state_beams": json.dumps(list(rec.names)), "state_formulations": json.dumps(list(rec.formulations)),
              "state_hub_radius": float(rec.hub_radius), "state_points_per_element": int(rec.points_per_element),
              "state_tip_bodies": json.dumps(list(getattr(rec, "tip_bodies", ())))}
+    if getattr(rec, "joints", ()):  # the beams whose root is a hinge (their first station)
+        attrs["state_joints"] = json.dumps(list(rec.joints))
     return dims, out, attrs
 
 
@@ -165,6 +168,9 @@ def trajectory_table(trajectory, scenario, status: dict | None = None):
             add(name, (np.array(values, dtype=float), attrs))
     attrs = {"scenario": json.dumps(scenario.to_dict()), "name": scenario.name, "steps": trajectory.steps,
              "newton_iterations": trajectory.newton_iterations}
+    for event in getattr(trajectory, "latches", None) or []:  # a joint's latch: time (s), impulse (N m s), energy (J)
+        attrs.update({f"latch_{event.beam}_time": event.time, f"latch_{event.beam}_impulse": event.impulse,
+                      f"latch_{event.beam}_energy": event.energy})
     attrs.update(status if status is not None else completion(trajectory))
     return np.array(trajectory.times[:n], dtype=float), variables, attrs
 

@@ -67,6 +67,8 @@ class RunState:
     hub_axes: np.ndarray = None
     base_origin: np.ndarray = None
     base_axes: np.ndarray = None
+    #: the indices of the beams whose root is a hinge (a revolute joint): their first station
+    joints: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
         nt = np.asarray(self.times).size
@@ -146,10 +148,12 @@ def read_state(path, option: str = "input") -> RunState:
                 partial = (f"the run stopped at t = {float(reached):g} s" + (f" of {float(t_end):g} s" if t_end is not None
                                                                              else "") +
                            f" ({_text(f.attrs.get('partial_reason', 'partial'))})")
+            hinged = json.loads(_text(f.attrs["state_joints"])) if "state_joints" in f.attrs else []
             frames = {name: v[f"state_{name}"][...] for name in ("hub_origin", "hub_axes", "base_origin", "base_axes")
                       if f"state_{name}" in v}
             state = RunState(_text(f.attrs.get("name", p.stem)), v["time"][...], v["state_hub_angle"][...],
-                             float(f.attrs["state_hub_radius"]), beams, partial, **frames)
+                             float(f.attrs["state_hub_radius"]), beams, partial, **frames,
+                             joints=tuple(names.index(name) for name in hinged))
         except (KeyError, ValueError, TypeError) as exc:
             raise ScenarioError(f"{option} {p}: the stored state is incomplete ({exc.__class__.__name__}: {exc})") \
                 from None

@@ -7,7 +7,9 @@ unit vector along it), the first on the -m edge; station i of a beam gives point
 Point data: ``displacement`` (m, global: the centre line's displacement from the undeformed
 beam turned with the hub, :meth:`hubbeam.io.state.BeamTrack.displacement`, the same on both
 edge points of a station) and ``surface_strain`` (1, the upper surface's axial strain at the
-station); cell data ``beam`` (the beam's index, 0-based); field data ``TimeValue`` (s).
+station); cell data ``beam`` (the beam's index, 0-based); field data ``TimeValue`` (s). A hinge
+(a beam's root on a revolute joint) is one more point at the root's centre with a vertex cell
+(its ``beam``, the child's index), so that ParaView draws it as a joint (Glyph it).
 ``NAME.pvd`` (a ParaView Data collection) lists the files with their times.
 
 The rigid bodies (:mod:`hubbeam.io.bodies`: the hub and every tip body) are a second block of
@@ -105,10 +107,20 @@ def ribbon_mesh(state: RunState, i: int):
         displacement.append(np.repeat(disp, 2, axis=0))
         strain.append(np.repeat(beam.surface_strain[i], 2))
         offset += 2 * n
-    return meshio.Mesh(np.concatenate(points), [("quad", np.concatenate(quads))],
+    cells = [("quad", np.concatenate(quads))]
+    ids = [np.concatenate(beam_ids)]
+    if state.joints:  # a hinge: the root's centre, one vertex each
+        for k in state.joints:
+            beam = state.beams[k]
+            points.append(beam.centre_line[i, :1])
+            displacement.append(state.displacement(k, slice(i, i + 1))[0][:1])
+            strain.append(beam.surface_strain[i, :1])
+        cells.append(("vertex", offset + np.arange(len(state.joints)).reshape(-1, 1)))
+        ids.append(np.array(state.joints, dtype=np.int32))
+    return meshio.Mesh(np.concatenate(points), cells,
                        point_data={"displacement": np.concatenate(displacement),
                                    "surface_strain": np.concatenate(strain)},
-                       cell_data={"beam": [np.concatenate(beam_ids)]},
+                       cell_data={"beam": ids},
                        field_data={"TimeValue": np.array([state.times[i]])})  # written by write_vtu
 
 

@@ -22,7 +22,7 @@ from numba import njit
 from hubbeam.solvers.generalized_alpha import (REUSE_VALID, NewtonAction, Outcome, algorithmic_acceleration,
                                                apply_increment, newton_decide, newton_start, predict)
 from hubbeam.system.assembly import bordered_factor, bordered_solve
-from hubbeam.system.equations import CHART_SINGULAR, step_powers, system_equations
+from hubbeam.system.equations import CHART_SINGULAR, step_powers, system_equations, system_events
 
 
 def cache_is_cold(function=None) -> bool:
@@ -59,9 +59,10 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     lambda, work) when k is a multiple of the interval or the last step.
 
     Returns (outcome (:class:`~hubbeam.solvers.generalized_alpha.Outcome`), last |dx|, time of
-    the state arrays): DONE, or CHART_LIMIT_REACHED after a step that brought a tangent within
-    ``chart_limit`` of its chart's singular direction (1 + d.tau < chart_limit; the caller
-    changes the chart), or a failure.
+    the state arrays): DONE, or EVENT_REACHED after a step that reached a part's event (a joint
+    at its latch angle: the caller changes the system), or CHART_LIMIT_REACHED after a step that
+    brought a tangent within ``chart_limit`` of its chart's singular direction (1 + d.tau <
+    chart_limit; the caller changes the chart), or a failure.
     """
     am, af, beta, gamma = alpha
     tol, max_iterations, update, refresh_rate, refresh_iterations, mu_weight, kappa = newton
@@ -147,6 +148,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         if step % every == 0 or step == total:
             _record(records, counters[3], t, x, v, xdd, a, lam, work)
             counters[3] += 1
+        if system_events(model, x):
+            return Outcome.EVENT_REACHED, size, t
         if margin < chart_limit:
             return Outcome.CHART_LIMIT_REACHED, size, t
     return Outcome.DONE, size, t

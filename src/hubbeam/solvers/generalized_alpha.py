@@ -316,6 +316,7 @@ class Outcome(enum.IntEnum):
     NOT_FINITE = 3
     SINGULAR_MATRIX = 4
     CHART_SINGULARITY = 5
+    EVENT_REACHED = 6  # a part's event (a joint at its latch angle): Python changes the system
 
 
 #: what a failed outcome means, for messages

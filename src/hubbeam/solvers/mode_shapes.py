@@ -54,20 +54,29 @@ def plausible_change(frequency_hz, step_hz: float):
     return np.maximum(step_hz, PLAUSIBLE_CHANGE * np.abs(np.asarray(frequency_hz, dtype=float)))
 
 
+def motions_of(system) -> tuple[str, ...]:
+    """The parts a mode's kinetic energy can have in ``system``: :data:`MOTIONS` and, on joints,
+    the hinges' rigid rotations ("flap hinge", "lag hinge", ...:
+    :meth:`~hubbeam.system.multibody.MultibodySystem.hinge_labels`)."""
+    return MOTIONS + system.hinge_labels()
+
+
 def energy_fractions(system, x, F, shape) -> dict[str, float]:
-    """The shares (summing to 1) of a mode's kinetic energy in each of :data:`MOTIONS` the
-    system has (``base`` only with a moving base)."""
-    split = system.kinetic_energy_split(x, F, shape)
+    """The shares (summing to 1) of a mode's kinetic energy in each part of :func:`motions_of`
+    the system has (``base`` only with a moving base, the hinges only on joints): a joint's
+    rigid rotation psi' e x (r - r_J) is its hinge's share, the rest split as :data:`MOTIONS`
+    (:meth:`~hubbeam.system.multibody.MultibodySystem.mode_energy_split`)."""
+    split = system.mode_energy_split(x, F, shape)
     total = sum(split.values())
     if not total > 0.0:
         raise ValueError("a mode shape without kinetic energy has no energy split")
-    return {k: split[k] / total for k in MOTIONS if k in split}
+    return {k: split[k] / total for k in motions_of(system) if k in split}
 
 
 def mode_label(fractions: dict[str, float], dominant: float = DOMINANT) -> str:
     """The largest part's name, or the two largest joined by "+" (in the order of
-    :data:`MOTIONS`) when the largest is below ``dominant``."""
-    present = [k for k in MOTIONS if k in fractions]
+    :data:`MOTIONS`, then the hinges) when the largest is below ``dominant``."""
+    present = [k for k in MOTIONS if k in fractions] + [k for k in fractions if k not in MOTIONS]
     ranked = sorted(present, key=lambda k: -fractions[k])
     if fractions[ranked[0]] >= dominant:
         return ranked[0]

@@ -18,8 +18,9 @@ from hubbeam import api
 from hubbeam.errors import ComputationError
 from hubbeam.io.scenario import Scenario
 from hubbeam.solvers.modal import rotating_modal_analysis
-from hubbeam.solvers.mode_shapes import (CONFIDENT_MAC, MOTIONS, SAME_FREQUENCY, blade_vectors, eigenspaces,
-                                         energy_fractions, follow, mode_label, plausible_change)
+from hubbeam.solvers.mode_shapes import (CONFIDENT_MAC, SAME_FREQUENCY, blade_vectors, eigenspaces,
+                                         energy_fractions, follow, mode_label, motions_of,
+                                         plausible_change)
 from hubbeam.solvers.multiblade import fixed_frame, harmonic_directions, harmonic_label
 from hubbeam.solvers.static import solve_static
 from hubbeam.studies.variants import FORMULATIONS, variant
@@ -177,7 +178,8 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=None, harm
     nf, ns = len(formulations), speeds.size
     freq = np.full((nf, ns, count), np.nan)
     labels = np.full((nf, ns, count), "", dtype=object)
-    fractions = np.full((nf, ns, count, len(MOTIONS)), np.nan)
+    motions = motions_of(api.build_system(scenario))  # joints add their hinges' parts
+    fractions = np.full((nf, ns, count, len(motions)), np.nan)
     tracked = [_Branches(count, ns) for _ in formulations]
     uncertain: list[str] = []
     total = nf * ns
@@ -208,7 +210,7 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=None, harm
                 shares = [energy_fractions(system, steady.x, steady.chart, u) for u in shapes[:, :n].T]
                 freq[i, j, :n] = f[:n]
                 labels[i, j, :n] = [mode_label(s) for s in shares]
-                fractions[i, j, :n] = [[s.get(k, 0.0) for k in MOTIONS] for s in shares]
+                fractions[i, j, :n] = [[s.get(k, 0.0) for k in motions] for s in shares]
                 if previous is None:
                     members = [(b[:, c], fs[c], s) for s, (b, fs, _) in enumerate(spaces) for c in range(b.shape[1])]
                     m = min(count, len(members))
@@ -233,8 +235,8 @@ def campbell(scenario: Scenario, speeds, count: int = 6, formulations=None, harm
             except (ComputationError, np.linalg.LinAlgError, ValueError) as exc:  # say where
                 raise ComputationError(f"Campbell diagram, {form} at omega = {omega:g} rad/s: {exc}") from exc
             step(1.0)
-    return _dataset(scenario, speeds, formulations, freq, labels, fractions, tracked, orders, azimuths, why,
-                    uncertain, blades)
+    return _dataset(scenario, speeds, formulations, freq, labels, fractions, motions, tracked, orders, azimuths,
+                    why, uncertain, blades)
 
 
 def _record(branches: _Branches, j, system, steady, shapes, freqs, macs, where, spaces, blades, omega) -> None:
@@ -251,8 +253,8 @@ def _record(branches: _Branches, j, system, steady, shapes, freqs, macs, where, 
             branches.fixed_label[j, b] = f"{harmonic_label(p, blades, 'fixed')} {motion}"
 
 
-def _dataset(scenario, speeds, formulations, freq, labels, fractions, tracked, orders, azimuths, why, uncertain,
-             blades) -> xr.Dataset:
+def _dataset(scenario, speeds, formulations, freq, labels, fractions, motions, tracked, orders, azimuths, why,
+             uncertain, blades) -> xr.Dataset:
     count = freq.shape[2]
     stack = {name: np.array([getattr(t, name) for t in tracked]) for name in
              ("frequency", "label", "mac", "harmonic", "fixed", "fixed_label", "whirl")}
@@ -277,7 +279,7 @@ def _dataset(scenario, speeds, formulations, freq, labels, fractions, tracked, o
                      "whirl": (dims, stack["whirl"])})
     ds = xr.Dataset(data, coords={"formulation": list(formulations), "omega": ("omega", speeds, {"units": "rad/s"}),
                                   "mode": np.arange(1, count + 1), "branch": np.arange(1, count + 1),
-                                  "motion": list(MOTIONS), "order": orders})
+                                  "motion": list(motions), "order": orders})
     ds.attrs.update({"scenario": scenario.name, "blades": blades, "symmetric": int(azimuths is not None),
                      "symmetry": why, "uncertain": "\n".join(uncertain)})
     return ds

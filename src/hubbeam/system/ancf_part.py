@@ -23,13 +23,14 @@ from hubbeam.elements.ancf import kernels
 from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
 from hubbeam.elements.ancf.frame import section_frame
 from hubbeam.elements.ancf.strain import strain_measures
+from hubbeam.elements.section import COLUMN
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_element_blocks_banded
 from hubbeam.system.beam import NODE_DOFS, AncfBeam
 from hubbeam.system.clamp import ROOT_COORDINATES, add_clamp_matrix, clamp_residual, frame_clamp
-from hubbeam.system.frames import chain_state, displacement_in_reference
+from hubbeam.system.frames import Chain, ancf_tip, chain_state, constant, displacement_in_reference
 from hubbeam.system.loads import tip_moment_terms
-from hubbeam.system.mount import Mount
+from hubbeam.system.mount import Mount, about_axis
 from hubbeam.system.parts import ChartedBeamPart
 
 if TYPE_CHECKING:
@@ -62,6 +63,12 @@ class AncfPart(ChartedBeamPart):
 
     def tip_node(self) -> slice:
         return self.tip
+
+    def tip_frame(self, x0: int, index: int, root: Chain) -> Chain:
+        """The tip node's section frame (in this beam's chart ``index``: an ANCF_TIP link, a chain
+        of its own) turned back by the twist and the tip pretwist."""
+        untwist = self.mount.twist + float(self.properties(self.length)[COLUMN["pretwist"]])
+        return Chain((ancf_tip(x0 + self.tip.start, index), constant(rotation=about_axis(untwist))))
 
     # ------------------------------------------------------------ states
     def initial_state(self, root: np.ndarray, frame: np.ndarray, reference: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -28,7 +28,7 @@ from hubbeam.elements.ancf import kernels
 from hubbeam.elements.ancf.strain import strain_measures
 from hubbeam.system.frames import evaluate_chains
 from hubbeam.system.terms import (CHART_SINGULAR, Context, part_drive_power, part_energies, part_equations,
-                                  part_momenta, part_power, part_tips)
+                                  part_events, part_momenta, part_power, part_tips)
 
 
 class SystemModel(NamedTuple):
@@ -110,6 +110,20 @@ def step_powers(model, F, t, x, v, lam):
 
 
 @njit(cache=True)
+def system_events(model, x):
+    """Whether any part's event (a joint reaching its latch angle) is reached at x
+    (:func:`hubbeam.system.terms.part_events`), after every step of the time loop. Not inlined
+    into the loop, as :func:`step_powers`: its unrolled loop over the parts would take stack
+    that the loop's frame never gives back."""
+    ctx = model.context
+    event = False
+    for pack in literal_unroll(model.parts):
+        if part_events(pack, ctx, x):
+            event = True
+    return event
+
+
+@njit(cache=True)
 def beam_energies(model, F, x, v, beams, hub):
     """Kinetic, strain and gravity energy (J) at (x, v) in the charts F: beams[k] = (T, U, V)
     of beam k (its place among all beams; tip bodies in their beam's row), hub = (T, U, V)
@@ -186,7 +200,7 @@ def record_measures(model, F, xs, vs, count, energies, gauges, hub, beams, tips,
 
 #: the functions here that take the model, which holds the parts' packs
 MODEL_FUNCTIONS = ("system_equations", "step_powers", "beam_energies", "tip_displacements", "system_momenta",
-                   "record_measures")
+                   "record_measures", "system_events")
 
 
 class Compiled(NamedTuple):
@@ -198,6 +212,7 @@ class Compiled(NamedTuple):
     tip_displacements: object
     system_momenta: object
     record_measures: object
+    system_events: object
 
 
 def uncached_twins(functions: dict, others: dict | None = None) -> dict:

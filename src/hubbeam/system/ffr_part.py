@@ -43,9 +43,9 @@ from hubbeam.elements.ffr.kernels import ffr_dissipated_power, ffr_energies, ffr
 from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.frames import (chain_state, chain_columns, chain_kinematics, displacement_in_reference,
-                                   frame_motion)
-from hubbeam.system.mount import Mount
+from hubbeam.system.frames import (Chain, chain_columns, chain_kinematics, chain_state, constant,
+                                   displacement_in_reference, ffr_tip, frame_motion)
+from hubbeam.system.mount import Mount, about_axis
 from hubbeam.system.parts import BeamPart
 
 
@@ -77,6 +77,13 @@ class FfrPart(BeamPart):
     @property
     def tip_body(self):
         return self.beam.tip_body
+
+    def tip_frame(self, x0: int, index: int, root: Chain) -> Chain:
+        """The root chain (the body frame) continued by the tip's place (L, 0, 0) + N_L p and
+        small rotation Phi_L p (an FFR_TIP link), turned back by the twist (the pretwist of the
+        section axes is not in the link's rotation)."""
+        return root.then(ffr_tip(x0, self.length, self._tip_rows, self._tip_rotation_rows),
+                         constant(rotation=about_axis(self.mount.twist)))
 
     # ------------------------------------------------------------ states
     def initial_state(self, root, frame, reference) -> tuple[np.ndarray, np.ndarray]:

@@ -15,7 +15,13 @@ either constant or moved by coordinates of the system:
   R(e / |e|) (the rotation of the normalised parameters: it is exact for any e != 0, and the
   norm is fixed by a constraint elsewhere);
 - ``ANCF_TIP`` (first link only): the section frame of an ANCF node, from its position r0
-  (3), slope r0' (3) and twist theta_1 (1) in a rotation chart F (:mod:`hubbeam.elements.ancf.frame`).
+  (3), slope r0' (3) and twist theta_1 (1) in a rotation chart F (:mod:`hubbeam.elements.ancf.frame`);
+- ``FFR_TIP`` (never first): the tip section of an FFR beam floating on the current frame,
+  moved by its nf elastic coordinates p: a translation by (L, 0, 0) + N_L p and a small
+  rotation by phi = Phi_L p (N_L, Phi_L: the tip's displacement and rotation rows of
+  :class:`~hubbeam.elements.ffr.body.FfrBeam`), turned as successive rotations by phi_1,
+  phi_2, phi_3 about the current x, y', z'' axes (equal to the rotation vector phi to first
+  order, FFR's own kinematics).
 
 For every coordinate c_i of a chain :func:`chain_kinematics` gives the frame's pose (r, R)
 and the velocity Jacobians: Jw[:, i], the frame's angular velocity per unit c_i' (global
@@ -28,10 +34,18 @@ serial-chain rule gives them all by cross products:
     l before or equal i:  Hw_il = Jw_l x Jw_i,   Hr_il = Jw_l x Jr_i
     l after i:            Hw_il = 0,             Hr_il = Jw_i x Jr_l
 
-The first link's own coordinates (``FREE``, ``ANCF_TIP``) are not such screws among each
-other: their mutual derivatives are written out below; with every later coordinate the rule
-holds (the first link carries the rest of the chain). Tests check every Jacobian and
-derivative against finite differences of the pose.
+(a translation along an axis of the current frame, Jw_i = 0 and Jr_i that axis, follows the
+same rule). The first link's own coordinates (``FREE``, ``ANCF_TIP``) are not such screws among
+each other: their mutual derivatives are written out below; with every later coordinate the
+rule holds (the first link carries the rest of the chain). An ``FFR_TIP`` link is six such
+screws in a row (three translations t_a along the current axes, then three rotations w_a
+about the current x, y', z'', all through the tip's place o) whose *virtual* coordinates
+v = M p, M = [N_L; Phi_L] (6 x nf), are linear in its nf coordinates: its column j is the
+combination sum_a M[a, j] of the six screws (Jr_j = sum_{a<3} M[a, j] t_a + Jw_j x (r - o),
+Jw_j = sum_{a>=3} M[a, j] w_a), so with any other column the rule holds as it is; among its
+own columns, H_jm = sum_ab M[a, j] M[b, m] H_ab of the rule over the screws (only the
+rotations give terms) is written out below. Tests check every Jacobian and derivative
+against finite differences of the pose.
 """
 
 from __future__ import annotations
@@ -52,12 +66,15 @@ class LinkKind(enum.IntEnum):
     REVOLUTE = 1
     FREE = 2
     ANCF_TIP = 3
+    FFR_TIP = 4
 
 
-#: coordinates each link kind moves
+#: coordinates each link kind moves (an FFR tip: its beam's elastic coordinates, :attr:`Link.coordinates`)
 LINK_COORDINATES = {LinkKind.CONSTANT: 0, LinkKind.REVOLUTE: 1, LinkKind.FREE: 7, LinkKind.ANCF_TIP: 7}
 #: columns of a link row in :class:`ChainTable.links`
 KIND, COORD, PARAM = 0, 1, 2
+#: virtual screws of an FFR tip: translations along x, y, z, then rotations about x, y', z''
+FFR_TIP_VIRTUAL = 6
 
 
 @dataclass(frozen=True)
@@ -65,7 +82,7 @@ class Link:
     """One elementary transform. ``coordinate``: where its first coordinate sits in x (-1 for a
     constant link); ``offset`` (m) and ``rotation`` (3 x 3) of a constant link; ``axis`` (unit,
     in the current frame) and ``sign`` of a revolute one; ``chart``: the index in F of an ANCF
-    tip's rotation chart."""
+    tip's rotation chart; ``length`` (m) and ``rows`` (M = [N_L; Phi_L], 6 x nf) of an FFR tip."""
 
     kind: LinkKind
     coordinate: int = -1
@@ -74,14 +91,19 @@ class Link:
     axis: tuple = (0.0, 1.0, 0.0)
     sign: float = 1.0
     chart: int = 0
+    length: float = 0.0
+    rows: tuple = ()
 
     @property
     def coordinates(self) -> int:
+        if self.kind == LinkKind.FFR_TIP:
+            return len(self.rows[0])
         return LINK_COORDINATES[self.kind]
 
     def params(self) -> np.ndarray:
         """The link's 13 numbers for compiled code: offset (3) and rotation (9, row-major) of a
-        constant link; axis (3) and sign of a revolute one; the chart's index of an ANCF tip."""
+        constant link; axis (3) and sign of a revolute one; the chart's index of an ANCF tip;
+        an FFR tip's length, its rows' place in :attr:`ChainTable.maps` (set there) and nf."""
         out = np.zeros(13)
         if self.kind == LinkKind.CONSTANT:
             out[0:3] = self.offset
@@ -92,6 +114,9 @@ class Link:
             out[3] = self.sign
         elif self.kind == LinkKind.ANCF_TIP:
             out[0] = self.chart
+        elif self.kind == LinkKind.FFR_TIP:
+            out[0] = self.length
+            out[2] = self.coordinates
         return out
 
 
@@ -117,9 +142,20 @@ def ancf_tip(coordinate: int, chart: int) -> Link:
     return Link(LinkKind.ANCF_TIP, coordinate, chart=chart)
 
 
+def ffr_tip(coordinate: int, length: float, displacement_rows, rotation_rows) -> Link:
+    """The tip section of an FFR beam of ``length`` (m) whose nf elastic coordinates p start at
+    x[coordinate]: translated by (length, 0, 0) + N p and turned by phi = Phi p (module
+    docstring); ``displacement_rows`` N (3 x nf), ``rotation_rows`` Phi (3 x nf)."""
+    rows = np.vstack([np.asarray(displacement_rows, dtype=float), np.asarray(rotation_rows, dtype=float)])
+    if rows.shape[0] != FFR_TIP_VIRTUAL or rows.shape[1] < 1:
+        raise ValueError(f"an FFR tip needs 3 + 3 rows over its coordinates (got {rows.shape})")
+    return Link(LinkKind.FFR_TIP, coordinate, length=float(length),
+                rows=tuple(tuple(float(v) for v in r) for r in rows))
+
+
 @dataclass(frozen=True)
 class Chain:
-    """A frame as a product of links (the first may be FREE or ANCF_TIP)."""
+    """A frame as a product of links (the first may be FREE or ANCF_TIP; an FFR_TIP never is)."""
 
     links: tuple = field(default_factory=tuple)
 
@@ -127,6 +163,8 @@ class Chain:
         for i, link in enumerate(self.links):
             if i > 0 and link.kind in (LinkKind.FREE, LinkKind.ANCF_TIP):
                 raise ValueError(f"a {link.kind.name} link must be the first of its chain")
+            if i == 0 and link.kind == LinkKind.FFR_TIP:
+                raise ValueError("an FFR_TIP link hangs on the frame of its beam: it cannot be the first of its chain")
 
     def then(self, *links: Link) -> "Chain":
         """This chain continued by ``links``."""
@@ -172,15 +210,20 @@ class ChainTable(NamedTuple):
     pose: np.ndarray  # (n_chains, 3, 4): each chain's origin (column 0) and axes (1:4) at the state
     jac: np.ndarray  # (n_chains, 2, 3, w): Jr, Jw of each chain's columns (w: the widest chain's)
     hess: np.ndarray  # (n_chains, 2, 3, w, w): Hr, Hw
-    work: np.ndarray  # (w, 5): scratch of :func:`chain_kinematics_into` for the widest chain
+    work: np.ndarray  # (w, W_WIDTH): scratch of :func:`chain_kinematics_into` for the widest chain
+    maps: np.ndarray  # (n,): the FFR tips' rows M (6 x nf, row-major), each from its link's params[1]
 
     @classmethod
     def of(cls, chains) -> "ChainTable":
-        links, params, start, columns, cstart = [], [], [0], [], [0]
+        links, params, start, columns, cstart, maps = [], [], [0], [], [0], []
         for chain in chains:
             for link in chain.merged().links:
                 links.append((int(link.kind), link.coordinate, len(params)))
-                params.append(link.params())
+                row = link.params()
+                if link.kind == LinkKind.FFR_TIP:
+                    row[1] = len(maps)
+                    maps += [v for r in link.rows for v in r]
+                params.append(row)
             start.append(len(links))
             columns += chain.coordinates
             cstart.append(len(columns))
@@ -189,7 +232,8 @@ class ChainTable(NamedTuple):
         w = max((cstart[k + 1] - cstart[k] for k in range(n)), default=0)
         return cls(ints(links, (len(links), 3)), np.array(params, dtype=float).reshape(len(params), 13),
                    ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)),
-                   np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((w, 5)))
+                   np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((w, W_WIDTH)),
+                   np.array(maps, dtype=float))
 
     def width(self, k: int) -> int:
         """Number of coordinate columns of chain k."""
@@ -317,10 +361,15 @@ def _ancf_rate_derivative(d0, d1, d2, t0, t1, t2, L, i, b):
 
 
 # ---------------------------------------------------------------------------- the kinematics
-#: column types: how a column moves the frame (for the derivative rules)
-SCREW, TRANSLATION, ROOT_ROTATION = 0, 1, 2
-#: columns of the scratch rows (one per coordinate column) of :func:`chain_kinematics_into`
-W_TYPE, W_DIRECTION, W_ORIGIN = 0, 1, 2
+#: column types: how a column moves the frame (for the derivative rules); TIP_COMBINATION: a
+#: column of an FFR tip (its translations and rotations combined, module docstring)
+SCREW, TRANSLATION, ROOT_ROTATION, TIP_COMBINATION = 0, 1, 2, 3
+#: columns of the scratch rows (one per coordinate column) of :func:`chain_kinematics_into`: the
+#: column's type, a translation's axis (an FFR tip's column: its link's params row), the point
+#: a rotation turns about (3); an FFR tip's column: its index j among the tip's columns, and on
+#: the tip's first column the tip's three rotation axes w_x, w_y', w_z'' (9)
+W_TYPE, W_DIRECTION, W_ORIGIN, W_INDEX, W_AXES = 0, 1, 2, 5, 6
+W_WIDTH = 15
 
 
 @njit(cache=True)
@@ -329,7 +378,7 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
     (its arrays allocated here: for tests, front ends and differences, not for every step)."""
     nc = table.column_start[k + 1] - table.column_start[k]
     P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
-    chain_kinematics_into(table, k, x, F, order, P, J, H, np.empty((nc, 5)))
+    chain_kinematics_into(table, k, x, F, order, P, J, H, np.empty((nc, W_WIDTH)))
     for i in range(3):
         r[i] = P[i, 0]
         for j in range(3):
@@ -377,12 +426,13 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
     per unit coordinate) and J[1, :, i] = Jw[:, i] (rad per unit coordinate, global axes).
     With ``order`` 2 also H[0, :, i, l] = Hr[:, i, l] = dJr[:, i]/dc_l and H[1, :, i, l] =
     Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). J (2, 3, >= nc) and H (2, 3, >= nc, >= nc)
-    are overwritten on their first nc columns; ``work`` (>= nc, 5): scratch (a column's type,
-    a translation's axis, the point a rotation turns about). Scalars only: no allocation (a
+    are overwritten on their first nc columns; ``work`` (>= nc, W_WIDTH): scratch (a column's
+    type, a translation's axis, the point a rotation turns about, an FFR tip's axes). Scalars only: no allocation (a
     step evaluates every chain), inlined into its callers."""
     l0, l1 = table.start[k], table.start[k + 1]
     nc = table.column_start[k + 1] - table.column_start[k]
     par = table.params
+    maps = table.maps
     for i in range(3):
         P[i, 0] = 0.0
         for j in range(3):
@@ -411,6 +461,39 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
             work[col, W_TYPE] = SCREW
             _rotate_about(P, a0, a1, a2, sign * x[c0])
             col += 1
+        elif kind == LinkKind.FFR_TIP:
+            length, off, nf = par[pr, 0], int(par[pr, 1]), int(par[pr, 2])
+            v0 = v1 = v2 = v3 = v4 = v5 = 0.0  # the virtual coordinates M p
+            for j in range(nf):
+                p = x[c0 + j]
+                v0 += maps[off + j] * p
+                v1 += maps[off + nf + j] * p
+                v2 += maps[off + 2 * nf + j] * p
+                v3 += maps[off + 3 * nf + j] * p
+                v4 += maps[off + 4 * nf + j] * p
+                v5 += maps[off + 5 * nf + j] * p
+            for j in range(nf):  # the translations' part of Jr, along the current axes
+                m0, m1, m2 = maps[off + j], maps[off + nf + j], maps[off + 2 * nf + j]
+                for i in range(3):
+                    J[0, i, col + j] = P[i, 1] * m0 + P[i, 2] * m1 + P[i, 3] * m2
+                    J[1, i, col + j] = 0.0
+                work[col + j, W_TYPE] = TIP_COMBINATION
+                work[col + j, W_DIRECTION] = pr
+                work[col + j, W_INDEX] = j
+            for i in range(3):
+                P[i, 0] += P[i, 1] * (length + v0) + P[i, 2] * v1 + P[i, 3] * v2
+                for j in range(nf):
+                    work[col + j, W_ORIGIN + i] = P[i, 0]
+            for a in range(3):  # the rotations about x, then y', then z'': Jw and the axes kept
+                for j in range(nf):
+                    m = maps[off + (3 + a) * nf + j]
+                    for i in range(3):
+                        J[1, i, col + j] += P[i, 1 + a] * m
+                for i in range(3):
+                    work[col, W_AXES + 3 * a + i] = P[i, 1 + a]
+                _rotate_about(P, 1.0 if a == 0 else 0.0, 1.0 if a == 1 else 0.0, 1.0 if a == 2 else 0.0,
+                              v3 if a == 0 else (v4 if a == 1 else v5))
+            col += nf
         elif kind == LinkKind.FREE:
             root_kind = kind
             root_columns = 7
@@ -454,7 +537,9 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
                 work[col + 6, W_ORIGIN + i] = P[i, 0]
             work[col + 6, W_TYPE] = ROOT_ROTATION
             col += 7
-    # origin velocities: a translation's axis, or a rotation's axis x (r - the point it turns about)
+    # origin velocities: a translation's axis, or a rotation's axis x (r - the point it turns
+    # about) (added to an FFR tip column's translations)
+    has_tip = False
     for i in range(nc):
         if work[i, W_TYPE] == TRANSLATION:
             for a in range(3):
@@ -464,15 +549,24 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
             d1 = P[1, 0] - work[i, W_ORIGIN + 1]
             d2 = P[2, 0] - work[i, W_ORIGIN + 2]
             w0, w1, w2 = J[1, 0, i], J[1, 1, i], J[1, 2, i]
-            J[0, 0, i] = w1 * d2 - w2 * d1
-            J[0, 1, i] = w2 * d0 - w0 * d2
-            J[0, 2, i] = w0 * d1 - w1 * d0
+            if work[i, W_TYPE] == TIP_COMBINATION:
+                has_tip = True
+                J[0, 0, i] += w1 * d2 - w2 * d1
+                J[0, 1, i] += w2 * d0 - w0 * d2
+                J[0, 2, i] += w0 * d1 - w1 * d0
+            else:
+                J[0, 0, i] = w1 * d2 - w2 * d1
+                J[0, 1, i] = w2 * d0 - w0 * d2
+                J[0, 2, i] = w0 * d1 - w1 * d0
     if order < 2:
         return
     for i in range(nc):
         for l in range(nc):
             if i < root_columns and l < root_columns:
                 continue  # below
+            if (has_tip and work[i, W_TYPE] == TIP_COMBINATION and work[l, W_TYPE] == TIP_COMBINATION
+                    and work[i, W_DIRECTION] == work[l, W_DIRECTION]):
+                continue  # the same FFR tip's columns: below
             if l <= i:
                 _cross_columns(J, 1, l, 1, i, H, 1, i, l, False)
                 _cross_columns(J, 1, l, 0, i, H, 0, i, l, False)
@@ -480,6 +574,8 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
                 for a in range(3):
                     H[1, a, i, l] = 0.0
                 _cross_columns(J, 1, i, 0, l, H, 0, i, l, False)
+    if has_tip:
+        _tip_blocks(table, P, work, nc, H)
     if root_columns == 0:
         return
     # the first link's own columns among each other
@@ -518,6 +614,57 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
             H[0, 1, i, l] = h2 * dr0 - h0 * dr2
             H[0, 2, i, l] = h0 * dr1 - h1 * dr0
             _cross_columns(J, 1, i, 0, l, H, 0, i, l, True)
+
+
+@njit(cache=True, inline="always")
+def _cross3(a0, a1, a2, b0, b1, b2):
+    """a x b of two vectors given by their components (a 3-tuple)."""
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+@njit(cache=True, inline="always")
+def _tip_blocks(table, P, work, nc, H):
+    """H among each FFR tip's own columns (j, m): with A_j = M[3:6, j] the weights of its rotations
+    w_0, w_1, w_2 (x, y', z'') about its place o and u_a = w_a x (r - o),
+    Hw_jm = sum_{b<a} A_j[a] A_m[b] w_b x w_a and Hr_jm = sum_ab A_j[a] A_m[b] w_min(a,b) x u_max(a,b)
+    (the serial rule over the screws; the translations give no terms among them)."""
+    maps = table.maps
+    for i in range(nc):
+        if work[i, W_TYPE] != TIP_COMBINATION or work[i, W_INDEX] != 0.0:
+            continue
+        pr = int(work[i, W_DIRECTION])
+        off, nf = int(table.params[pr, 1]), int(table.params[pr, 2])
+        d0 = P[0, 0] - work[i, W_ORIGIN]
+        d1 = P[1, 0] - work[i, W_ORIGIN + 1]
+        d2 = P[2, 0] - work[i, W_ORIGIN + 2]
+        a0, a1, a2 = work[i, W_AXES], work[i, W_AXES + 1], work[i, W_AXES + 2]
+        b0, b1, b2 = work[i, W_AXES + 3], work[i, W_AXES + 4], work[i, W_AXES + 5]
+        c0, c1, c2 = work[i, W_AXES + 6], work[i, W_AXES + 7], work[i, W_AXES + 8]
+        ua0, ua1, ua2 = _cross3(a0, a1, a2, d0, d1, d2)  # u = w x d
+        ub0, ub1, ub2 = _cross3(b0, b1, b2, d0, d1, d2)
+        uc0, uc1, uc2 = _cross3(c0, c1, c2, d0, d1, d2)
+        ab0, ab1, ab2 = _cross3(a0, a1, a2, b0, b1, b2)  # Hw's pairs w_a x w_b
+        ac0, ac1, ac2 = _cross3(a0, a1, a2, c0, c1, c2)
+        bc0, bc1, bc2 = _cross3(b0, b1, b2, c0, c1, c2)
+        qaa0, qaa1, qaa2 = _cross3(a0, a1, a2, ua0, ua1, ua2)  # Hr's pairs w_min x u_max
+        qbb0, qbb1, qbb2 = _cross3(b0, b1, b2, ub0, ub1, ub2)
+        qcc0, qcc1, qcc2 = _cross3(c0, c1, c2, uc0, uc1, uc2)
+        qab0, qab1, qab2 = _cross3(a0, a1, a2, ub0, ub1, ub2)
+        qac0, qac1, qac2 = _cross3(a0, a1, a2, uc0, uc1, uc2)
+        qbc0, qbc1, qbc2 = _cross3(b0, b1, b2, uc0, uc1, uc2)
+        for j in range(nf):
+            ja, jb, jc = maps[off + 3 * nf + j], maps[off + 4 * nf + j], maps[off + 5 * nf + j]
+            for m in range(nf):
+                ma, mb, mc = maps[off + 3 * nf + m], maps[off + 4 * nf + m], maps[off + 5 * nf + m]
+                fab, fac, fbc = jb * ma, jc * ma, jc * mb
+                H[1, 0, i + j, i + m] = fab * ab0 + fac * ac0 + fbc * bc0
+                H[1, 1, i + j, i + m] = fab * ab1 + fac * ac1 + fbc * bc1
+                H[1, 2, i + j, i + m] = fab * ab2 + fac * ac2 + fbc * bc2
+                gaa, gbb, gcc = ja * ma, jb * mb, jc * mc
+                gab, gac, gbc = ja * mb + jb * ma, ja * mc + jc * ma, jb * mc + jc * mb
+                H[0, 0, i + j, i + m] = gaa * qaa0 + gbb * qbb0 + gcc * qcc0 + gab * qab0 + gac * qac0 + gbc * qbc0
+                H[0, 1, i + j, i + m] = gaa * qaa1 + gbb * qbb1 + gcc * qcc1 + gab * qab1 + gac * qac1 + gbc * qbc1
+                H[0, 2, i + j, i + m] = gaa * qaa2 + gbb * qbb2 + gcc * qcc2 + gab * qab2 + gac * qac2 + gbc * qbc2
 
 
 @njit(cache=True, _nrt=False)

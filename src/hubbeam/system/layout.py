@@ -6,12 +6,15 @@ Parts declare how many coordinates they have and how many constraints they bring
 - coordinates  x = [base (0 or 7), theta, (psi_1, q_1), (psi_2, q_2), ...]: the base's
   position and Euler parameters (a free base, or one that follows a table), the hub angle,
   then for every beam its joint angles psi_k (0 to 3) and its own coordinates q_k;
-- multipliers  lambda = [norm (1), base (6), drive (1), clamp_1 (6), clamp_2 (6), ...]: the
-  Euler parameters' norm (a base with coordinates), the base's six driving constraints (a
-  base that follows a table, or a free base held for statics), the hub's drive (a held
-  hub), and the clamp of every beam whose formulation is clamped to its root frame by
-  constraints (ANCF; an FFR beam uses its root frame as its floating frame and has none);
-- Newton unknowns z = [base, theta, mu_norm, mu_base, mu_drive, (psi_1, mu_clamp_1, q_1), ...].
+- multipliers  lambda = [norm (1), base (6), drive (1), (lock_1, clamp_1 (6)), (lock_2,
+  clamp_2 (6)), ...]: the Euler parameters' norm (a base with coordinates), the base's six
+  driving constraints (a base that follows a table, or a free base held for statics), the
+  hub's drive (a held hub), and for every beam the locks of its latched joint angles (0 or
+  more; :mod:`hubbeam.system.joints`) and its clamp when its formulation is clamped to its
+  root frame by constraints (ANCF; an FFR beam uses its root frame as its floating frame and
+  has none);
+- Newton unknowns z = [base, theta, mu_norm, mu_base, mu_drive, (psi_1, mu_lock_1, mu_clamp_1,
+  q_1), ...].
 
 The leading entries (the base, theta and the multipliers of their constraints) couple to
 every beam; the rest of the Newton matrix is block-diagonal over the beams (a beam that
@@ -41,10 +44,11 @@ BASE_DRIVES = 6
 @dataclass(frozen=True)
 class Layout:
     """The unknowns of a system: ``beam_dofs[k]`` coordinates of beam k, ``joint_dofs[k]`` joint
-    angles at its root and ``clamped[k]`` (its six clamp multipliers); ``held``: the hub angle
-    is prescribed (or fixed) by a driving constraint; ``base_moves``: the base has coordinates
-    (free or following a table); ``base_held``: those coordinates are driven by six constraints
-    (a table, or a free base held for statics)."""
+    angles at its root, ``locks[k]`` multipliers of its latched joint angles and ``clamped[k]``
+    (its six clamp multipliers); ``held``: the hub angle is prescribed (or fixed) by a driving
+    constraint; ``base_moves``: the base has coordinates (free or following a table);
+    ``base_held``: those coordinates are driven by six constraints (a table, or a free base
+    held for statics)."""
 
     beam_dofs: tuple[int, ...]
     held: bool
@@ -52,6 +56,7 @@ class Layout:
     clamped: tuple[bool, ...] | None = None
     base_moves: bool = False
     base_held: bool = False
+    locks: tuple[int, ...] | None = None
 
     def __post_init__(self) -> None:
         n = len(self.beam_dofs)
@@ -59,8 +64,12 @@ class Layout:
             object.__setattr__(self, "joint_dofs", (0,) * n)
         if self.clamped is None:
             object.__setattr__(self, "clamped", (True,) * n)
-        if len(self.joint_dofs) != n or len(self.clamped) != n:
-            raise ValueError("one joint count and one clamp flag per beam")
+        if self.locks is None:
+            object.__setattr__(self, "locks", (0,) * n)
+        if len(self.joint_dofs) != n or len(self.clamped) != n or len(self.locks) != n:
+            raise ValueError("one joint count, one lock count and one clamp flag per beam")
+        if any(lock > joints for lock, joints in zip(self.locks, self.joint_dofs)):
+            raise ValueError("a beam has more locks than joint angles")
         if self.base_held and not self.base_moves:
             raise ValueError("a base without coordinates cannot be held by constraints")
 
@@ -85,8 +94,12 @@ class Layout:
         return int(self.base_moves) + BASE_DRIVES * int(self.base_held) + int(self.held)
 
     def block_size(self, k: int) -> int:
-        """Beam k's entries in z: its joint angles, clamp multipliers and coordinates."""
-        return self.joint_dofs[k] + CLAMP_EQUATIONS * int(self.clamped[k]) + self.beam_dofs[k]
+        """Beam k's entries in z: its joint angles, lock and clamp multipliers and coordinates."""
+        return self.joint_dofs[k] + self.beam_constraints(k) + self.beam_dofs[k]
+
+    def beam_constraints(self, k: int) -> int:
+        """Beam k's multipliers: its joints' locks and its clamp's."""
+        return self.locks[k] + CLAMP_EQUATIONS * int(self.clamped[k])
 
     @property
     def nx(self) -> int:
@@ -95,8 +108,8 @@ class Layout:
 
     @property
     def n_lambda(self) -> int:
-        """Constraints: the frames' and every clamped beam's."""
-        return self.border_constraints + CLAMP_EQUATIONS * sum(self.clamped)
+        """Constraints: the frames' and every beam's (locks and clamps)."""
+        return self.border_constraints + sum(self.beam_constraints(k) for k in range(self.beams))
 
     @property
     def nz(self) -> int:
@@ -155,13 +168,18 @@ class Layout:
         """Index of the hub's drive multiplier in lambda (None for a free hub)."""
         return self.border_constraints - 1 if self.held else None
 
+    def lock_lambda(self, k: int) -> slice:
+        """Beam k's lock multipliers in lambda (its latched joint angles'; empty without)."""
+        start = self.border_constraints + sum(self.beam_constraints(j) for j in range(k))
+        return slice(start, start + self.locks[k])
+
     def clamp_lambda(self, k: int) -> slice:
         """Beam k's clamp multipliers in lambda (empty for an unclamped beam)."""
-        start = self.border_constraints + CLAMP_EQUATIONS * sum(self.clamped[:k])
+        start = self.lock_lambda(k).stop
         return slice(start, start + CLAMP_EQUATIONS * int(self.clamped[k]))
 
     def beam_z(self, k: int) -> slice:
-        """Beam k's block in z: its joint angles, clamp multipliers, then its coordinates."""
+        """Beam k's block in z: its joint angles, lock and clamp multipliers, then its coordinates."""
         start = self.leading + sum(self.block_size(j) for j in range(k))
         return slice(start, start + self.block_size(k))
 
@@ -174,7 +192,7 @@ class Layout:
             z = self.beam_z(k).start
             nj = self.joint_dofs[k]
             out[self.joint_x(k)] = np.arange(z, z + nj)
-            q0 = z + nj + CLAMP_EQUATIONS * int(self.clamped[k])
+            q0 = z + nj + self.beam_constraints(k)
             out[self.beam_x(k)] = np.arange(q0, q0 + self.beam_dofs[k])
         return out
 
@@ -186,8 +204,9 @@ class Layout:
         out[:nb] = np.arange(self.frame_dofs, self.frame_dofs + nb)
         for k in range(self.beams):
             z = self.beam_z(k).start + self.joint_dofs[k]
-            sl = self.clamp_lambda(k)
-            out[sl] = np.arange(z, z + sl.stop - sl.start)
+            n = self.beam_constraints(k)
+            start = self.lock_lambda(k).start
+            out[start:start + n] = np.arange(z, z + n)
         return out
 
     # ------------------------------------------------------------ moving between x, lambda and z
@@ -207,12 +226,15 @@ class Layout:
         return replace(self, held=held, base_held=self.base_held if base_held is None else base_held)
 
     def lambda_in(self, other: "Layout", lam: np.ndarray) -> np.ndarray:
-        """Multipliers ``lam`` of this layout moved to ``other`` (the same beams): the clamps'
-        and the norm's carried over, constraints ``other`` lacks dropped, ones it adds zero."""
+        """Multipliers ``lam`` of this layout moved to ``other`` (the same beams): the clamps',
+        the locks' (of joints locked in both) and the norm's carried over, constraints ``other``
+        lacks dropped, ones it adds zero."""
         lam = np.asarray(lam, dtype=float)
         out = np.zeros(other.n_lambda)
         for k in range(self.beams):
             out[other.clamp_lambda(k)] = lam[self.clamp_lambda(k)]
+            n = min(self.locks[k], other.locks[k])
+            out[other.lock_lambda(k).start:other.lock_lambda(k).start + n] = lam[self.lock_lambda(k)][:n]
         if self.norm_lambda is not None and other.norm_lambda is not None:
             out[other.norm_lambda] = lam[self.norm_lambda]
         if self.base_lambda is not None and other.base_lambda is not None:

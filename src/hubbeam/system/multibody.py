@@ -79,8 +79,11 @@ def energy_sums(hub: np.ndarray, beams: np.ndarray, beam: int | None = None) -> 
 class Frames:
     """The frames of a system as chains (:mod:`hubbeam.system.frames`): the base's, the shaft's
     (the hub frame at theta = 0, the axes ANCF charts are chosen in), the hub's, and for every
-    beam its reference frame (its own hub frame A_h(theta + psi): the tip deflection's axes)
-    and its root section frame; rigid bodies add theirs with :meth:`add`."""
+    beam its reference frame (its own hub frame A_h(theta + psi): the tip deflection's axes; on
+    a parent beam, the parent's tip frame), its joint frame (its axis frame, where its joint
+    turns) and its root section frame; rigid bodies add theirs with :meth:`add`. A beam on a
+    parent hangs on the parent's tip frame (:meth:`BeamPart.tip_frame`), so the parent comes
+    first."""
 
     def __init__(self, base: Base, placement: HubPlacement, beams, layout: Layout) -> None:
         self._chains: list[Chain] = []
@@ -89,10 +92,21 @@ class Frames:
         self.shaft = self.add(base_chain.then(placement.link()))
         hub = self.chain(self.shaft).then(revolute(layout.theta, HUB_AXIS, -1.0))
         self.hub = self.add(hub)
-        self._reference, self._root = [], []
-        for part in beams:
-            self._reference.append(self.add(hub.then(part.mount.reference_link())))
-            self._root.append(self.add(hub.then(part.mount.axis_link(), part.mount.twist_link())))
+        self._reference, self._root, self._joint, tips = [], [], [], []
+        for k, part in enumerate(beams):
+            mount = part.mount
+            if mount.parent is None:
+                frame, reference = hub, hub.then(mount.reference_link())
+            elif 0 <= mount.parent < k:
+                frame = reference = tips[mount.parent]
+            else:
+                raise ValueError(f"beam {k} hangs on beam {mount.parent}: a parent must come before its child")
+            axis = frame.then(mount.axis_link())
+            root = axis.then(*mount.joint_links(layout.joint_x(k).start), mount.twist_link())
+            self._reference.append(self.add(reference))
+            self._joint.append(self.add(axis))
+            self._root.append(self.add(root))
+            tips.append(part.tip_frame(layout.beam_x(k).start, k, root))
         self._table: ChainTable | None = None
 
     def add(self, chain: Chain) -> int:
@@ -109,8 +123,13 @@ class Frames:
         return self._root[k]
 
     def reference(self, k: int) -> int:
-        """Beam k's reference frame (its own hub frame: radial, along the hub axis, tangential)."""
+        """Beam k's reference frame (its own hub frame: radial, along the hub axis, tangential;
+        on a parent, the parent's tip frame)."""
         return self._reference[k]
+
+    def joint(self, k: int) -> int:
+        """Beam k's joint frame (a, b, c): its axis frame before its joint and twist."""
+        return self._joint[k]
 
     @property
     def table(self) -> ChainTable:
@@ -152,7 +171,8 @@ class MultibodySystem:
         self.damping = (float(damping[0]), float(damping[1]))
         self.layout = Layout(tuple(b.ndof for b in self.beams), hub.held, clamped=tuple(
             bool(getattr(b, "clamped", True)) for b in self.beams), base_moves=base.moves,
-            base_held=base.table is not None)
+            base_held=base.table is not None, joint_dofs=tuple(b.mount.joint_count for b in self.beams),
+            locks=tuple(0 if b.mount.joint is None else b.mount.joint.locks for b in self.beams))
         self.frames = Frames(base, placement, self.beams, self.layout)
         self.rigid_bodies = self._rigid_bodies()
         self._models: dict[tuple[bool, bool], SystemModel] = {}
@@ -244,8 +264,22 @@ class MultibodySystem:
         return self._with(beams=list(beams))
 
     def without_damping(self) -> "MultibodySystem":
-        """The same system without air drag and without the beams' structural damping."""
-        return self._with(beams=[b.without_structural_damping() for b in self.beams], damping=(0.0, 0.0))
+        """The same system without air drag, without the beams' structural damping and without the
+        joints' dampers."""
+        beams = []
+        for b in self.beams:
+            b = b.without_structural_damping()
+            joint = b.mount.joint
+            if joint is not None and any(joint.damping):
+                b = replace(b, mount=replace(b.mount, joint=replace(joint, damping=(0.0,) * joint.count)))
+            beams.append(b)
+        return self._with(beams=beams, damping=(0.0, 0.0))
+
+    def without_motors(self) -> "MultibodySystem":
+        """The same system without its joints' motor laws (springs and dampers kept)."""
+        beams = [replace(b, mount=replace(b.mount, joint=replace(b.mount.joint, torque=None)))
+                 if b.mount.joint is not None and b.mount.joint.torque is not None else b for b in self.beams]
+        return self._with(beams=beams)
 
     def with_hub(self, **changes) -> "MultibodySystem":
         """The same beams on a hub with some fields changed (motion, drive, torque, inertia)."""
@@ -289,7 +323,9 @@ class MultibodySystem:
         x[self.layout.theta] = theta
         charts = np.tile(np.eye(3), (len(self.beams), 1, 1))
         reference = self.shaft_axes(x)
-        for k, part in enumerate(self.beams):
+        for k, part in enumerate(self.beams):  # parents first: a child's root frame is its parent's tip
+            if part.mount.joint is not None:
+                x[self.layout.joint_x(k)] = part.mount.joint.initial_angle
             r, R = self.root_pose(k, x, charts)
             x[self.layout.beam_x(k)], charts[k] = part.initial_state(r, R, reference)
         return x, charts
@@ -328,7 +364,21 @@ class MultibodySystem:
     def initial_rates(self, x, F) -> np.ndarray:
         """The rates at t = 0 of a system at rest relative to its base: the base's own (a free
         base's initial velocity and angular velocity, or a table's rates at t = 0) carried
-        rigidly by everything on it (zero for a fixed base)."""
+        rigidly by everything on it (zero for a fixed base), and the joints' initial rates, each
+        beam carried rigidly by its root frame."""
+        v = self._base_rates(x, F)
+        if not any(np.any(part.mount.joint.initial_rate) for part in self.beams if part.mount.joint is not None):
+            return v
+        for k, part in enumerate(self.beams):  # parents first
+            if part.mount.joint is not None:
+                v[self.layout.joint_x(k)] = part.mount.joint.initial_rate
+            r, _, v_r, w = self.root_motion(k, x, v, F)
+            s = self.layout.beam_x(k)
+            v[s] = part.rigid_rates(x[s], F[k], v_r, w, r)[0]
+        return v
+
+    def _base_rates(self, x, F) -> np.ndarray:
+        """The rates at t = 0 of everything at rest relative to the base (zero for a fixed base)."""
         if not self.base.moves:
             return np.zeros(self.nx)
         if self.base.table is not None:
@@ -713,6 +763,63 @@ class MultibodySystem:
                 total[key] += value
         return total
 
+    def hinge_generators(self, x, F) -> list[tuple[str, int, np.ndarray]]:
+        """For every joint axis: (its mode label, e.g. "flap hinge"; its angle's x index; the rate
+        g of x when that angle turns at unit rate with its beam and every beam hanging on it
+        carried rigidly: g[psi] = 1 and each ANCF beam of that subtree turning rigidly about the
+        axis through the joint, at e x (r - r_J); FFR beams and joint angles of the subtree float
+        on their frames and stay at rest)."""
+        out = []
+        children = {k: [j for j, b in enumerate(self.beams) if b.mount.parent == k] for k in range(len(self.beams))}
+        for k, part in enumerate(self.beams):
+            joint = part.mount.joint
+            if joint is None:
+                continue
+            chain = self.frames.root(k)
+            r, _, _, Jw, _, _ = chain_pose(self.frames.table, chain, x, F)
+            columns = self.frames.chain(chain).coordinates
+            subtree, todo = [], [k]
+            while todo:
+                j = todo.pop()
+                subtree.append(j)
+                todo += children[j]
+            for i in range(joint.count):
+                c = self.layout.joint_x(k).start + i
+                axis = Jw[:, columns.index(c)]
+                g = np.zeros(self.nx)
+                g[c] = 1.0
+                for j in subtree:
+                    s = self.layout.beam_x(j)
+                    g[s] = self.beams[j].rigid_rates(x[s], F[j], np.zeros(3), axis, r)[0]
+                out.append((joint.label(i), c, g))
+        return out
+
+    def mode_energy_split(self, x, F, u) -> dict[str, float]:
+        """:meth:`kinetic_energy_split` of the rate u with every joint's rigid rotation taken out
+        as a part of its own: for each joint axis, the kinetic energy of u[psi] g
+        (:meth:`hinge_generators`) under its label ("flap hinge", "lag hinge", "pitch hinge",
+        "hinge": axes of one label summed), and the split of what is left of u (the parts add
+        up to the kinetic energy less the cross terms between the hinges' rotations and the rest)."""
+        u = np.asarray(u)
+        generators = self.hinge_generators(x, F)
+        if not generators:
+            return self.kinetic_energy_split(x, F, u)
+        rest = np.array(u, copy=True)
+        hinges: dict[str, float] = {}
+        for label, c, g in generators:
+            rotation = u[c] * g
+            rest = rest - rotation
+            hinges[label] = hinges.get(label, 0.0) + sum(self.kinetic_energy_split(x, F, rotation).values())
+        split = self.kinetic_energy_split(x, F, rest)
+        split.update(hinges)
+        return split
+
+    def hinge_labels(self) -> tuple[str, ...]:
+        """The mode labels of the system's joint axes, each once, in the beams' order."""
+        labels = [b.mount.joint.label(i) for b in self.beams if b.mount.joint is not None
+                  for i in range(b.mount.joint.count)]
+        return tuple(dict.fromkeys(labels))
+
     def root_axes(self, k: int, x, F=None) -> np.ndarray:
         """Beam k's undeformed axis frame (a_1 the axis, a_2, a_3) at x: the root section's axes
         turned back by the twist."""
@@ -775,6 +882,11 @@ class MultibodySystem:
         O, j_h = self.hub_axis(x)
         about_O = mom["angular"] - np.cross(O, mom["linear"])
         return float(-j_h @ about_O)
+
+    def event_reached(self, x) -> bool:
+        """Whether the state x reached an event of a part (a joint at its latch angle:
+        :func:`hubbeam.system.joints.joint_events`)."""
+        return bool(self.functions.system_events(self.model(), np.ascontiguousarray(x, dtype=float)))
 
     def step_powers(self, t, x, v, lam, F) -> tuple[float, float]:
         """(dissipated, drive) power at a state (W): the drag of Eq. 37 and the beams'

@@ -23,6 +23,7 @@ import numpy as np
 
 from hubbeam.elements.hermite import gauss_legendre
 from hubbeam.elements.section import COLUMN, span_properties
+from hubbeam.system.frames import Chain
 from hubbeam.system.mount import Mount
 
 #: the parts of a beam's kinetic energy (:meth:`BeamPart.kinetic_energy_split`), in the order
@@ -77,6 +78,14 @@ class BeamPart(ABC):
     @abstractmethod
     def tip_position(self, q: np.ndarray, frame=None) -> np.ndarray:
         """Global position of the tip centroid (m)."""
+
+    @abstractmethod
+    def tip_frame(self, x0: int, index: int, root) -> "Chain":
+        """The frame a child beam's joint hangs on at this beam's tip (a chain of
+        :mod:`hubbeam.system.frames`): the tip section frame turned back about its axis by the
+        twist and the tip pretwist, so that, undeformed, it is this beam's axis frame carried to
+        the tip. ``x0``: where this beam's coordinates start in x; ``index``: its place among the
+        beams (its chart); ``root``: the chain of its root section frame."""
 
     def tip_node(self) -> slice | None:
         """The coordinates of the tip's ANCF node [r0, r0', theta_1, theta_1'] in q, to which a

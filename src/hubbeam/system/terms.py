@@ -31,7 +31,10 @@ the laws that drive or load coordinates, ...) is one module that declares
       each beam's tip displacement in its reference frame into ``out[k]`` (m);
   ``momenta(pack, ctx, F, x, v, out)``
       adds its mass (kg), first moment m r_cm (kg m), linear momentum (N s) and angular momentum
-      about the global origin (N m s) into out[0], out[1:4], out[4:7], out[7:10].
+      about the global origin (N m s) into out[0], out[1:4], out[4:7], out[7:10];
+  ``events(pack, ctx, x) -> bool``
+      whether the state x has reached an event of the kind (a joint's latch angle): the time
+      loop then stops after the step and Python changes the system (:mod:`hubbeam.simulation`).
 
   A kind leaves out what it does not have (no energy, no dissipation, no tip, no drive).
 
@@ -119,6 +122,11 @@ def part_momenta(pack, ctx, F, x, v, out):
     raise TypeError(f"no compiled terms are registered for {type(pack).__name__}")
 
 
+def part_events(pack, ctx, x):
+    """Whether a part kind's event is reached at x (compiled; see the module)."""
+    raise TypeError(f"no compiled terms are registered for {type(pack).__name__}")
+
+
 @njit(cache=True)
 def add_beam_energy(beams, k, kinetic, strain, gravity):
     """Add (kinetic, strain, gravity) (J) to the energy row of beam k (its place among all beams)."""
@@ -147,6 +155,10 @@ def _no_momenta(pack, ctx, F, x, v, out):
     return None
 
 
+def _no_events(pack, ctx, x):
+    return False
+
+
 def _dispatch(stub, pack_class, impl) -> None:
     """Let numba resolve ``stub`` to ``impl`` for packs of ``pack_class`` (``impl``: a plain
     Python function with the stub's parameter names, which numba compiles where it is called).
@@ -167,14 +179,15 @@ def _dispatch(stub, pack_class, impl) -> None:
 
 
 def register(pack: type, packer: Callable, equations, energies=None, power=None, tips=None,
-             bandwidth: Callable = lambda system, layout: 1, drive_power=None, momenta=None) -> PartKind:
+             bandwidth: Callable = lambda system, layout: 1, drive_power=None, momenta=None,
+             events=None) -> PartKind:
     """Register a kind of part: its pack class, its ``packer(system, layout) -> pack | None``,
     ``bandwidth(system, layout)``, the half-bandwidth its band entries need (the distance from
     the diagonal of its farthest entry off the border), and its terms: plain Python functions
     in numba's subset with the parameter names of :func:`part_equations`,
-    :func:`part_energies`, :func:`part_power`, :func:`part_tips`, :func:`part_drive_power` and
-    :func:`part_momenta` (the ones left out are zero), compiled where the system's equations
-    call them. Returns the kind."""
+    :func:`part_energies`, :func:`part_power`, :func:`part_tips`, :func:`part_drive_power`,
+    :func:`part_momenta` and :func:`part_events` (the ones left out are zero, or no event),
+    compiled where the system's equations call them. Returns the kind."""
     if any(kind.pack is pack for kind in KINDS):
         raise ValueError(f"{pack.__name__} is registered already")
     _dispatch(part_equations, pack, equations)
@@ -183,6 +196,7 @@ def register(pack: type, packer: Callable, equations, energies=None, power=None,
     _dispatch(part_tips, pack, tips if tips is not None else _no_tips)
     _dispatch(part_drive_power, pack, drive_power if drive_power is not None else _no_drive_power)
     _dispatch(part_momenta, pack, momenta if momenta is not None else _no_momenta)
+    _dispatch(part_events, pack, events if events is not None else _no_events)
     kind = PartKind(pack, packer, bandwidth)
     KINDS.append(kind)
     return kind

@@ -28,14 +28,15 @@ from hubbeam.io.scenario.common import MAX_PRECONE_DEG, STEP_TOLERANCE, KeyedCho
 from hubbeam.io.scenario.hub import DRIVE_KEYS, TORQUE_KEYS, Drive, Hub, HubTorque
 from hubbeam.io.scenario.model import Scenario, table_files, validate
 from hubbeam.io.scenario.overrides import apply_overrides, load_example, load_scenario, parse_override, value_at
-from hubbeam.io.scenario.sensors import (BEAM_ENERGY_PARTS, BEAM_SENSORS, OPTIONAL_BEAM_SENSORS, SENSOR_PARTS,
-                                         Sensor, SensorKind)
+from hubbeam.io.scenario.joints import Joint, JointTorque, ResolvedJoint
+from hubbeam.io.scenario.sensors import (BEAM_ENERGY_PARTS, BEAM_SENSORS, JOINT_SENSORS, OPTIONAL_BEAM_SENSORS,
+                                         SENSOR_PARTS, Sensor, SensorKind)
 
 __all__ = [
     "Analysis", "BEAM_ENERGY_PARTS", "BEAM_SENSORS", "Beam", "BeamDamping", "DRIVE_KEYS", "Damping", "Drive",
-    "EXAMPLES", "Environment", "Hub", "HubTorque", "KeyedChoice", "Loads", "MAX_PRECONE_DEG", "OPTIONAL_BEAM_SENSORS",
-    "ResolvedBeam", "ResolvedTipBody", "SENSOR_PARTS", "STATION_CONSTANTS", "STEP_TOLERANCE", "Scenario",
-    "ScenarioError", "SectionStation", "Sensor", "SensorKind", "StrictTable", "TORQUE_KEYS", "TipBody", "apply_overrides",
-    "example_text", "load_example", "load_scenario", "parse_override", "span_sections", "table_files", "validate",
-    "value_at",
+    "EXAMPLES", "Environment", "Hub", "HubTorque", "JOINT_SENSORS", "Joint", "JointTorque", "KeyedChoice", "Loads",
+    "MAX_PRECONE_DEG", "OPTIONAL_BEAM_SENSORS", "ResolvedBeam", "ResolvedJoint", "ResolvedTipBody", "SENSOR_PARTS",
+    "STATION_CONSTANTS", "STEP_TOLERANCE", "Scenario", "ScenarioError", "SectionStation", "Sensor", "SensorKind",
+    "StrictTable", "TORQUE_KEYS", "TipBody", "apply_overrides", "example_text", "load_example", "load_scenario",
+    "parse_override", "span_sections", "table_files", "validate", "value_at",
 ]

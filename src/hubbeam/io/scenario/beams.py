@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from hubbeam.io.scenario.common import (MAX_PRECONE_DEG, Identifier, NonNegative, NonNegativeVector3, Positive,
                                         Vector3, StrictTable)
+from hubbeam.io.scenario.joints import Joint, ResolvedJoint
 
 
 class TipBody(StrictTable):
@@ -148,6 +149,9 @@ class Beam(StrictTable):
     tip_body: TipBody | None = None
     sections: Annotated[list[SectionStation], Field(min_length=2, max_length=10000)] | None = None
     damping: BeamDamping | None = None
+    # a chain: the beam whose tip carries this root (default: the hub), and the root's joint
+    parent: Identifier | None = None
+    joint: Joint | None = None
 
     @model_validator(mode="after")
     def _keys(self):
@@ -166,6 +170,11 @@ class Beam(StrictTable):
         # --- end modal reduction
         if self.sections is not None:
             self._check_sections()
+        if self.parent is not None:
+            for key, unset in (("azimuth", 0.0), ("radius", None)):
+                if getattr(self, key) != unset:
+                    raise ValueError(f"{key}: does not apply to a beam on a parent (its root sits at the parent's "
+                                     f"tip, {self.parent!r}); remove it")
         if not abs(self.precone) < MAX_PRECONE_DEG:
             raise ValueError(
                 f"precone: must be between -{MAX_PRECONE_DEG:g} and {MAX_PRECONE_DEG:g} deg (got {self.precone}): "
@@ -269,5 +278,7 @@ class ResolvedBeam:
     modes: int | None = None  # FFR only: kept clamped-free modes; None: nodal
     sections: Any = None  # hubbeam.elements.section.SpanSections: span-wise properties; None: uniform
     structural_damping: float = 0.0  # s, c of the Kelvin-Voigt resultants c D e_dot
+    parent: int | None = None  # the index of the beam whose tip carries this root (None: the hub)
+    joint: ResolvedJoint | None = None  # the root's revolute joint (None: clamped)
 
 

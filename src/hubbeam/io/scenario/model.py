@@ -24,7 +24,8 @@ from hubbeam.io.scenario.beams import (MAX_BEAMS, Beam, ResolvedBeam, ResolvedTi
                                        span_sections)
 from hubbeam.io.scenario.common import STEP_TOLERANCE, StrictTable
 from hubbeam.io.scenario.hub import Hub, HubTorque
-from hubbeam.io.scenario.sensors import BEAM_SENSORS, Sensor
+from hubbeam.io.scenario.joints import resolved_joint
+from hubbeam.io.scenario.sensors import BEAM_SENSORS, JOINT_SENSORS, Sensor
 
 
 class Scenario(StrictTable):
@@ -112,8 +113,8 @@ class Scenario(StrictTable):
                 name=name, index=i, formulation=b.formulation, elements=b.elements, length=b.length, width=b.width,
                 thickness=b.thickness, density=b.density, youngs_modulus=b.youngs_modulus, shear_modulus=g,
                 torsion_constant=jt, gauss_points=b.gauss_points, geometric_stiffening=bool(b.geometric_stiffening),
-                azimuth=math.radians(copy_azimuth(b.azimuth, copy, b.copies)),
-                radius=float(self.hub.radius if b.radius is None else b.radius),
+                azimuth=math.radians(copy_azimuth(b.azimuth, copy, b.copies)) if b.parent is None else 0.0,
+                radius=float(self.hub.radius if b.radius is None else b.radius) if b.parent is None else 0.0,
                 twist=math.radians(self.hub.twist if b.twist is None else b.twist),
                 precone=math.radians(b.precone), tip_body=tip,
                 tip_force=tuple(float(v) for v in self.loads.tip_force) if i == loaded else zero,
@@ -121,6 +122,7 @@ class Scenario(StrictTable):
                 modes=b.modes,
                 sections=span_sections(b, Section(b.width, b.thickness, b.density, b.youngs_modulus, g, jt)),
                 structural_damping=float(b.damping.stiffness_proportional) if b.damping is not None else 0.0,
+                parent=None if b.parent is None else self.beam_names.index(b.parent), joint=resolved_joint(b.joint),
             ))
         return out
 
@@ -201,6 +203,8 @@ def _cross_checks(s: Scenario) -> None:
                                 "axis; its mass and its inertia across the axis belong to base.mass and base.inertia)")
     elif hub.motion == "free" and "inertia" not in hub.model_fields_set:
         raise ScenarioError("hub.inertia: required for motion = 'free' (kg m^2 about its axis)")
+
+    _check_chains(s, where)
 
     if s.loads.beam is not None and s.loads.beam not in names:
         raise ScenarioError(f"loads.beam: no beam named {s.loads.beam!r} (beams: {listed})")
@@ -310,6 +314,56 @@ def _check_loop(s: Scenario) -> None:
                                 "the round-off of the hub's motion. Use a smaller gain or a smaller analysis.dt")
 
 
+#: most beams in one chain (a root on the hub and its descendants through parents)
+MAX_CHAIN = 100
+
+
+def _check_chains(s: Scenario, where: str) -> None:
+    """Parents: an existing beam, not the beam itself, listed before its child, no loop, at most
+    :data:`MAX_CHAIN` beams in one chain; sensors of joints on jointed beams. Beams are counted
+    copy by copy (``copies = N``: each copy has the table's parent and joint)."""
+    tables, names, places = s.beam_tables, s.beam_names, s.beam_places
+    index = {name: i for i, name in enumerate(names)}
+
+    def table_of(i):
+        return tables[places[i][0]]
+
+    for i, name in enumerate(names):
+        t = places[i][0]
+        b = tables[t]
+        if b.parent is None:
+            continue
+        key = f"{where}[{t}].parent" if where == "beams" else "beam.parent"
+        if b.parent == name:
+            raise ScenarioError(f"{key}: a beam cannot be its own parent ({b.parent!r})")
+        if b.parent not in index:
+            raise ScenarioError(f"{key}: no beam named {b.parent!r} (beams: {', '.join(names)})")
+        seen, j = {i}, index[b.parent]
+        depth = 2
+        while table_of(j).parent is not None and table_of(j).parent in index:
+            if j in seen:
+                raise ScenarioError(f"{key}: the parents of {name!r} make a loop "
+                                    f"({' -> '.join(names[m] for m in sorted(seen))})")
+            seen.add(j)
+            j = index[table_of(j).parent]
+            depth += 1
+            if depth > MAX_CHAIN:
+                raise ScenarioError(f"{key}: more than {MAX_CHAIN} beams in one chain")
+        if index[b.parent] > i:
+            raise ScenarioError(f"{key}: the parent {b.parent!r} must be listed before its child {name!r}")
+    for i, sen in enumerate(s.sensors):
+        if sen.kind not in JOINT_SENSORS:
+            continue
+        if not tables or (sen.beam is not None and sen.beam not in names):
+            continue  # the sensors' own checks say so
+        k = s.beam_index(sen.beam)
+        joint = table_of(k).joint
+        if joint is None or joint.kind != "revolute":
+            raise ScenarioError(f"sensors[{i}].beam: a {sen.kind} sensor needs a beam on a revolute joint "
+                                f"(beam {names[k]!r} is clamped)")
+        sen.set_axes(joint.axis_names)
+
+
 _TYPE_PARTS = {"function-after", "function-before", "function-wrap", "list[float]", "float", "int", "str", "bool",
                "constrained-float", "constrained-int", "constrained-str", "list[constrained-float]"}
 
@@ -341,8 +395,11 @@ def _explain(err: dict) -> str:
         bound = next(iter(ctx.values()))
         return f"must be {op} {bound} (got {value})"
     if kind == "literal_error":
+        expected = str(ctx.get("expected"))
+        if len(expected) > 200:  # a long list of choices (the sensor kinds) reads without its quotes
+            expected = expected.replace("'", "")
         shown = repr(value)
-        return f"must be one of {ctx.get('expected')} (got {shown if len(shown) <= 30 else shown[:27] + '...'})"
+        return f"must be one of {expected} (got {shown if len(shown) <= 30 else shown[:27] + '...'})"
     if kind in ("too_short", "too_long"):
         n = ctx.get("min_length") if kind == "too_short" else ctx.get("max_length")
         bound = "at least" if kind == "too_short" else "at most"
@@ -440,6 +497,16 @@ def table_files(s: Scenario) -> list[tuple[str, str, str]]:
         tables.append(("torque", "hub.torque.file", torque.file))
     if torque is not None and torque.reference is not None and torque.reference.profile == "table":
         tables.append(("drive", "hub.torque.reference.file", torque.reference.file))
+    where = "beam" if s.single_beam is not None else "beams"
+    for i, b in enumerate(s.beam_tables):
+        motor = b.joint.torque if b.joint is not None else None
+        if motor is None:
+            continue
+        key = f"{where}[{i}].joint.torque" if where == "beams" else "beam.joint.torque"
+        if motor.law == "table":
+            tables.append(("torque", f"{key}.file", motor.file))
+        if motor.reference is not None and motor.reference.profile == "table":
+            tables.append(("drive", f"{key}.reference.file", motor.reference.file))
     return tables
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Literal
 
 from pydantic import (
+    PrivateAttr,
     model_validator,
 )
 
@@ -15,15 +16,17 @@ SensorKind = Literal[
     "surface_strain", "hub_angle", "hub_angular_velocity", "hub_torque", "tip_deflection", "energy",
     "angular_momentum", "constraint_violation", "applied_torque",
     "base_position", "base_rotation", "base_velocity", "base_angular_velocity", "centre_of_mass", "linear_momentum",
-    "system_angular_momentum", "base_torque",
+    "system_angular_momentum", "base_torque", "joint_angle", "joint_rate", "joint_torque",
 ]
 
 #: the sensors of a base and of the whole system in space: three components each
 VECTOR_SENSORS = ("base_position", "base_rotation", "base_velocity", "base_angular_velocity", "centre_of_mass",
                   "linear_momentum", "system_angular_momentum", "base_torque")
 
+#: the sensors of a beam's joint: one value, or one part per axis of a multi-axis joint
+JOINT_SENSORS = frozenset({"joint_angle", "joint_rate", "joint_torque"})
 #: sensors that belong to one beam (``beam``: a beam name, default the first beam)
-BEAM_SENSORS = frozenset({"surface_strain", "tip_deflection"})
+BEAM_SENSORS = frozenset({"surface_strain", "tip_deflection"}) | JOINT_SENSORS
 #: sensors with an optional ``beam`` (without it, the whole system)
 OPTIONAL_BEAM_SENSORS = frozenset({"energy"})
 #: multi-part sensors -> their parts; the columns are NAME_PART
@@ -44,6 +47,12 @@ class Sensor(StrictTable):
     surface: Literal["upper", "lower"] | None = None
     y: float | None = None
     z: float | None = None
+    #: a joint sensor's axis names (the scenario's checks set them from the beam's joint)
+    _axes: tuple = PrivateAttr(default=())
+
+    def set_axes(self, names) -> None:
+        """The axis names of the joint a joint sensor measures (its parts when there are several)."""
+        self._axes = tuple(names)
 
     @model_validator(mode="after")
     def _station(self):
@@ -65,6 +74,8 @@ class Sensor(StrictTable):
         """The parts of a multi-part sensor (None for a single value)."""
         if self.kind == "energy" and self.beam is not None:
             return BEAM_ENERGY_PARTS
+        if self.kind in JOINT_SENSORS:
+            return self._axes if len(self._axes) > 1 else None
         return SENSOR_PARTS.get(self.kind)
 
     @property

@@ -1,0 +1,170 @@
+"""Joints (system/joints.py): the named axes against plain rotations, the joint laws' forces
+against differences of their energy and of the residual, the signs of the interface (a lag
+motor's reaction on the hub), and the layout's lock slots."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from hubbeam.elements.ffr.body import FfrBeam
+from hubbeam.system.ancf_part import AncfPart
+from hubbeam.system.beam import AncfBeam
+from hubbeam.system.ffr_part import FfrPart
+from hubbeam.system.joints import Joint
+from hubbeam.system.laws import DriveProfile, TorqueLaw
+from hubbeam.system.layout import Layout
+from hubbeam.system.mount import Mount
+from hubbeam.system.multibody import Hub, MultibodySystem
+from tests.conftest import newton_matrix_and_differences, plate, rotation
+
+
+def _system(joint, formulation="ancf", hub=Hub("fixed"), gravity=(0.0, -9.81, 0.0), radius=0.3, twist=0.4,
+            precone=0.1, elements=2):
+    mount = Mount(radius, twist, 0.5, precone, joint=joint)
+    if formulation == "ancf":
+        part = AncfPart(AncfBeam(1.2, elements, plate()), mount)
+    else:
+        part = FfrPart(FfrBeam(1.2, elements, plate()), mount)
+    return MultibodySystem([part], hub, gravity=gravity)
+
+
+@pytest.mark.parametrize("name, angle", [("flap", 0.3), ("lag", -0.4), ("pitch", 0.5)])
+def test_named_axes_turn_the_root_as_the_interface_says(name, angle):
+    """flap = +c lifts the tip towards +b, lag = +b moves it towards -c, pitch = -a turns the
+    section as a positive twist does; the joint frame (a, b, c) is the mount's axis frame."""
+    system = _system(Joint.named(name, initial_angle=(angle,)), twist=0.2, precone=0.0)
+    x, F = system.initial_state()
+    _, R = system.root_pose(0, x, F)
+    _, A = system.frames.pose(system.frames.joint(0), x)  # (a, b, c)
+    a, b, c = A.T
+    twist = rotation(a, -0.2)  # the mount's twist turns the section by -beta about a
+    expected = {"flap": rotation(c, angle), "lag": rotation(b, angle), "pitch": rotation(-a, angle)}[name]
+    assert np.allclose(R, twist @ expected @ A, atol=1e-12) or np.allclose(R, expected @ twist @ A, atol=1e-12)
+    tip = R[:, 0]
+    if name == "flap":
+        assert tip @ b == pytest.approx(np.sin(angle))
+    elif name == "lag":
+        assert tip @ c == pytest.approx(-np.sin(angle))
+    else:  # a pitch angle is a twist: the same section frame as the clamped beam with twist 0.2 + angle
+        clamped = _system(None, twist=0.2 + angle, precone=0.0)
+        x0, F0 = clamped.initial_state()
+        assert np.allclose(clamped.root_pose(0, x0, F0)[1], R, atol=1e-12)
+
+
+@pytest.mark.parametrize("formulation", ["ancf", "ffr"])
+def test_spring_damper_and_motor_rows_are_their_energy_and_power(formulation):
+    """The joint row holds k (psi - psi_0) + c psi' - T_m: the spring's part equals the
+    difference of the spring energy in the strain energy, the damper's the dissipated power
+    over psi', the motor's the drive power over psi' (each from the energy sensors' sums)."""
+    law = TorqueLaw.pd(3.0, 0.7, DriveProfile.slew(0.8, 2.0))
+    joint = Joint.named("lag", stiffness=(12.0,), damping=(0.9,), neutral=(0.2,), initial_angle=(-0.1,), torque=law)
+    system = _system(joint, formulation, gravity=(0.0, 0.0, 0.0))
+    x, F = system.initial_state()
+    c = system.layout.joint_x(0).start
+    x[c] = 0.35
+    v = np.zeros(system.nx)
+    v[c] = 0.6
+    t = 0.9
+    h = 1e-6
+
+    def strain(psi):
+        y = x.copy()
+        y[c] = psi
+        return system.energies(y, v, F)["strain"]
+
+    dU = (strain(x[c] + h) - strain(x[c] - h)) / (2 * h)
+    assert dU == pytest.approx(12.0 * (0.35 - 0.2), rel=1e-7)
+    dissipated, drive = system.step_powers(t, x, v, np.zeros(system.layout.n_lambda), F)
+    ref, ref_rate, _ = DriveProfile.slew(0.8, 2.0)(t)
+    motor = 3.0 * (-0.1 + ref - 0.35) + 0.7 * (ref_rate - 0.6)
+    assert dissipated == pytest.approx(0.9 * 0.6**2, rel=1e-12)
+    assert drive == pytest.approx(motor * 0.6, rel=1e-12)
+    # the residual's psi row less the same beam's on a joint without laws: the laws' generalized force
+    row = _joint_row(system, x, v, F, c, t)
+    bare = system.with_beams([replace(system.beams[0], mount=replace(system.beams[0].mount, joint=Joint.named(
+        "lag", initial_angle=(-0.1,))))])
+    assert row - _joint_row(bare, x, v, F, c, t) == pytest.approx(dU + 0.9 * 0.6 - motor, rel=1e-9)
+
+
+def _joint_row(system, x, v, F, c, t):
+    zero = np.zeros(system.nx)
+    res = system.equations(x, v, zero, np.zeros(system.layout.n_lambda), F, t, 0.0, 0.0, 1.0, 1.0,
+                           want_matrix=False)[0]
+    return res[system.layout.z_of_x[c]]
+
+
+@pytest.mark.parametrize("formulation", ["ancf", "ffr"])
+def test_newton_matrix_of_a_jointed_beam_is_the_residuals_derivative(formulation):
+    """The Newton matrix (stiffness, damping, mass and the clamp's Hessian through the joint
+    angles, the motor law's derivatives) against central differences of the residual along the
+    generalized-alpha correction, at a perturbed state, hub free."""
+    law = TorqueLaw.pd(3.0, 0.7, DriveProfile.slew(0.8, 2.0))
+    joint = Joint.named("flap", stiffness=(12.0,), damping=(0.9,), neutral=(0.2,), torque=law)
+    system = _system(joint, formulation, hub=Hub("free", 2.0))
+    A, D, _, _ = newton_matrix_and_differences(system, perturbation=0.01, stiffness="exact")
+    c = system.layout.z_of_x[system.layout.joint_x(0).start]
+    scale = np.max(np.abs(D))
+    # the joint angle's row and column: exact (the dynamic matrix leaves out only the beams'
+    # inertia-force derivatives, not the joint's terms)
+    assert np.max(np.abs(A[c] - D[c])) <= 1e-4 * scale
+    assert np.max(np.abs(A[:, c] - D[:, c])) <= 1e-4 * scale
+
+
+def test_a_positive_lag_motor_torque_reacts_on_the_hub_as_a_positive_hub_torque():
+    """A lag torque is positive about +j0, a hub torque about -j0: a constant lag motor torque T
+    on a stiff blade of a free hub at rest turns the hub forward (theta > 0) and the blade back
+    (psi > 0) as the rigid two-body closed form says, M [theta'', psi''] = [0, T] with M from
+    the blade's inertias about the hub axis and about the hinge (written out here; theta turns
+    about -j0 and psi about +j0, so their coupling enters with a minus sign), and the system's
+    angular momentum stays zero."""
+    from hubbeam.elements.section import Section
+    from hubbeam.io.scenario import Sensor
+    from hubbeam.simulation import simulate
+
+    T, J, R, Lb, a = 0.1, 0.8, 0.3, 1.2, 0.04  # psi stays below 0.03 rad: the inertias stay those at psi = 0
+    section = Section(a, a, 2700.0, 70e9, 26e9, 0.141 * a**4)
+    part = FfrPart(FfrBeam(Lb, 2, section), Mount(R, joint=Joint.named("lag", torque=TorqueLaw.constant(T))))
+    system = MultibodySystem([part], Hub("free", J))
+    m = section.mass_per_length * Lb
+    I_sec = section.density * section.i_y * Lb  # the sections turning about j0 (their m axis)
+    I_hinge = m * Lb**2 / 3.0 + I_sec
+    I_hub = J + m * (R**2 + R * Lb + Lb**2 / 3.0) + I_sec
+    coupling = m * (R * Lb / 2.0 + Lb**2 / 3.0) + I_sec
+    acc = np.linalg.solve([[I_hub, -coupling], [-coupling, I_hinge]], [0.0, T])
+    t = 0.3
+    traj = simulate(system, [Sensor(name="H", kind="angular_momentum"), Sensor(name="th", kind="hub_angle"),
+                             Sensor(name="psi", kind="joint_angle")], t, 1e-3, 1.0, t)
+    theta, psi = traj.records["th"][-1], traj.records["psi"][-1]
+    assert theta > 0.0 and psi > 0.0
+    assert theta == pytest.approx(0.5 * acc[0] * t**2, rel=2e-3)
+    assert psi == pytest.approx(0.5 * acc[1] * t**2, rel=2e-3)
+    assert np.max(np.abs(traj.records["H"])) < 1e-6 * T * t
+
+
+def test_layout_places_locks_between_joint_angles_and_clamps():
+    layout = Layout((16, 24), True, joint_dofs=(2, 1), clamped=(True, False), locks=(0, 1))
+    assert layout.n_lambda == 1 + 6 + 1
+    assert layout.lock_lambda(1) == slice(7, 8) and layout.clamp_lambda(0) == slice(1, 7)
+    z0, z1 = layout.beam_z(0), layout.beam_z(1)
+    assert list(layout.z_of_x[layout.joint_x(0)]) == [z0.start, z0.start + 1]
+    assert layout.z_of_lambda[layout.clamp_lambda(0).start] == z0.start + 2
+    assert layout.z_of_x[layout.joint_x(1).start] == z1.start
+    assert layout.z_of_lambda[layout.lock_lambda(1).start] == z1.start + 1
+    assert layout.z_of_x[layout.beam_x(1).start] == z1.start + 2
+    assert sorted(np.concatenate([layout.z_of_x, layout.z_of_lambda])) == list(range(layout.nz))
+    with pytest.raises(ValueError, match="more locks"):
+        Layout((16,), True, joint_dofs=(0,), locks=(1,))
+
+
+def test_joint_refuses_what_it_cannot_be():
+    with pytest.raises(ValueError, match="single-axis"):
+        Joint.named("flap", "lag", latch=0.5)
+    with pytest.raises(ValueError, match="start latched"):
+        Joint.named("flap", latch=0.0)
+    with pytest.raises(ValueError, match="not a direction"):
+        Joint(((0.0, 0.0, 0.0),), ("axis1",))
+    with pytest.raises(ValueError, match="one value per axis"):
+        Joint.named("flap", "lag", stiffness=(1.0,))
