@@ -43,6 +43,7 @@ def test_span_loads_and_tip_tables_validate(tables):
                           tip_force_file="tip.csv"), tables)
     assert s.loads.span_names == ["span1", "gust"]
     assert s.loads.span[1].file == str(tables / "timed.csv")
+    assert validate(s.to_dict()) == s  # what results store gives the scenario back
 
 
 def test_a_timed_span_table_reads_as_blocks_of_stations(tables):

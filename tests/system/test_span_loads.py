@@ -94,7 +94,7 @@ def test_stations_integrate_a_linear_load_on_cubics_exactly():
     x, w = span_stations(part, 0.13, 0.81, [0.13, 0.5, 0.81])
     assert np.all(np.diff(x) > 0) and x[0] > 0.13 and x[-1] < 0.81
     assert w.sum() == pytest.approx(0.68, rel=1e-14)
-    exact = lambda s: 2.0 * s**2 / 2 + 3.0 * s**3 / 3  # noqa: E731
+    exact = lambda s: 2.0 * s**2 / 2 + 3.0 * s**3 / 3
     assert (w * x * (2.0 + 3.0 * x)).sum() == pytest.approx(exact(0.81) - exact(0.13), rel=1e-13)
 
 

@@ -24,7 +24,8 @@ omega^b r_b x f_b + m_b (r_b = (x, 0, 0) + N(x) p), on p N^T f_b + Phi^T m_b (f_
 body-frame components), projected on the frame's coordinates by its Jacobians.
 
 **Newton matrix.** In the time loop the loads add no entries (a load's dependence on the
-coordinates is O(load) against the stiffness; Newton then takes an iteration more at most).
+coordinates is of the order of the load against the stiffness; Newton converges with the
+matrix it has, in a few more iterations when that dependence is large).
 With ``exact_stiffness`` (statics, modes, linearize) their stiffness is taken by central
 differences of the generalized force over the columns it depends on.
 
@@ -34,7 +35,7 @@ differences of the generalized force over the columns it depends on.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
@@ -72,7 +73,6 @@ class SpanLoad:
     values: np.ndarray
     section_axes: bool = False
     name: str = "span1"
-    point: bool = field(default=False)
 
     def __post_init__(self) -> None:
         self.stations = np.asarray(self.stations, dtype=float)
@@ -81,7 +81,7 @@ class SpanLoad:
         self.values = np.asarray(self.values, dtype=float).reshape(self.times.size, self.stations.size, 6)
 
     @classmethod
-    def table(cls, beam: int, part, x, times, values, section_axes: bool = False, name: str = "span1") -> "SpanLoad":
+    def table(cls, beam: int, part, x, times, values, section_axes: bool = False, name: str = "span1") -> SpanLoad:
         """A distributed load given at the stations ``x`` (m, increasing, within [0, L] of ``part``,
         the beam's part) and ``times`` (s, increasing; one time: constant), ``values`` (nt, nx, 6)
         (N/m and N m/m), linear in x between the stations and zero outside [x_0, x_last]."""
@@ -95,19 +95,19 @@ class SpanLoad:
         return cls(beam, stations, weights, times, at, section_axes, name)
 
     @classmethod
-    def uniform(cls, beam: int, part, force, moment, section_axes: bool = False, name: str = "span1") -> "SpanLoad":
+    def uniform(cls, beam: int, part, force, moment, section_axes: bool = False, name: str = "span1") -> SpanLoad:
         """A constant load per unit length over the whole span (N/m, N m/m)."""
         row = np.concatenate([np.asarray(force, dtype=float), np.asarray(moment, dtype=float)])
         return cls.table(beam, part, [0.0, part.length], [0.0], np.tile(row, (1, 2, 1)), section_axes, name)
 
     @classmethod
-    def tip(cls, beam: int, part, times, force, moment, name: str = "tip") -> "SpanLoad":
+    def tip(cls, beam: int, part, times, force, moment, name: str = "tip") -> SpanLoad:
         """A tip force (N) and moment (N m), global, at the tip centroid, given at ``times`` (s):
         force and moment (nt, 3)."""
         times = np.atleast_1d(np.asarray(times, dtype=float))
         values = np.concatenate([np.asarray(force, dtype=float).reshape(-1, 3),
                                  np.asarray(moment, dtype=float).reshape(-1, 3)], axis=1)
-        return cls(beam, [part.length], [1.0], times, values.reshape(times.size, 1, 6), False, name, True)
+        return cls(beam, [part.length], [1.0], times, values.reshape(times.size, 1, 6), False, name)
 
 
 def span_stations(part, x_start: float, x_end: float, breaks=()) -> tuple[np.ndarray, np.ndarray]:
