@@ -203,11 +203,39 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> Multibo
     # a hub fixed to a base that moves is part of it: no rotor of its own (a free base's body holds
     # its inertia; on a table base hub.inertia of a fixed hub is unused, as on a fixed base)
     inertia = 0.0 if (base.moves and hub.motion == "fixed") else hub.inertia
-    return MultibodySystem([beam_part(spec, scenario.beam_key(spec.index)) for spec in scenario.resolved_beams()],
-                           Hub(hub.motion, inertia, law, drive),
+    parts = [beam_part(spec, scenario.beam_key(spec.index)) for spec in scenario.resolved_beams()]
+    return MultibodySystem(parts, Hub(hub.motion, inertia, law, drive), attachments=load_attachments(scenario, parts),
                            gravity=np.array(scenario.environment.gravity),
                            damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
                            placement=HubPlacement(hub.position, np.radians(hub.orientation)))
+
+
+def load_attachments(scenario: Scenario, parts) -> list:
+    """The scenario's loads along the span and tip loads from tables (:class:`hubbeam.system.span_loads.SpanLoad`)
+    on its beams' ``parts``: ``[[loads.span]]`` and ``loads.tip_force_file``, ``loads.tip_moment_file``."""
+    from hubbeam.io.tables import FORCE_COLUMNS, MOMENT_COLUMNS, read_span_table, read_tip_table
+    from hubbeam.system.span_loads import SpanLoad
+
+    loads = scenario.loads
+    out = []
+    for i, (span, name) in enumerate(zip(loads.span, loads.span_names)):
+        k = scenario.beam_index(span.beam)
+        section = span.axes == "section"
+        if span.file is None:
+            zero = (0.0, 0.0, 0.0)
+            out.append(SpanLoad.uniform(k, parts[k], span.force or zero, span.moment or zero, section, name))
+        else:
+            x, times, values = read_span_table(span.file, f"loads.span[{i}].file", parts[k].length)
+            out.append(SpanLoad.table(k, parts[k], x, times, values, section, name))
+    k = scenario.beam_index(loads.beam)
+    tables = {what: read_tip_table(getattr(loads, f"{what}_file"), f"loads.{what}_file", columns)
+              for what, columns in (("tip_force", FORCE_COLUMNS), ("tip_moment", MOMENT_COLUMNS))
+              if getattr(loads, f"{what}_file") is not None}
+    for what, (times, values) in tables.items():
+        zero = np.zeros_like(values)
+        force, moment = (values, zero) if what == "tip_force" else (zero, values)
+        out.append(SpanLoad.tip(k, parts[k], times, force, moment, what))
+    return out
 
 
 #: what statics, modes and linearize say when they leave a free base's gravity out

@@ -44,30 +44,22 @@ def _resolve(path: str | Path, base_dir: str | Path | None) -> Path:
     return p
 
 
-def read_series(
+def read_columns(
     path: str | Path,
     key: str,
-    columns: Sequence[str],
+    required: Sequence[str],
+    optional: Sequence[str] = (),
     *,
     base_dir: str | Path | None = None,
     min_rows: int = 2,
-    start_at_zero: bool = False,
     max_bytes: int = MAX_TABLE_BYTES,
-) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-    """(time, {column: values}) from a CSV table with a ``time`` column.
-
-    ``columns`` are alternatives: exactly one of them must be present, e.g. ``("omega", "theta")``
-    for a drive table or ``("torque",)`` for a torque table; the dict holds that one. A relative
-    ``path`` is taken relative to ``base_dir`` when given. Checks: the file exists and is at most
-    ``max_bytes``; it is text with a header; the ``time`` column and one alternative are present;
-    every cell of those columns is a finite number of magnitude below :data:`MAX_CELL`; times
-    strictly increase, at least :data:`MIN_TIME_STEP` apart; at least
-    ``min_rows`` rows; with ``start_at_zero`` the first time is 0. Rows are numbered from 1 (the
-    first data row) and the file line is given too. Arrays are float64, 1-D.
-    """
-    columns = tuple(c.lower() for c in columns)
-    if not columns:
-        raise ValueError("columns: give at least one column name")
+) -> tuple[Path, dict[str, np.ndarray], list[int]]:
+    """(the file's path, {column: values}, the file line of each row) of a CSV table: every
+    ``required`` column and those of ``optional`` that are present. Checks: the file exists and
+    is at most ``max_bytes``; it is text with a header; the required columns are present; every
+    cell of the columns read is a finite number of magnitude below :data:`MAX_CELL`; at least
+    ``min_rows`` rows. Rows are numbered from 1 (the first data row) and the file line is given
+    too. Arrays are float64, 1-D."""
     p = _resolve(path, base_dir)
 
     def fail(reason: str) -> ScenarioError:
@@ -103,7 +95,7 @@ def read_series(
     numbered = [(n, line) for n, line in enumerate(lines, start=1)
                 if line.strip() and not line.lstrip().startswith("#")]
     if not numbered:
-        raise fail("empty file: expected a header row (time, " + " or ".join(columns) + ")")
+        raise fail("empty file: expected a header row (" + ", ".join(required) + ")")
     header_line = numbered[0][1]
     delimiter = ","
     if "," not in header_line:
@@ -118,29 +110,25 @@ def read_series(
         if name and name in seen:
             raise fail(f"column {name!r} appears twice in the header")
         seen.add(name)
-    if "time" not in names:
-        shown = ", ".join(repr(n) for n in names[:8]) + (", ..." if len(names) > 8 else "")
-        raise fail(f"no 'time' column in the header (found {shown}); expected a header row such as 'time,{columns[0]}'")
-    present = [c for c in columns if c in names]
-    if not present:
-        want = " or ".join(repr(c) for c in columns)
-        raise fail(f"no {want} column in the header (found {', '.join(repr(n) for n in names)})")
-    if len(present) > 1:
-        raise fail(f"give one of the columns {' or '.join(repr(c) for c in present)}, not both")
-    name = present[0]
-    i_time, i_value = names.index("time"), names.index(name)
+    for name in required:
+        if name not in names:
+            shown = ", ".join(repr(n) for n in names[:8]) + (", ..." if len(names) > 8 else "")
+            raise fail(f"no {name!r} column in the header (found {shown}); expected a header row such as "
+                       f"'{','.join(required)}'")
+    wanted = list(required) + [c for c in optional if c in names]
 
     # -- the rows -----------------------------------------------------------------------------
     data = rows[1:]
-    t = np.empty(len(data))
-    v = np.empty(len(data))
+    out = {name: np.empty(len(data)) for name in wanted}
+    line_numbers = []
     for r, cells in enumerate(data):
         line_no = numbered[r + 1][0]
+        line_numbers.append(line_no)
         where = f"row {r + 1} (line {line_no})"
         if len(cells) != len(names):
             raise fail(f"{where} has {len(cells)} cells, the header has {len(names)}")
-        for col, idx, out in (("time", i_time, t), (name, i_value, v)):
-            cell = cells[idx].strip()
+        for col in wanted:
+            cell = cells[names.index(col)].strip()
             try:
                 x = float(cell)
             except ValueError:
@@ -150,19 +138,65 @@ def read_series(
             if not abs(x) < MAX_CELL:
                 raise fail(f"{where}, column {col!r}: {cell!r} is outside the range hubbeam computes with (magnitudes "
                            f"below {MAX_CELL:g}); check the value and its unit (SI)")
-            out[r] = x
+            out[col][r] = x
     if len(data) < min_rows:
         raise fail(f"the table needs at least {min_rows} rows, found {len(data)}")
-    for r in range(1, len(data)):
+    return p, out, line_numbers
+
+
+def check_times(p: Path, key: str, t: np.ndarray, line_numbers: Sequence[int], rows: Sequence[int] | None = None) -> None:
+    """Times t strictly increase, at least :data:`MIN_TIME_STEP` apart (``rows``: the 0-based
+    row of each time in the file, default 0, 1, ...); one :class:`ScenarioError` naming the row
+    and line otherwise."""
+    rows = range(t.size) if rows is None else rows
+    for r in range(1, t.size):
+        row = rows[r]
         if t[r] <= t[r - 1]:
             what = "a duplicate time" if t[r] == t[r - 1] else "times are not increasing"
-            raise fail(f"row {r + 1} (line {numbered[r + 1][0]}): {what} ({float(t[r])!r} after {float(t[r - 1])!r})")
+            raise ScenarioError(f"{key}: {p}: row {row + 1} (line {line_numbers[row]}): {what} ({float(t[r])!r} after "
+                                f"{float(t[r - 1])!r})")
         if not t[r] - t[r - 1] >= MIN_TIME_STEP:
-            raise fail(f"row {r + 1} (line {numbered[r + 1][0]}): {float(t[r])!r} s is {t[r] - t[r - 1]:.3g} s after the row "
-                       f"before, closer than {MIN_TIME_STEP:g} s, the shortest step a run takes: no run resolves it")
+            raise ScenarioError(f"{key}: {p}: row {row + 1} (line {line_numbers[row]}): {float(t[r])!r} s is "
+                                f"{t[r] - t[r - 1]:.3g} s after the row before, closer than {MIN_TIME_STEP:g} s, the "
+                                "shortest step a run takes: no run resolves it")
+
+
+def read_series(
+    path: str | Path,
+    key: str,
+    columns: Sequence[str],
+    *,
+    base_dir: str | Path | None = None,
+    min_rows: int = 2,
+    start_at_zero: bool = False,
+    max_bytes: int = MAX_TABLE_BYTES,
+) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """(time, {column: values}) from a CSV table with a ``time`` column.
+
+    ``columns`` are alternatives: exactly one of them must be present, e.g. ``("omega", "theta")``
+    for a drive table or ``("torque",)`` for a torque table; the dict holds that one. A relative
+    ``path`` is taken relative to ``base_dir`` when given. Checks: those of :func:`read_columns`;
+    times strictly increase, at least :data:`MIN_TIME_STEP` apart (:func:`check_times`); with
+    ``start_at_zero`` the first time is 0.
+    """
+    columns = tuple(c.lower() for c in columns)
+    if not columns:
+        raise ValueError("columns: give at least one column name")
+    p, found, lines = read_columns(path, key, ("time",), columns, base_dir=base_dir, min_rows=0, max_bytes=max_bytes)
+    present = [c for c in columns if c in found]
+    if not present:
+        want = " or ".join(repr(c) for c in columns)
+        raise ScenarioError(f"{key}: {p}: no {want} column in the header")
+    if len(present) > 1:
+        raise ScenarioError(f"{key}: {p}: give one of the columns {' or '.join(repr(c) for c in present)}, not both")
+    name = present[0]
+    t = found["time"]
+    if t.size < min_rows:
+        raise ScenarioError(f"{key}: {p}: the table needs at least {min_rows} rows, found {t.size}")
+    check_times(p, key, t, lines)
     if start_at_zero and t[0] != 0.0:
-        raise fail(f"the first time must be 0 s (found {float(t[0])!r})")
-    return t, {name: v}
+        raise ScenarioError(f"{key}: {p}: the first time must be 0 s (found {float(t[0])!r})")
+    return t, {name: found[name]}
 
 
 def read_drive_table(path: str | Path, key: str, *, base_dir: str | Path | None = None, interpolation: str = "spline",
@@ -227,3 +261,68 @@ def read_pose_table(path: str | Path, key: str, *, base_dir: str | Path | None =
         return PoseTable(t, position, rotation)
     except ValueError as exc:  # pragma: no cover - read_series checks everything PoseTable does
         raise ScenarioError(f"{key}: {p}: {exc}") from None
+
+
+#: the columns of a load table: force (N or N/m) and moment (N m or N m/m) components, global or section axes
+FORCE_COLUMNS = ("fx", "fy", "fz")
+MOMENT_COLUMNS = ("mx", "my", "mz")
+
+
+def read_tip_table(path: str | Path, key: str, columns: Sequence[str], *, base_dir: str | Path | None = None
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """(times (s), values (nt, 3)) of a tip load table: a CSV with ``time`` and the three
+    ``columns`` (:data:`FORCE_COLUMNS`, N, or :data:`MOMENT_COLUMNS`, N m), times increasing;
+    one row is a constant load."""
+    p, found, lines = read_columns(path, key, ("time",) + tuple(columns), base_dir=base_dir, min_rows=1)
+    check_times(p, key, found["time"], lines)
+    return found["time"], np.column_stack([found[c] for c in columns])
+
+
+def read_span_table(path: str | Path, key: str, length: float, *, base_dir: str | Path | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(x (m), times (s), values (nt, nx, 6): force (N/m) and moment (N m/m)) of a distributed
+    load table: a CSV with ``x`` (m from the root, within [0, ``length``]), ``fx, fy, fz`` and
+    optionally ``mx, my, mz`` (all three; absent: zero) and ``time``. Without ``time`` the rows
+    are stations with x strictly increasing (at least 2); with ``time`` the rows come in blocks
+    of one time each, times increasing from block to block, and every block has the stations of
+    the first block, in the same order."""
+    p, found, lines = read_columns(path, key, ("x",) + FORCE_COLUMNS, ("time",) + MOMENT_COLUMNS, base_dir=base_dir,
+                                   min_rows=2)
+
+    def fail(row: int, reason: str) -> ScenarioError:
+        return ScenarioError(f"{key}: {p}: row {row + 1} (line {lines[row]}): {reason}")
+
+    moments = [c for c in MOMENT_COLUMNS if c in found]
+    if moments and len(moments) != 3:
+        missing = [c for c in MOMENT_COLUMNS if c not in found]
+        raise ScenarioError(f"{key}: {p}: give the moment columns mx, my and mz together (missing {', '.join(missing)})")
+    x_all = found["x"]
+    columns = [found[c] for c in FORCE_COLUMNS] + [found[c] if c in found else np.zeros(x_all.size)
+                                                   for c in MOMENT_COLUMNS]
+    table = np.column_stack(columns)
+    slack = 1e-9 * length
+    for r, x in enumerate(x_all):
+        if not -slack <= x <= length + slack:
+            raise fail(r, f"x = {float(x)!r} m is outside the beam's span [0, {length:g}] m")
+    x_all = np.clip(x_all, 0.0, length)
+    if "time" not in found:
+        blocks = [np.arange(x_all.size)]
+        times = np.zeros(1)
+    else:
+        t = found["time"]
+        starts = [0] + [r for r in range(1, t.size) if t[r] != t[r - 1]]
+        blocks = [np.arange(a, b) for a, b in zip(starts, starts[1:] + [t.size])]
+        times = t[starts]
+        check_times(p, key, times, lines, starts)
+    stations = x_all[blocks[0]]
+    if stations.size < 2:
+        raise fail(int(blocks[0][0]), "a block of one time needs at least 2 stations (x values)")
+    for block in blocks:
+        xs = x_all[block]
+        for j in range(1, xs.size):
+            if not xs[j] > xs[j - 1]:
+                raise fail(int(block[j]), f"x values are not increasing ({float(xs[j])!r} after {float(xs[j - 1])!r})")
+        if xs.size != stations.size or np.any(xs != stations):
+            raise fail(int(block[0]), "every time needs the stations (x values) of the first time, in the same order")
+    values = np.stack([table[block] for block in blocks])
+    return stations, times, values

@@ -72,6 +72,9 @@ def rotor_symmetry(scenario: Scenario) -> tuple[np.ndarray | None, str]:
     for b in beams:
         if any(b.tip_force) or any(b.tip_moment):
             return None, f"the rotor is not symmetric: a tip load acts on {b.name} ([loads])"
+    loads = scenario.loads
+    if loads.span or loads.tip_force_file is not None or loads.tip_moment_file is not None:
+        return None, "the rotor is not symmetric: loads from [loads] act on single beams (span loads or tip tables)"
     from hubbeam.solvers.multiblade import check_azimuths
 
     psi = np.array([b.azimuth for b in beams])

@@ -385,7 +385,7 @@ def base_law_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, 
     return 2.0, 0.0
 
 
-def base_law_drive_power(pack, ctx, t, x, v, lam):
+def base_law_drive_power(pack, ctx, F, t, x, v, lam):
     """The drive's power lambda . Phi_t and the attitude torque's (R tau) . w (W)."""
     power = 0.0
     e0 = pack.x0 + 3
@@ -400,7 +400,6 @@ def base_law_drive_power(pack, ctx, t, x, v, lam):
                 g += Gd[i, j] * x[e0 + j]
             power += lam[l0 + i] * (-dr[i]) + lam[l0 + 3 + i] * g
     if pack.attitude != AttitudeKind.NONE:
-        F = np.zeros((0, 3, 3))
         cols, R, Jw, wb = _base_state(pack, ctx, F, x, v)
         tau = attitude_torque(pack, t, x[e0:e0 + 4], wb)
         power += tau[0] * wb[0] + tau[1] * wb[1] + tau[2] * wb[2]

@@ -80,7 +80,7 @@ def hub_law_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, s
     return 2.0, 0.0
 
 
-def hub_law_drive_power(pack, ctx, t, x, v, lam):
+def hub_law_drive_power(pack, ctx, F, t, x, v, lam):
     """(T - lambda_drive) theta' (W): the applied torque's and the drive's power."""
     torque = applied_torque(pack.torque, t, x[ctx.theta], v[ctx.theta])[0]
     if pack.held:

@@ -105,7 +105,7 @@ def step_powers(model, F, t, x, v, lam):
     drive = 0.0
     for pack in literal_unroll(model.parts):
         dissipated += part_power(pack, ctx, F, x, v)
-        drive += part_drive_power(pack, ctx, t, x, v, lam)
+        drive += part_drive_power(pack, ctx, F, t, x, v, lam)
     return dissipated, drive
 
 

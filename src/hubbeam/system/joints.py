@@ -259,7 +259,7 @@ def joint_power(pack, ctx, F, x, v):
     return power
 
 
-def joint_drive_power(pack, ctx, t, x, v, lam):
+def joint_drive_power(pack, ctx, F, t, x, v, lam):
     """The motors' power T_m psi' (W) of the free axes."""
     power = 0.0
     for j in range(pack.places.shape[0]):

@@ -1,6 +1,7 @@
 """The registration of hubbeam's kinds of part: importing a kind's module registers it
 (:func:`hubbeam.system.terms.register`). A new kind of part is one module plus its line here."""
 
-from hubbeam.system import ancf_part, base_laws, drives, ffr_part, joints, rigid_body, tip_body  # noqa: F401
+from hubbeam.system import (  # noqa: F401
+    ancf_part, base_laws, drives, ffr_part, joints, rigid_body, span_loads, tip_body)
 
-__all__ = ["ancf_part", "base_laws", "drives", "ffr_part", "joints", "rigid_body", "tip_body"]
+__all__ = ["ancf_part", "base_laws", "drives", "ffr_part", "joints", "rigid_body", "span_loads", "tip_body"]

@@ -24,9 +24,9 @@ the laws that drive or load coordinates, ...) is one module that declares
       place among all beams) and returns the energy that belongs to no beam;
   ``power(pack, ctx, F, x, v) -> float``
       the power it dissipates at (x, v) (W, >= 0);
-  ``drive_power(pack, ctx, t, x, v, lam) -> float``
-      the power of its applied torques and prescribed motions on the system (W): what the
-      energy balance counts as the drive's work;
+  ``drive_power(pack, ctx, F, t, x, v, lam) -> float``
+      the power of its applied torques, loads and prescribed motions on the system (W): what
+      the energy balance counts as the drive's work;
   ``tips(pack, ctx, F, x, out)``
       each beam's tip displacement in its reference frame into ``out[k]`` (m);
   ``momenta(pack, ctx, F, x, v, out)``
@@ -112,7 +112,7 @@ def part_tips(pack, ctx, F, x, out):
     raise TypeError(f"no compiled terms are registered for {type(pack).__name__}")
 
 
-def part_drive_power(pack, ctx, t, x, v, lam):
+def part_drive_power(pack, ctx, F, t, x, v, lam):
     """A part kind's drive power (compiled; see the module)."""
     raise TypeError(f"no compiled terms are registered for {type(pack).__name__}")
 
@@ -147,7 +147,7 @@ def _no_tips(pack, ctx, F, x, out):
     return None
 
 
-def _no_drive_power(pack, ctx, t, x, v, lam):
+def _no_drive_power(pack, ctx, F, t, x, v, lam):
     return 0.0
 
 

@@ -6,9 +6,13 @@ from typing import Annotated, Literal
 
 from pydantic import (
     Field,
+    ValidationInfo,
+    field_validator,
+    model_validator,
 )
 
-from hubbeam.io.scenario.common import Identifier, NonNegative, Positive, Vector3, StrictTable
+from hubbeam.io.scenario.common import (Identifier, NonNegative, Positive, Vector3, StrictTable, _absolute,
+                                        _check_file)
 
 
 class Environment(StrictTable):
@@ -20,10 +24,71 @@ class Damping(StrictTable):
     quadratic: NonNegative = 0.0
 
 
+class SpanLoadTable(StrictTable):
+    """One ``[[loads.span]]``: a force (N/m) and moment (N m/m) per unit length on a beam, uniform
+    (``force``, ``moment``) or from a CSV ``file`` (docs/loads.md), in ``axes`` "global" or
+    "section" (the root section frame)."""
+
+    name: Identifier | None = None  # default: span1, span2, ... by its place
+    beam: Identifier | None = None  # default: the first beam
+    axes: Literal["global", "section"] = "global"
+    force: Vector3 | None = None
+    moment: Vector3 | None = None
+    file: Annotated[str, Field(min_length=1)] | None = None
+
+    @field_validator("file")
+    @classmethod
+    def _absolute_file(cls, value, info: ValidationInfo):
+        return _absolute(value, info)
+
+    @model_validator(mode="after")
+    def _one_source(self):
+        if self.file is not None and (self.force is not None or self.moment is not None):
+            given = "force" if self.force is not None else "moment"
+            raise ValueError(f"{given}: give either a file or force and moment, not both")
+        if self.file is None and self.force is None and self.moment is None:
+            raise ValueError("force: give force (N/m) and/or moment (N m/m), or a file")
+        if self.file is not None:
+            _check_file(self.file)
+        return self
+
+
 class Loads(StrictTable):
     tip_force: Vector3 = [0.0, 0.0, 0.0]
     tip_moment: Vector3 = [0.0, 0.0, 0.0]
+    #: CSV tables of the tip force (time, fx, fy, fz; N) and moment (time, mx, my, mz; N m), global
+    tip_force_file: Annotated[str, Field(min_length=1)] | None = None
+    tip_moment_file: Annotated[str, Field(min_length=1)] | None = None
     beam: Identifier | None = None  # default: the first beam
+    span: list[SpanLoadTable] = []
+
+    @field_validator("tip_force_file", "tip_moment_file")
+    @classmethod
+    def _absolute_files(cls, value, info: ValidationInfo):
+        return _absolute(value, info)
+
+    @model_validator(mode="after")
+    def _one_tip_source(self):
+        for what in ("tip_force", "tip_moment"):
+            path = getattr(self, f"{what}_file")
+            if path is None:
+                continue
+            if any(getattr(self, what)):
+                raise ValueError(f"{what}_file: give either {what} or {what}_file, not both")
+            try:
+                _check_file(path)
+            except ValueError as exc:
+                raise ValueError(f"{what}_{exc}") from None
+        names = self.span_names
+        for i, name in enumerate(names):
+            if name in names[:i]:
+                raise ValueError(f"span[{i}].name: {name!r} names two span loads")
+        return self
+
+    @property
+    def span_names(self) -> list[str]:
+        """Each span load's name (its own, or span1, span2, ... by its place)."""
+        return [s.name if s.name is not None else f"span{i + 1}" for i, s in enumerate(self.span)]
 
 
 class Analysis(StrictTable):

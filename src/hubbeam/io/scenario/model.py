@@ -208,6 +208,9 @@ def _cross_checks(s: Scenario) -> None:
 
     if s.loads.beam is not None and s.loads.beam not in names:
         raise ScenarioError(f"loads.beam: no beam named {s.loads.beam!r} (beams: {listed})")
+    for i, span in enumerate(s.loads.span):
+        if span.beam is not None and span.beam not in names:
+            raise ScenarioError(f"loads.span[{i}].beam: no beam named {span.beam!r} (beams: {listed})")
 
     a = s.analysis
     if a.kind == "dynamic":
@@ -507,6 +510,13 @@ def table_files(s: Scenario) -> list[tuple[str, str, str]]:
             tables.append(("torque", f"{key}.file", motor.file))
         if motor.reference is not None and motor.reference.profile == "table":
             tables.append(("drive", f"{key}.reference.file", motor.reference.file))
+    for what in ("tip_force", "tip_moment"):
+        path = getattr(s.loads, f"{what}_file")
+        if path is not None:
+            tables.append((what, f"loads.{what}_file", path))
+    for i, span in enumerate(s.loads.span):
+        if span.file is not None:
+            tables.append(("span", f"loads.span[{i}].file", span.file))
     return tables
 
 
@@ -515,14 +525,22 @@ def _check_tables(s: Scenario) -> None:
     tables = table_files(s)
     if not tables:
         return
-    from hubbeam.io.tables import read_drive_table, read_pose_table, read_torque_table
+    from hubbeam.io.tables import (FORCE_COLUMNS, MOMENT_COLUMNS, read_drive_table, read_pose_table, read_span_table,
+                                   read_tip_table, read_torque_table)
 
     readers = {"drive": read_drive_table, "torque": read_torque_table, "pose": read_pose_table}
     for what, key, path in tables:
         if what == "drive":
             drive = s.hub.drive if key == "hub.drive.file" else s.hub.torque.reference
             read_drive_table(path, key, interpolation=drive.interpolation, smoothing=drive.smoothing)
+        elif what in ("tip_force", "tip_moment"):
+            read_tip_table(path, key, FORCE_COLUMNS if what == "tip_force" else MOMENT_COLUMNS)
+        elif what == "span":
+            continue  # below, with its beam's length
         else:
             readers[what](path, key)
+    for i, span in enumerate(s.loads.span):
+        if span.file is not None:
+            read_span_table(span.file, f"loads.span[{i}].file", s.resolved_beams()[s.beam_index(span.beam)].length)
 
 
