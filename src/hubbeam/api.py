@@ -188,11 +188,14 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> Multibo
     # a hub fixed to a base that moves is part of it: no rotor of its own (a free base's body holds
     # its inertia; on a table base hub.inertia of a fixed hub is unused, as on a fixed base)
     inertia = 0.0 if (base.moves and hub.motion == "fixed") else hub.inertia
+    from hubbeam.io.scenario.controllers import controller_of
+
     return MultibodySystem([beam_part(spec) for spec in scenario.resolved_beams()],
                            Hub(hub.motion, inertia, law, drive),
                            gravity=np.array(scenario.environment.gravity),
                            damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
-                           placement=HubPlacement(hub.position, np.radians(hub.orientation)))
+                           placement=HubPlacement(hub.position, np.radians(hub.orientation)),
+                           controllers=[controller_of(scenario, i) for i in range(len(scenario.controllers))])
 
 
 #: what statics, modes and linearize say when they leave a free base's gravity out
@@ -203,8 +206,12 @@ FREE_FALL_NOTE = ("the base is free: its uniform gravity field is left out of th
 def equilibrium_system(scenario: Scenario, notes: list | None = None) -> MultibodySystem:
     """The system of a scenario for statics, modes and linearize: a free base's uniform gravity
     is removed (the equivalence principle: a body in free fall is not deformed by it), with a
-    note in ``notes``."""
-    system = build_system(scenario)
+    note in ``notes``. Without the scenario's controllers: statics and modes leave them out (with
+    a note), ``linearize`` closes them around the linear model (:func:`linearize`)."""
+    system = build_system(scenario).without_controllers()
+    if scenario.controllers and notes is not None:
+        notes.append("the controllers ([[controllers]]) are left out of the equilibrium (and of modes); linearize "
+                     "closes them around the linear model unless --open-loop")
     if system.base.motion == BaseMotion.FREE and np.any(system.gravity):
         system = system.with_gravity((0.0, 0.0, 0.0))
         if notes is not None:

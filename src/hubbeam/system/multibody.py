@@ -136,12 +136,15 @@ class MultibodySystem:
     c2) of Eq. 37; ``attachments``: parts of other registered kinds
     (:mod:`hubbeam.system.terms`) that have no coordinates of their own and act on the beams'
     (each kind's packer picks its own from this list); ``base`` and ``placement``: the hub's
-    support (default: fixed at the origin, the hub's axis along j0)."""
+    support (default: fixed at the origin, the hub's axis along j0); ``controllers``: linear
+    controllers in the loop (:class:`~hubbeam.system.controllers.LinearController`), their
+    states coordinates of the system (last in x, :class:`~hubbeam.system.layout.Layout`)."""
 
     def __init__(self, beams: list[BeamPart], hub: Hub = Hub(), gravity=(0.0, 0.0, 0.0),
                  damping: tuple[float, float] = (0.0, 0.0), attachments=(), base: Base = Base(),
-                 placement: HubPlacement = HubPlacement()) -> None:
+                 placement: HubPlacement = HubPlacement(), controllers=()) -> None:
         self.beams = list(beams)
+        self.controllers = tuple(controllers)
         if not self.beams and not base.moves:
             raise ValueError("a system needs at least one beam, or a base that moves")
         self.attachments = tuple(attachments)
@@ -152,7 +155,7 @@ class MultibodySystem:
         self.damping = (float(damping[0]), float(damping[1]))
         self.layout = Layout(tuple(b.ndof for b in self.beams), hub.held, clamped=tuple(
             bool(getattr(b, "clamped", True)) for b in self.beams), base_moves=base.moves,
-            base_held=base.table is not None)
+            base_held=base.table is not None, controller_states=sum(c.states for c in self.controllers))
         self.frames = Frames(base, placement, self.beams, self.layout)
         self.rigid_bodies = self._rigid_bodies()
         self._models: dict[tuple[bool, bool], SystemModel] = {}
@@ -235,13 +238,18 @@ class MultibodySystem:
 
     def _with(self, **changes) -> "MultibodySystem":
         args = dict(beams=self.beams, hub=self.hub, gravity=self.gravity, damping=self.damping,
-                    attachments=self.attachments, base=self.base, placement=self.placement)
+                    attachments=self.attachments, base=self.base, placement=self.placement,
+                    controllers=self.controllers)
         args.update(changes)
         return MultibodySystem(**args)
 
     def with_beams(self, beams) -> "MultibodySystem":
         """The same system with other beam parts (the same number, each in its place)."""
         return self._with(beams=list(beams))
+
+    def without_controllers(self) -> "MultibodySystem":
+        """The same system without its controllers (the plant they close the loop around)."""
+        return self._with(controllers=())
 
     def without_damping(self) -> "MultibodySystem":
         """The same system without air drag and without the beams' structural damping."""
