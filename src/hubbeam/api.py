@@ -395,7 +395,9 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     hub, N m, added to the torque law) and "tip_force:BEAM" (N, three components); default: the
     hub torque of a free hub, the first beam's tip force on a held one. Outputs: the scenario's
     sensors (``outputs``: only those columns, in that order). ``open_loop``: leave the
-    scenario's torque law out (the plant a controller is designed for).
+    scenario's torque law and its controllers out (the plant a controller is designed for);
+    otherwise the controllers ([[controllers]]) are closed around the linear model
+    (:func:`hubbeam.analysis.state_space.closed_loop`), their states last.
 
     Reduced models (docs/state_space.md): ``reduce=N`` keeps the N lowest modes (modal
     truncation, the rest residualised: :meth:`LinearModel.reduced`), ``balanced=N`` N balanced
@@ -452,7 +454,21 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
         if scenario.hub.motion == "prescribed":
             about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
         equilibrium = solve_static(system, load_steps=load_steps)
-    model = linearise(system, equilibrium, omega, inputs, scenario.sensors, about, progress)
+    closing = [] if open_loop else list(scenario.controllers)
+    extra = [o for c in closing for o in c.outputs if o not in inputs]
+    model = linearise(system, equilibrium, omega, list(inputs) + list(dict.fromkeys(extra)), scenario.sensors, about,
+                      progress)
+    if closing:
+        from hubbeam.analysis.state_space import closed_loop
+        from hubbeam.io.scenario.controllers import controller_of
+
+        for i, table in enumerate(closing):
+            controller = controller_of(scenario, i)
+            try:
+                model = closed_loop(model, controller, table.inputs, table.outputs, controller.name)
+            except ValueError as exc:
+                raise ScenarioError(f"controllers[{i}]: {exc}") from None
+        model = model.select(inputs=list(inputs))
     if outputs is not None:
         try:
             model = model.select(outputs=list(outputs))

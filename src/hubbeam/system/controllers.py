@@ -175,6 +175,14 @@ def input_values(pack, theta, omega):
     return u, du_x, du_v
 
 
+def hub_torque(pack: Controllers, theta: float, omega: float, rates: np.ndarray) -> float:
+    """The controllers' torque on the hub (N m) at theta (rad), theta' (rad/s) and their states
+    ``rates`` (the rates of their coordinates)."""
+    u = input_values(pack, theta, omega)[0]
+    y = pack.C @ rates + pack.D @ u
+    return float(np.sum(y[pack.outputs == ControllerOutput.HUB_TORQUE]))
+
+
 def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
                          exact_stiffness, want_matrix, res, ab, brow, bcol, bb):
     """The controllers' rows coef_k (w'' - A w' - B u) and their outputs' -coef_k load_factor y

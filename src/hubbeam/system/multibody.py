@@ -628,11 +628,16 @@ class MultibodySystem:
         return float(-lam[i]) if i is not None and lam.shape[0] == self.layout.n_lambda else 0.0
 
     def applied_torque(self, t: float, x: np.ndarray, v: np.ndarray) -> float:
-        """The free hub's torque law at the state (N m); zero for a held hub."""
+        """The free hub's torque law and its controllers' torque at the state (N m); zero for a held hub."""
         if self.hub.held:
             return 0.0
         th = self.layout.theta
-        return float(self.hub.torque(t, x[th], v[th])[0])
+        torque = float(self.hub.torque(t, x[th], v[th])[0])
+        if self.controllers:
+            from hubbeam.system.controllers import hub_torque, pack_controllers
+
+            torque += hub_torque(pack_controllers(self, self.layout), x[th], v[th], v[self.layout.controllers_x])
+        return torque
 
     def energies(self, x, v, F, beam: int | None = None) -> dict[str, float]:
         """Kinetic (rigid bodies and beams, rotary inertia and tip bodies included), strain and
