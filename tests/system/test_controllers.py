@@ -38,10 +38,15 @@ def spacecraft(tmp_path, controllers=(), torque=None, t_end=2.0, tip_force=None)
 
 
 def pulse(tmp_path):
-    """A hub torque of 1 N m for 0.2 s, ramped off in 0.05 s: a small excitation; its table."""
+    """A smooth hub torque pulse sin^2(pi t / 0.5 s) N m for 0.5 s (a table every 5 ms): a small
+    excitation; its table. (A pulse with corners, a table of a few rows, costs generalized-alpha
+    accuracy at each corner: the run then differs from the linear model by 2.7e-3 at dt = 5 ms,
+    1.6e-3 at 2.5 ms, 7.7e-4 at 1.25 ms, first order in dt.)"""
+    times = np.append(np.linspace(0.0, 0.5, 101), 100.0)
+    torque = np.append(np.sin(np.pi * times[:-1] / 0.5) ** 2, 0.0)
     path = tmp_path / "pulse.csv"
-    path.write_text("time,torque\n0,1\n0.2,1\n0.25,0\n100,0\n")
-    return {"law": "table", "file": str(path)}, (np.array([0.0, 0.2, 0.25, 100.0]), np.array([1.0, 1.0, 0.0, 0.0]))
+    path.write_text("time,torque\n" + "".join(f"{float(t)!r},{float(q)!r}\n" for t, q in zip(times, torque)))
+    return {"law": "table", "file": str(path)}, (times, torque)
 
 
 def lag(tmp_path):
@@ -91,9 +96,11 @@ def linear_response(model, series, times):
 
 
 def test_the_run_follows_the_closed_loop_linear_model(closed):
-    # small amplitude (omega ~ 5e-3 rad/s): the nonlinear run and the linear closed loop differ by
-    # generalized-alpha's phase error at dt = 5 ms on the 0.97 Hz mode, (w h)^2 / 12 = 7.7e-5 per
-    # radian, over 6 s (36 rad): 2.8e-3 of the amplitude (measured 2.7e-3; at dt = 2.5 ms ERROR_HALF_STEP)
+    # small amplitude (omega ~ 5e-3 rad/s; a tenth of the pulse gives the same relative difference):
+    # the nonlinear run and the linear closed loop differ by generalized-alpha's phase error at
+    # dt = 5 ms on the 0.97 Hz mode, (w h)^2 / 12 = 7.8e-5 per radian, times w t <= 37 rad over
+    # 6 s: at most 2.9e-3 of the amplitude, were the mode not decaying (measured 1.2e-3; second order:
+    # a smoother 1 s pulse gives 4.0e-4 at dt = 5 ms, 8.7e-5 at 2.5 ms). Against the open loop: 1.35.
     scenario, traj, series, model, plant = closed
     times = np.asarray(traj.times)
     omega = np.asarray(traj.records["omega"])
@@ -102,22 +109,55 @@ def test_the_run_follows_the_closed_loop_linear_model(closed):
     scale = np.max(np.abs(omega))
     assert 1e-3 < scale < 1e-2
     error = np.max(np.abs(omega - linear)) / scale
-    assert error < 5e-3
+    assert error < 3e-3
     # the same run against the open loop is far off: the controller's states matter
     open_linear = linear_response(plant, series, times)[plant.outputs.index("omega")]
     assert np.max(np.abs(omega - open_linear)) / scale > 20 * error
 
 
-def test_the_controller_damps_the_mode_that_turns_the_bus(closed):
-    # the closed loop's ~1 Hz mode (the panels bending with the bus turning) decays faster than
-    # the open loop's: the run's decay of that mode is then checked by the response above
+def decay_fit(t, y, guess):
+    """Least-squares fit of y(t) = c0 + c1 exp(p t) + exp(s t) (c2 cos(w t) + c3 sin(w t)) +
+    exp(s2 t) (c4 cos(w2 t) + c5 sin(w2 t)) (the amplitudes by linear least squares for each
+    (p, s, w, s2, w2), those by scipy's least_squares from ``guess``): (p, s, w, s2, w2) and the
+    largest residual relative to max |y|."""
+    from scipy.optimize import least_squares
+
+    def basis(q):
+        p, s, w, s2, w2 = q
+        return np.column_stack([np.ones_like(t), np.exp(p * t), np.exp(s * t) * np.cos(w * t),
+                                np.exp(s * t) * np.sin(w * t), np.exp(s2 * t) * np.cos(w2 * t),
+                                np.exp(s2 * t) * np.sin(w2 * t)])
+
+    def residual(q):
+        B = basis(q)
+        return B @ np.linalg.lstsq(B, y, rcond=None)[0] - y
+
+    fit = least_squares(residual, guess, x_scale=[1.0, 0.1, 1.0, 0.1, 1.0])
+    return fit.x, np.max(np.abs(fit.fun)) / np.max(np.abs(y))
+
+
+def test_the_runs_decay_rate_is_the_closed_loop_eigenvalue(closed):
+    # The mode that turns the bus (the panels bending in the same sense, 0.97 Hz) is undamped in the
+    # plant (no drag, no structural damping) and damped by the lag filter. Fitted to the run's omega
+    # after the pulse (t >= 1 s: the fast real pole -18.6 1/s has decayed by e^-9), starting from
+    # the plant's frequency and zero decay, its decay rate and frequency are the closed loop's
+    # eigenvalue -0.3334 +- 6.1215i: measured 2.9e-4 and 8.1e-5 apart (relative). Tolerances: the
+    # frequency, generalized-alpha's period error (w h)^2 / 12 = 7.8e-5 at dt = 5 ms, times 6; the
+    # decay rate 1 % (the lag pole's own discretisation error (a h)^2 / 12 = 8e-4, and the fit's).
     scenario, traj, series, model, plant = closed
-    f_closed, zeta_closed = model.modal_summary()
-    f_open, zeta_open = plant.modal_summary()
-    k_open = int(np.argmin(np.abs(f_open - 0.967)))
-    k_closed = int(np.argmin(np.abs(f_closed - f_open[k_open])))
-    assert zeta_open[k_open] < 1e-6  # no damping in the plant (no drag, no structural damping)
-    assert zeta_closed[k_closed] > 0.01
+    open_poles = plant.eigenvalues()
+    bus_mode = open_poles[np.argmin(np.abs(open_poles - 6.06j))]
+    assert abs(bus_mode.real) < 1e-6 * abs(bus_mode)
+    poles = model.eigenvalues()
+    target = poles[np.argmin(np.abs(poles - bus_mode))]
+    assert -target.real > 0.05 * abs(target)  # the controller damps it: zeta = 0.054
+    t = np.asarray(traj.times)
+    keep = t >= 1.0
+    (p, s, w, s2, w2), misfit = decay_fit(t[keep], np.asarray(traj.records["omega"])[keep],
+                                          [-1.0, 0.0, abs(bus_mode.imag), 0.0, 29.0])
+    assert misfit < 5e-3
+    assert abs(s - target.real) < 1e-2 * abs(target.real)
+    assert abs(w - abs(target.imag)) < 5e-4 * abs(target.imag)
 
 
 def test_linearize_closes_the_loop_as_python_control_feedback(closed):
@@ -138,7 +178,9 @@ def test_linearize_closes_the_loop_as_python_control_feedback(closed):
 
 
 def test_the_energy_balance_counts_the_controllers_power(closed):
-    # E(t) - E(0) = drive work (the pulse's and the controller's) - dissipated work
+    # E(t) - E(0) = drive work (the pulse's and the controller's) - dissipated work: measured 4.8e-8 J
+    # of a swing of 3.4e-4 J; the controller takes 98.5 % of the pulse's work back out, so leaving its
+    # power out of the drive work would leave a residual of the size of the swing
     scenario, traj, series, model, plant = closed
     r = traj.records["e"]
     total, drive, dissipated = (np.array([e[p] for e in r]) for p in ("total", "drive", "dissipated"))

@@ -93,9 +93,9 @@ def cmd_linearize(args, scenario) -> dict:
     from hubbeam.io.targets import Target
 
     targets = check_targets([Target("-o", args.output)], args)
-    if args.open_loop and scenario.hub.torque_law is None:
-        raise ScenarioError(f"--open-loop: hub.motion = {scenario.hub.motion!r} has no torque law to leave out (only a "
-                            "free hub has one)")
+    if args.open_loop and scenario.hub.torque_law is None and not scenario.controllers:
+        raise ScenarioError(f"--open-loop: hub.motion = {scenario.hub.motion!r} has no torque law and no controllers to "
+                            "leave out (only a free hub has a torque law)")
     for option, value in (("--reduce", args.reduce), ("--balanced", args.balanced)):
         if value is not None and value < 1:
             raise ScenarioError(f"{option}: must be >= 1 (got {value})")

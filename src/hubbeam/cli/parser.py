@@ -52,7 +52,7 @@ def build_parser() -> argparse.ArgumentParser:
     lin.add_argument("-o", "--output", help="NetCDF file of A, B, C, D")
     lin.add_argument("--inputs", help="comma-separated: hub_torque, tip_force:BEAM (default: hub_torque on a free hub, "
                                       "the first beam's tip force on a held one)")
-    lin.add_argument("--open-loop", action="store_true", help="leave the scenario's hub torque law out")
+    lin.add_argument("--open-loop", action="store_true", help="leave the scenario's hub torque law and [[controllers]] out (the plant)")
     lin.add_argument("--outputs", metavar="A,B,...", help="only these outputs (sensor columns), in this order")
     size = lin.add_mutually_exclusive_group()
     size.add_argument("--reduce", type=int, metavar="N", help="modal truncation to the N lowest modes, the others "
