@@ -203,11 +203,14 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> Multibo
     # a hub fixed to a base that moves is part of it: no rotor of its own (a free base's body holds
     # its inertia; on a table base hub.inertia of a fixed hub is unused, as on a fixed base)
     inertia = 0.0 if (base.moves and hub.motion == "fixed") else hub.inertia
+    from hubbeam.io.scenario.controllers import controller_of
+
     parts = [beam_part(spec, scenario.beam_key(spec.index)) for spec in scenario.resolved_beams()]
     return MultibodySystem(parts, Hub(hub.motion, inertia, law, drive), attachments=load_attachments(scenario, parts),
                            gravity=np.array(scenario.environment.gravity),
                            damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
-                           placement=HubPlacement(hub.position, np.radians(hub.orientation)))
+                           placement=HubPlacement(hub.position, np.radians(hub.orientation)),
+                           controllers=[controller_of(scenario, i) for i in range(len(scenario.controllers))])
 
 
 def load_attachments(scenario: Scenario, parts) -> list:
@@ -246,8 +249,12 @@ FREE_FALL_NOTE = ("the base is free: its uniform gravity field is left out of th
 def equilibrium_system(scenario: Scenario, notes: list | None = None) -> MultibodySystem:
     """The system of a scenario for statics, modes and linearize: a free base's uniform gravity
     is removed (the equivalence principle: a body in free fall is not deformed by it), with a
-    note in ``notes``."""
-    system = build_system(scenario)
+    note in ``notes``. Without the scenario's controllers: statics and modes leave them out (with
+    a note), ``linearize`` closes them around the linear model (:func:`linearize`)."""
+    system = build_system(scenario).without_controllers()
+    if scenario.controllers and notes is not None:
+        notes.append("the controllers ([[controllers]]) are left out of the equilibrium (and of modes); linearize "
+                     "closes them around the linear model unless --open-loop")
     if system.base.motion == BaseMotion.FREE and np.any(system.gravity):
         system = system.with_gravity((0.0, 0.0, 0.0))
         if notes is not None:
@@ -433,8 +440,9 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     its motor law) and "tip_force:BEAM" (N, three components); default: the hub torque of a free
     hub (the first beam's tip force on a held one) and every joint motor's torque. Outputs: the
     scenario's sensors (``outputs``: only those columns, in that order). ``open_loop``: leave
-    the scenario's torque laws out, the hub's and the joints' motors (the plant a controller is
-    designed for).
+    the scenario's torque laws out, the hub's and the joints' motors, and its controllers (the
+    plant a controller is designed for); otherwise the controllers ([[controllers]]) are closed
+    around the linear model (:func:`hubbeam.analysis.state_space.closed_loop`), their states last.
 
     Reduced models (docs/state_space.md): ``reduce=N`` keeps the N lowest modes (modal
     truncation, the rest residualised: :meth:`LinearModel.reduced`), ``balanced=N`` N balanced
@@ -492,7 +500,21 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
         if scenario.hub.motion == "prescribed":
             about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
         equilibrium = solve_static(system, load_steps=load_steps)
-    model = linearise(system, equilibrium, omega, inputs, scenario.sensors, about, progress)
+    closing = [] if open_loop else list(scenario.controllers)
+    extra = [o for c in closing for o in c.outputs if o not in inputs]
+    model = linearise(system, equilibrium, omega, list(inputs) + list(dict.fromkeys(extra)), scenario.sensors, about,
+                      progress)
+    if closing:
+        from hubbeam.analysis.state_space import closed_loop
+        from hubbeam.io.scenario.controllers import controller_of
+
+        for i, table in enumerate(closing):
+            controller = controller_of(scenario, i)
+            try:
+                model = closed_loop(model, controller, table.inputs, table.outputs, controller.name)
+            except ValueError as exc:
+                raise ScenarioError(f"controllers[{i}]: {exc}") from None
+        model = model.select(inputs=list(inputs))
     if outputs is not None:
         try:
             model = model.select(outputs=list(outputs))

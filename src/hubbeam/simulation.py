@@ -131,7 +131,18 @@ def initial_state(system: MultibodySystem, load_steps: int = 20, start: str = "r
     "rest") or at rest in the static equilibrium under gravity and loads with the hub at
     theta = 0 ("equilibrium"); for a drive that already turns at t = 0 (profile 'constant'),
     in the steadily rotating equilibrium (static analysis with the centrifugal load) with its
-    rigid-rotation velocities. A turning hub gets the axis charts (see MultibodySystem.axis_chart)."""
+    rigid-rotation velocities. A turning hub gets the axis charts (see MultibodySystem.axis_chart).
+    Controllers' states start at 0; the start state is that of the system without them."""
+    plant = system.without_controllers() if system.controllers else system
+    x0, F0, v0 = _start_point(plant, load_steps, start)
+    if plant is not system:  # the controllers' coordinates (last in x) and their rates start at 0
+        pad = system.nx - plant.nx
+        x0, v0 = np.concatenate([x0, np.zeros(pad)]), np.concatenate([v0, np.zeros(pad)])
+    return ga.init(system, x0, F0, v0=v0)
+
+
+def _start_point(system: MultibodySystem, load_steps: int, start: str):
+    """(x0, charts, v0) of :func:`initial_state`."""
     omega0 = system.drive(0.0)[1] if system.motion == "prescribed" else 0.0
     if omega0:
         try:
@@ -139,7 +150,7 @@ def initial_state(system: MultibodySystem, load_steps: int = 20, start: str = "r
         except ConvergenceError as exc:
             raise ComputationError(f"the steadily rotating start state (omega = {omega0:g} rad/s) was not found: {exc}") from exc
         v0, _ = system.steady_rotation_rates(sol.x, sol.chart, omega0)
-        return ga.init(system, sol.x, sol.chart, v0=v0)
+        return sol.x, sol.chart, v0
     if start == "equilibrium":
         try:
             # a turning hub's run is in the axis charts: solve there (a remap after the solve would
@@ -153,7 +164,7 @@ def initial_state(system: MultibodySystem, load_steps: int = 20, start: str = "r
         x0, F0 = system.initial_state(0.0)
     if system.motion != "fixed":
         x0, F0 = system.axis_chart(x0, F0)
-    return ga.init(system, x0, F0, v0=system.initial_rates(x0, F0))
+    return x0, F0, system.initial_rates(x0, F0)
 
 
 class PythonSteps:

@@ -254,6 +254,53 @@ class LinearModel:
         return ds
 
 
+def closed_loop(model: LinearModel, controller, columns, outputs, name: str = "controller") -> LinearModel:
+    """``model`` with a linear controller s' = Ac s + Bc u_c, y_c = Cc s + Dc u_c closed around it
+    (``controller``: a :class:`~hubbeam.system.controllers.LinearController`): its inputs u_c
+    are the model's outputs ``columns`` (``NAME_rate``: that output's rate C_NAME x' = C_NAME (A x
+    + B u), which needs D_NAME = 0), its outputs y_c add to the model's inputs ``outputs`` (the
+    same torque the run applies). The closed loop's states are the model's, then the
+    controller's (``NAME_s1``, ...); its inputs and outputs are the model's, a controller output
+    among the inputs then being an input added to the controller's. ``projection`` maps the
+    states to the full model's (the controller's left out). With u the model's inputs:
+
+        x' = (A + B_y Dc Cu) x + B_y Cc s + B u,   s' = Bc Cu x + Ac s,
+        y  = (C + D_y Dc Cu) x + D_y Cc s + D u
+
+    (Cu the rows of the inputs u_c, B_y the columns of the controller's outputs). ValueError
+    for a column or output the model does not have, or an input with a feedthrough."""
+    rows = []
+    for column in columns:
+        base = column[:-len("_rate")] if column not in model.outputs and column.endswith("_rate") else column
+        if base not in model.outputs:
+            raise ValueError(f"{name}: input {column!r} is not an output of the linear model")
+        i = model.outputs.index(base)
+        if np.any(model.D[i]):
+            raise ValueError(f"{name}: input {column!r} has a feedthrough from the model's inputs (an algebraic loop)")
+        rows.append((model.C[i] @ model.A, model.C[i] @ model.B) if base != column else (model.C[i], model.D[i]))
+    Cu = np.array([r[0] for r in rows]).reshape(len(rows), model.A.shape[0])
+    if np.any([np.any(r[1]) for r in rows]):
+        raise ValueError(f"{name}: an input's rate has a feedthrough from the model's inputs (an algebraic loop)")
+    missing = [o for o in outputs if o not in model.inputs]
+    if missing:
+        raise ValueError(f"{name}: output {missing[0]!r} is not an input of the linear model")
+    cols = [model.inputs.index(o) for o in outputs]
+    By, Dy = model.B[:, cols], model.D[:, cols]
+    Ac, Bc, Cc, Dc = controller.A, controller.B, controller.C, controller.D
+    n, nc = model.A.shape[0], Ac.shape[0]
+    A = np.block([[model.A + By @ Dc @ Cu, By @ Cc], [Bc @ Cu, Ac]])
+    B = np.vstack([model.B, np.zeros((nc, model.B.shape[1]))])
+    C = np.hstack([model.C + Dy @ Dc @ Cu, Dy @ Cc])
+    full = model.projection if model.projection is not None else np.eye(n)
+    projection = np.hstack([full, np.zeros((full.shape[0], nc))])
+    states = list(model.states) + [f"{name}_s{j + 1}" for j in range(nc)]
+    out = replace(model, A=A, B=B, C=C, D=model.D.copy(), states=states, projection=projection,
+                  notes=list(model.notes))
+    out.notes.append(f"{name} closed around the model: inputs {', '.join(columns)}; outputs {', '.join(outputs)} "
+                     f"({nc} state{'s' if nc != 1 else ''})")
+    return out
+
+
 def _check_fmax(fmax) -> None:
     if fmax is not None and (isinstance(fmax, bool) or not isinstance(fmax, (int, float, np.floating))
                              or not np.isfinite(fmax) or fmax <= 0):

@@ -94,9 +94,10 @@ def cmd_linearize(args, scenario) -> dict:
 
     targets = check_targets([Target("-o", args.output)], args)
     motors = [b for b in scenario.beam_tables if b.joint is not None and b.joint.torque is not None]
-    if args.open_loop and scenario.hub.torque_law is None and not motors:
+    if args.open_loop and scenario.hub.torque_law is None and not motors and not scenario.controllers:
         raise ScenarioError(f"--open-loop: hub.motion = {scenario.hub.motion!r} has no torque law to leave out (only a "
-                            "free hub has one) and no joint has a motor ([beams.joint.torque])")
+                            "free hub has one), no joint has a motor ([beams.joint.torque]) and there are no "
+                            "[[controllers]]")
     for option, value in (("--reduce", args.reduce), ("--balanced", args.balanced)):
         if value is not None and value < 1:
             raise ScenarioError(f"{option}: must be >= 1 (got {value})")

@@ -53,8 +53,8 @@ def build_parser() -> argparse.ArgumentParser:
     lin.add_argument("--inputs", help="comma-separated: hub_torque, joint_torque:BEAM, tip_force:BEAM (default: "
                                       "hub_torque on a free hub, the first beam's tip force on a held one, and every "
                                       "joint motor's torque)")
-    lin.add_argument("--open-loop", action="store_true", help="leave the scenario's torque laws out (the hub's and "
-                                                             "the joint motors')")
+    lin.add_argument("--open-loop", action="store_true", help="leave the scenario's torque laws (the hub's and the "
+                                                             "joint motors') and its [[controllers]] out (the plant)")
     lin.add_argument("--outputs", metavar="A,B,...", help="only these outputs (sensor columns), in this order")
     size = lin.add_mutually_exclusive_group()
     size.add_argument("--reduce", type=int, metavar="N", help="modal truncation to the N lowest modes, the others "

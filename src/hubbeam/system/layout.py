@@ -3,9 +3,11 @@
 Parts declare how many coordinates they have and how many constraints they bring;
 :class:`Layout` places them:
 
-- coordinates  x = [base (0 or 7), theta, (psi_1, q_1), (psi_2, q_2), ...]: the base's
+- coordinates  x = [base (0 or 7), theta, (psi_1, q_1), (psi_2, q_2), ..., w]: the base's
   position and Euler parameters (a free base, or one that follows a table), the hub angle,
-  then for every beam its joint angles psi_k (0 to 3) and its own coordinates q_k;
+  then for every beam its joint angles psi_k (0 to 3) and its own coordinates q_k, last the
+  controllers' coordinates w (the time integrals of their states: the states are w',
+  :mod:`hubbeam.system.controllers`);
 - multipliers  lambda = [norm (1), base (6), drive (1), (lock_1, clamp_1 (6)), (lock_2,
   clamp_2 (6)), ...]: the Euler parameters' norm (a base with coordinates), the base's six
   driving constraints (a base that follows a table, or a free base held for statics), the
@@ -13,16 +15,16 @@ Parts declare how many coordinates they have and how many constraints they bring
   more; :mod:`hubbeam.system.joints`) and its clamp when its formulation is clamped to its
   root frame by constraints (ANCF; an FFR beam uses its root frame as its floating frame and
   has none);
-- Newton unknowns z = [base, theta, mu_norm, mu_base, mu_drive, (psi_1, mu_lock_1, mu_clamp_1,
+- Newton unknowns z = [base, theta, mu_norm, mu_base, mu_drive, w, (psi_1, mu_lock_1, mu_clamp_1,
   q_1), ...].
 
-The leading entries (the base, theta and the multipliers of their constraints) couple to
-every beam; the rest of the Newton matrix is block-diagonal over the beams (a beam that
+The leading entries (the base, theta, the multipliers of their constraints and the
+controllers' coordinates, which read sensors anywhere) couple to every beam; the rest of the Newton matrix is block-diagonal over the beams (a beam that
 hangs on another's tip couples to its parent's block), each block banded for an ANCF beam.
 With several beams, or a base with coordinates, the leading entries are the *border*,
 eliminated by a Schur complement (:class:`hubbeam.system.assembly.BorderedBandMatrix`); a
-single beam on a fixed base keeps them in the band (theta reaches the root coordinates 14
-entries on) and the border is empty. Nothing else in the package computes an offset into x,
+single beam on a fixed base without controllers keeps them in the band (theta reaches the
+root coordinates 14 entries on) and the border is empty. Nothing else in the package computes an offset into x,
 lambda or z: it asks the layout (``z_of_x``, ``z_of_lambda`` map every entry of x and
 lambda to its place in z).
 """
@@ -48,7 +50,8 @@ class Layout:
     (its six clamp multipliers); ``held``: the hub angle is prescribed (or fixed) by a driving
     constraint; ``base_moves``: the base has coordinates (free or following a table);
     ``base_held``: those coordinates are driven by six constraints (a table, or a free base
-    held for statics)."""
+    held for statics); ``controller_states``: the controllers' states (one coordinate each,
+    last in x)."""
 
     beam_dofs: tuple[int, ...]
     held: bool
@@ -57,6 +60,7 @@ class Layout:
     base_moves: bool = False
     base_held: bool = False
     locks: tuple[int, ...] | None = None
+    controller_states: int = 0
 
     def __post_init__(self) -> None:
         n = len(self.beam_dofs)
@@ -104,7 +108,7 @@ class Layout:
     @property
     def nx(self) -> int:
         """Coordinates: the frames' and every beam's (joint angles included)."""
-        return self.frame_dofs + sum(self.joint_dofs) + sum(self.beam_dofs)
+        return self.frame_dofs + sum(self.joint_dofs) + sum(self.beam_dofs) + self.controller_states
 
     @property
     def n_lambda(self) -> int:
@@ -117,15 +121,16 @@ class Layout:
 
     @property
     def leading(self) -> int:
-        """Entries of z before the beams' blocks: the frames' coordinates and constraints."""
-        return self.frame_dofs + self.border_constraints
+        """Entries of z before the beams' blocks: the frames' coordinates and constraints and
+        the controllers' coordinates."""
+        return self.frame_dofs + self.border_constraints + self.controller_states
 
     @property
     def border(self) -> int:
         """Leading entries of z kept out of the band: all of them when several beams share
-        them or the base moves (or there is no beam); none for one beam on a fixed base (the
-        band holds them)."""
-        return 0 if (self.beams == 1 and not self.base_moves) else self.leading
+        them, the base moves or controllers read sensors (or there is no beam); none for one
+        beam on a fixed base without controllers (the band holds them)."""
+        return 0 if (self.beams == 1 and not self.base_moves and not self.controller_states) else self.leading
 
     # ------------------------------------------------------------ where things are
     @property
@@ -141,7 +146,12 @@ class Layout:
     @property
     def beams_x(self) -> slice:
         """Every beam's coordinates and joint angles in x."""
-        return slice(self.frame_dofs, None)
+        return slice(self.frame_dofs, self.nx - self.controller_states)
+
+    @property
+    def controllers_x(self) -> slice:
+        """The controllers' coordinates in x (last)."""
+        return slice(self.nx - self.controller_states, self.nx)
 
     def joint_x(self, k: int) -> slice:
         """Beam k's joint angles in x."""
@@ -194,6 +204,8 @@ class Layout:
             out[self.joint_x(k)] = np.arange(z, z + nj)
             q0 = z + nj + self.beam_constraints(k)
             out[self.beam_x(k)] = np.arange(q0, q0 + self.beam_dofs[k])
+        w0 = self.frame_dofs + self.border_constraints
+        out[self.controllers_x] = np.arange(w0, w0 + self.controller_states)
         return out
 
     @property

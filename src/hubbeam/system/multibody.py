@@ -155,12 +155,15 @@ class MultibodySystem:
     c2) of Eq. 37; ``attachments``: parts of other registered kinds
     (:mod:`hubbeam.system.terms`) that have no coordinates of their own and act on the beams'
     (each kind's packer picks its own from this list); ``base`` and ``placement``: the hub's
-    support (default: fixed at the origin, the hub's axis along j0)."""
+    support (default: fixed at the origin, the hub's axis along j0); ``controllers``: linear
+    controllers in the loop (:class:`~hubbeam.system.controllers.LinearController`), their
+    states coordinates of the system (last in x, :class:`~hubbeam.system.layout.Layout`)."""
 
     def __init__(self, beams: list[BeamPart], hub: Hub = Hub(), gravity=(0.0, 0.0, 0.0),
                  damping: tuple[float, float] = (0.0, 0.0), attachments=(), base: Base = Base(),
-                 placement: HubPlacement = HubPlacement()) -> None:
+                 placement: HubPlacement = HubPlacement(), controllers=()) -> None:
         self.beams = list(beams)
+        self.controllers = tuple(controllers)
         if not self.beams and not base.moves:
             raise ValueError("a system needs at least one beam, or a base that moves")
         self.attachments = tuple(attachments)
@@ -172,7 +175,8 @@ class MultibodySystem:
         self.layout = Layout(tuple(b.ndof for b in self.beams), hub.held, clamped=tuple(
             bool(getattr(b, "clamped", True)) for b in self.beams), base_moves=base.moves,
             base_held=base.table is not None, joint_dofs=tuple(b.mount.joint_count for b in self.beams),
-            locks=tuple(0 if b.mount.joint is None else b.mount.joint.locks for b in self.beams))
+            locks=tuple(0 if b.mount.joint is None else b.mount.joint.locks for b in self.beams),
+            controller_states=sum(c.states for c in self.controllers))
         self.frames = Frames(base, placement, self.beams, self.layout)
         self.rigid_bodies = self._rigid_bodies()
         self._models: dict[tuple[bool, bool], SystemModel] = {}
@@ -255,13 +259,18 @@ class MultibodySystem:
 
     def _with(self, **changes) -> "MultibodySystem":
         args = dict(beams=self.beams, hub=self.hub, gravity=self.gravity, damping=self.damping,
-                    attachments=self.attachments, base=self.base, placement=self.placement)
+                    attachments=self.attachments, base=self.base, placement=self.placement,
+                    controllers=self.controllers)
         args.update(changes)
         return MultibodySystem(**args)
 
     def with_beams(self, beams) -> "MultibodySystem":
         """The same system with other beam parts (the same number, each in its place)."""
         return self._with(beams=list(beams))
+
+    def without_controllers(self) -> "MultibodySystem":
+        """The same system without its controllers (the plant they close the loop around)."""
+        return self._with(controllers=())
 
     def without_damping(self) -> "MultibodySystem":
         """The same system without air drag, without the beams' structural damping and without the
@@ -670,11 +679,16 @@ class MultibodySystem:
         return float(-lam[i]) if i is not None and lam.shape[0] == self.layout.n_lambda else 0.0
 
     def applied_torque(self, t: float, x: np.ndarray, v: np.ndarray) -> float:
-        """The free hub's torque law at the state (N m); zero for a held hub."""
+        """The free hub's torque law and its controllers' torque at the state (N m); zero for a held hub."""
         if self.hub.held:
             return 0.0
         th = self.layout.theta
-        return float(self.hub.torque(t, x[th], v[th])[0])
+        torque = float(self.hub.torque(t, x[th], v[th])[0])
+        if self.controllers:
+            from hubbeam.system.controllers import hub_torque, pack_controllers
+
+            torque += hub_torque(pack_controllers(self, self.layout), x[th], v[th], v[self.layout.controllers_x])
+        return torque
 
     def energies(self, x, v, F, beam: int | None = None) -> dict[str, float]:
         """Kinetic (rigid bodies and beams, rotary inertia and tip bodies included), strain and

@@ -23,6 +23,7 @@ from hubbeam.io.scenario.base import Base
 from hubbeam.io.scenario.beams import (MAX_BEAMS, Beam, ResolvedBeam, ResolvedTipBody, beam_names_of, copy_azimuth,
                                        span_sections)
 from hubbeam.io.scenario.common import STEP_TOLERANCE, StrictTable
+from hubbeam.io.scenario.controllers import Controller, check_controllers
 from hubbeam.io.scenario.hub import Hub, HubTorque
 from hubbeam.io.scenario.joints import resolved_joint
 from hubbeam.io.scenario.sensors import BEAM_SENSORS, JOINT_SENSORS, Sensor
@@ -39,6 +40,7 @@ class Scenario(StrictTable):
     loads: Loads = Loads()
     analysis: Analysis = Analysis()
     sensors: list[Sensor] = []
+    controllers: list[Controller] = []
 
     # ----------------------------------------------------------- beams
     @property
@@ -483,6 +485,7 @@ def validate(data: dict, base_dir: str | Path | None = None) -> Scenario:
         raise ScenarioError(f"{key}: {reason}") from None
     _cross_checks(scenario)
     _check_tables(scenario)
+    check_controllers(scenario)
     return scenario
 
 

@@ -1,0 +1,90 @@
+"""The [[controllers]] tables (hubbeam.io.scenario.controllers): every bad table is exit 2 and one
+line naming its key, before anything is computed."""
+
+import json
+
+import numpy as np
+import pytest
+
+from tests.cli.helpers import cli
+
+
+def write(tmp_path, controller, hub_motion="free"):
+    """spacecraft.toml (free hub) or cantilever.toml (fixed hub) with the sensors c_theta
+    (hub_angle), c_omega (hub_angular_velocity) and c_torque (applied_torque) and one controller table."""
+    from hubbeam.io.scenario import example_text
+
+    text = example_text("spacecraft" if hub_motion == "free" else "cantilever")
+    sensors = [("c_theta", "hub_angle"), ("c_omega", "hub_angular_velocity")]
+    sensors += [("c_torque", "applied_torque")] if hub_motion == "free" else []
+    text += "".join(f'\n[[sensors]]\nname = "{n}"\nkind = "{k}"\n' for n, k in sensors)
+    text += "\n[[controllers]]\n" + "".join(f"{key} = {json.dumps(value)}\n" for key, value in controller.items())
+    path = tmp_path / "sc.toml"
+    path.write_text(text)
+    return path
+
+
+def gain(tmp_path, D=((-1.0,),), name="k.npz", **arrays):
+    D = np.asarray(D, dtype=float)
+    p, m = D.shape
+    data = {"A": np.zeros((0, 0)), "B": np.zeros((0, m)), "C": np.zeros((p, 0)), "D": D}
+    data.update(arrays)
+    np.savez(tmp_path / name, **data)
+    return str(tmp_path / name)
+
+
+def refused(path) -> str:
+    code, out, err = cli("run", path)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1, (code, err)
+    return lines[0]
+
+
+@pytest.mark.parametrize("case, key, words", [
+    ("missing file", "controllers[0].file", "no such file"),
+    ("wrong shape", "controllers[0].file", "D: 1 x 1"),
+    ("wrong A", "controllers[0].file", "B: 1 x 1"),
+    ("no array C", "controllers[0].file", "no array C"),
+    ("unknown sensor", "controllers[0].inputs[0]", "not a sensor column"),
+    ("acceleration rate", "controllers[0].inputs[0]", "depends on the accelerations"),
+    ("unsupported sensor", "controllers[0].inputs[0]", "not supported as a controller input"),
+    ("unknown output", "controllers[0].outputs[0]", "not a supported output"),
+    ("held hub", "controllers[0].outputs[0]", "needs a free hub"),
+    ("not a matrix file", "controllers[0].file", ".npz or NetCDF"),
+])
+def test_a_bad_controller_table_is_exit_2_naming_its_key(tmp_path, case, key, words):
+    table = {"file": gain(tmp_path), "inputs": ["c_omega"], "outputs": ["hub_torque"]}
+    motion = "free"
+    if case == "missing file":
+        table["file"] = str(tmp_path / "none.npz")
+    elif case == "wrong shape":
+        table["file"] = gain(tmp_path, D=((-1.0, 2.0),))
+    elif case == "wrong A":
+        table["file"] = gain(tmp_path, A=np.zeros((1, 1)))
+    elif case == "no array C":
+        np.savez(tmp_path / "noc.npz", A=np.zeros((0, 0)), B=np.zeros((0, 1)), D=np.ones((1, 1)))
+        table["file"] = str(tmp_path / "noc.npz")
+    elif case == "unknown sensor":
+        table["inputs"] = ["nope"]
+    elif case == "acceleration rate":
+        table["inputs"] = ["c_omega_rate"]
+    elif case == "unsupported sensor":
+        table["inputs"] = ["c_torque"]
+    elif case == "unknown output":
+        table["outputs"] = ["thrust"]
+    elif case == "held hub":
+        motion = "fixed"
+        table["inputs"] = ["c_theta"]
+    elif case == "not a matrix file":
+        (tmp_path / "k.csv").write_text("a,b\n1,2\n")
+        table["file"] = str(tmp_path / "k.csv")
+    line = refused(write(tmp_path, table, hub_motion=motion))
+    assert line.startswith(f"hubbeam: error: {key}: ") and words in line, line
+
+
+def test_a_rate_of_the_hub_angle_is_an_input(tmp_path):
+    from hubbeam.io.scenario import load_scenario
+
+    path = write(tmp_path, {"file": gain(tmp_path), "inputs": ["c_theta_rate"], "outputs": ["hub_torque"]})
+    scenario = load_scenario(str(path))
+    assert scenario.controllers[0].inputs == ["c_theta_rate"]
