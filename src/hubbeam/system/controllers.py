@@ -225,7 +225,7 @@ def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
     return 2.0, 0.0
 
 
-def controller_drive_power(pack, ctx, t, x, v, lam):
+def controller_drive_power(pack, ctx, F, t, x, v, lam):
     """The outputs' power y theta' (W): drive work in the energy balance."""
     u, _, _ = input_values(pack, x[ctx.theta], v[ctx.theta])
     A, C, D, x0 = pack.A, pack.C, pack.D, pack.x0
