@@ -1,0 +1,61 @@
+"""Where a compiled step's time goes: one evaluation of the system's equations without and with
+the Newton matrix, and the step's powers (process time per call, best of 3; numba's cache warm).
+
+    python benchmarks/step_cost.py exp1_modal|exp1_ancf|casem_modal
+
+exp1_modal: experiment 1 on 4 modes; exp1_ancf: experiment 1 with ANCF; casem_modal: case M's
+free bus with two FFR panels on 4 modes (benchmarks/case_s.toml). A step costs one residual
+for the predictor, one per Newton iteration, the step's powers and the band solves.
+"""
+import os
+import sys
+import time
+
+import numpy as np
+from numba import njit
+
+from hubbeam import api
+from hubbeam.io.scenario import load_example, load_scenario
+from hubbeam.simulation import initial_state
+from hubbeam.system.assembly import BorderedBandMatrix
+from hubbeam.system.equations import system_equations, step_powers
+
+@njit
+def loop_eq(n, want, model, F, x, v, a, lam, res, ab, brow, bcol, bb):
+    s = 0.0
+    for i in range(n):
+        m, p = system_equations(model, F, x, v, a, lam, 0.1, 1.0, 0.5, 0.3e-6, 1.0, 1.0, False, want, res, ab, brow, bcol, bb)
+        s += p
+    return s
+
+@njit
+def loop_pow(n, model, F, x, v, lam):
+    s = 0.0
+    for i in range(n):
+        p, q = step_powers(model, F, 0.1, x, v, lam)
+        s += p
+    return s
+
+case = sys.argv[1]
+if case == "exp1_modal":
+    sc = load_example("exp1", ['beam.formulation="ffr"', 'beam.modes=4'])
+elif case == "exp1_ancf":
+    sc = load_example("exp1", [])
+else:
+    sc = load_scenario(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_s.toml"), ['beams[*].formulation="ffr"', 'beams[*].modes=4', 'analysis.dt=0.001'])
+system = api.build_system(sc)
+st = initial_state(system)
+model = system.model()
+lay = system.layout
+res = np.empty(lay.nz)
+mat = BorderedBandMatrix.empty(lay.nz, lay.border, model.bandwidth)
+x, v, a, lam, F = st.x, st.v + 0.1, st.xdd, st.lam, np.ascontiguousarray(st.chart)
+def best(f, n):
+    f(1); b = 1e9
+    for _ in range(3):
+        t = time.process_time(); f(n); b = min(b, (time.process_time() - t) / n * 1e6)
+    return b
+r = best(lambda n: loop_eq(n, False, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 50000)
+m = best(lambda n: loop_eq(n, True, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 10000)
+p = best(lambda n: loop_pow(n, model, F, x, v, lam), 50000)
+print(f"{case}: nz {lay.nz}, parts {[type(q).__name__ for q in model.parts]}: residual {r:.2f} us, with matrix {m:.2f} us, step powers {p:.2f} us")
