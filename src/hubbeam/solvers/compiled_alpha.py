@@ -148,7 +148,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         if step % every == 0 or step == total:
             _record(records, counters[3], t, x, v, xdd, a, lam, work)
             counters[3] += 1
-        if system_events(model, x):
+        if model.events and system_events(model, x):  # a call that passes the model costs ~0.5-1 us
             return Outcome.EVENT_REACHED, size, t
         if margin < chart_limit:
             return Outcome.CHART_LIMIT_REACHED, size, t

@@ -39,6 +39,7 @@ class SystemModel(NamedTuple):
     parts: tuple  # the packs of the kinds of part present
     context: Context  # what the parts' terms see (:func:`context`)
     bandwidth: int
+    events: bool = False  # a part's kind has events (:func:`system_events`): the time loop looks for them
 
 
 def context(layout, bandwidth: int, gravity, drag, chains) -> Context:

@@ -476,9 +476,10 @@ class MultibodySystem:
         if key not in self._models:
             layout = self.layout_for(*key)
             bandwidth = self.bandwidth_for(layout)
-            self._models[key] = SystemModel(terms.packs(self, layout),
+            packs = terms.packs(self, layout)
+            self._models[key] = SystemModel(packs,
                                             context(layout, bandwidth, self.gravity, self.damping, self.frames.table),
-                                            bandwidth)
+                                            bandwidth, terms.with_events(packs))
         return self._models[key]
 
     @property

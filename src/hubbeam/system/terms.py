@@ -85,6 +85,7 @@ class PartKind:
     pack: type
     packer: Callable
     bandwidth: Callable
+    has_events: bool = False  # it registered events (:func:`part_events`)
 
 
 #: the registered kinds (every kind adds its terms: their order does not matter)
@@ -197,7 +198,7 @@ def register(pack: type, packer: Callable, equations, energies=None, power=None,
     _dispatch(part_drive_power, pack, drive_power if drive_power is not None else _no_drive_power)
     _dispatch(part_momenta, pack, momenta if momenta is not None else _no_momenta)
     _dispatch(part_events, pack, events if events is not None else _no_events)
-    kind = PartKind(pack, packer, bandwidth)
+    kind = PartKind(pack, packer, bandwidth, events is not None)
     KINDS.append(kind)
     return kind
 
@@ -212,6 +213,11 @@ def native(packs: tuple) -> bool:
     compiled functions in its on-disk cache; see
     :func:`hubbeam.system.equations.uncached_twins`)."""
     return all(native_class(type(p)) for p in packs)
+
+
+def with_events(packs: tuple) -> bool:
+    """Whether a pack's kind registered events: the time loop looks for events only then."""
+    return any(kind.has_events for kind in KINDS for p in packs if type(p) is kind.pack)
 
 
 def packs(system, layout) -> tuple:
