@@ -51,6 +51,8 @@ def refused(path) -> str:
     ("unknown output", "controllers[0].outputs[0]", "not a supported output"),
     ("held hub", "controllers[0].outputs[0]", "needs a free hub"),
     ("not a matrix file", "controllers[0].file", ".npz or NetCDF"),
+    ("non-finite gain", "controllers[0].file", "D[0, 0] is nan"),
+    ("infinite state matrix", "controllers[0].file", "A[0, 0] is inf"),
 ])
 def test_a_bad_controller_table_is_exit_2_naming_its_key(tmp_path, case, key, words):
     table = {"file": gain(tmp_path), "inputs": ["c_omega"], "outputs": ["hub_torque"]}
@@ -75,6 +77,10 @@ def test_a_bad_controller_table_is_exit_2_naming_its_key(tmp_path, case, key, wo
     elif case == "held hub":
         motion = "fixed"
         table["inputs"] = ["c_theta"]
+    elif case == "non-finite gain":
+        table["file"] = gain(tmp_path, D=((float("nan"),),))
+    elif case == "infinite state matrix":
+        table["file"] = gain(tmp_path, A=np.full((1, 1), np.inf), B=np.ones((1, 1)), C=np.ones((1, 1)))
     elif case == "not a matrix file":
         (tmp_path / "k.csv").write_text("a,b\n1,2\n")
         table["file"] = str(tmp_path / "k.csv")

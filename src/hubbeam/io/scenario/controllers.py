@@ -64,6 +64,12 @@ def read_matrices(path: str, key: str) -> dict[str, np.ndarray]:
     missing = [name for name in MATRICES if name not in found]
     if missing:
         raise ScenarioError(f"{key}: {p.name} has no array {', '.join(missing)} (it needs A, B, C, D)")
+    for name in MATRICES:
+        bad = np.argwhere(~np.isfinite(found[name]))
+        if bad.size:
+            where = ", ".join(str(int(i)) for i in bad[0])
+            raise ScenarioError(f"{key}: {p.name}: {name}[{where}] is {found[name][tuple(bad[0])]} (every entry of "
+                                "A, B, C, D must be a finite number)")
     return found
 
 
