@@ -290,9 +290,10 @@ def rigid_inertia(s: Scenario) -> float:
     total = s.hub.inertia
     for b in s.beam_tables:
         r = s.hub.radius if b.radius is None else b.radius
-        total += b.density * b.width * b.thickness * ((r + b.length) ** 3 - r ** 3) / 3.0
+        outer = r + b.length  # products, not **: a radius near 1e103 gives inf (checked later), not OverflowError
+        total += b.density * b.width * b.thickness * (outer * outer * outer - r * r * r) / 3.0
         if b.tip_body is not None:
-            total += b.tip_body.mass * (r + b.length) ** 2
+            total += b.tip_body.mass * outer * outer
     return total
 
 
