@@ -283,12 +283,20 @@ def run_hubbeam_spacecraft(elements: int, t_end: float, dt: float) -> dict:
             "tip_b": [[float(r[p]) for p in parts] for r in rec["tip_b"]]}
 
 
-def _spacecraft_cost(elements: int, t_end: float, dt: float, free_base: bool, modes: int = 0) -> dict:
+def _spacecraft_cost(elements: int, t_end: float, dt: float, free_base: bool, modes: int = 0,
+                     slew: bool = False) -> dict:
     """Case M: the panels of case S (benchmarks/case_s.toml, released turning) on the free bus
     (``free_base``) or, the same panels, elements, steps and Newton settings, on a free 1-DOF
     hub (no [base]; hub inertia 120 kg m^2, the bus's about its y axis, spun up from rest by a
     constant 2 N m: a free hub has no initial speed);
-    ANCF panels, or FFR on ``modes`` clamped modes. Output every 10 ms."""
+    ANCF panels, or FFR on ``modes`` clamped modes. Output every 10 ms.
+
+    ``slew``: the same motion on both instead: the bus with its principal inertia (150, 120,
+    160 kg m^2, no products) starts at rest and a PD law turns it by 30 deg in 20 s about the
+    hub axis y (spacecraft3d's gains about y: kp = 138 N m/rad, kd = 550 N m s/rad; the other
+    axes held at rest), and the free hub (120 kg m^2) follows the same slew under the same PD
+    law: the two models then move alike and differ only in the base's other five degrees of
+    freedom, which stay at rest."""
     import os
     import re
     import tempfile
@@ -298,9 +306,19 @@ def _spacecraft_cost(elements: int, t_end: float, dt: float, free_base: bool, mo
 
     with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_s.toml"), encoding="utf-8") as f:
         text = f.read()
+    slew_table = "angle = 0.5235987755982988\nT = 20.0\n"
+    if slew and free_base:
+        text = re.sub(r"\[base\].*?(?=\[hub\])",
+                      "[base]\nmotion = \"free\"\nmass = 400.0\ninertia = [150.0, 120.0, 160.0]\n\n"
+                      "[base.torque]\nlaw = \"pd\"\nkp = [25.0, 138.0, 145.0]\nkd = [100.0, 550.0, 580.0]\n\n"
+                      f"[base.torque.slew]\naxis = [0.0, 1.0, 0.0]\n{slew_table}\n", text, flags=re.S)
     if not free_base:  # the [base] tables and the bus's sensor out, the hub free about its axis
         text = re.sub(r"\[base\].*?(?=\[hub\])", "", text, flags=re.S)
-        text = text.replace("[hub]\n", "[hub]\nmotion = \"free\"\ninertia = 120.0\ntorque = 2.0\n")
+        law = ("torque = 2.0\n" if not slew else
+               f"\n[hub.torque]\nlaw = \"pd\"\nkp = 138.0\nkd = 550.0\n\n[hub.torque.reference]\nprofile = \"slew\"\n{slew_table}\n")
+        text = text.replace("[hub]\n", "[hub]\nmotion = \"free\"\ninertia = 120.0\n" + ("" if slew else law))
+        if slew:  # the hub's torque tables after its keys
+            text = text.replace("[[beams]]", law + "\n[[beams]]", 1)
         text = text.replace('[[sensors]]\nname = "rate"\nkind = "base_angular_velocity"\n', "")
     overrides = [f"beams[*].elements={elements}", f"analysis.dt={dt}", "analysis.output_dt=0.01"]
     if modes:
@@ -336,6 +354,26 @@ def run_spacecraft_modal_free_base(elements: int, t_end: float, dt: float) -> di
 def run_spacecraft_modal_free_hub(elements: int, t_end: float, dt: float) -> dict:
     """Case M: the same two 4-mode FFR panels on a free 1-DOF hub."""
     return _spacecraft_cost(elements, t_end, dt, False, modes=4)
+
+
+def run_slew_free_base(elements: int, t_end: float, dt: float) -> dict:
+    """Case M, the same motion: two ANCF panels on the free bus slewed about the hub axis."""
+    return _spacecraft_cost(elements, t_end, dt, True, slew=True)
+
+
+def run_slew_free_hub(elements: int, t_end: float, dt: float) -> dict:
+    """Case M, the same motion: the same two ANCF panels on a free hub under the same slew law."""
+    return _spacecraft_cost(elements, t_end, dt, False, slew=True)
+
+
+def run_slew_modal_free_base(elements: int, t_end: float, dt: float) -> dict:
+    """Case M, the same motion: two 4-mode FFR panels on the free bus slewed about the hub axis."""
+    return _spacecraft_cost(elements, t_end, dt, True, modes=4, slew=True)
+
+
+def run_slew_modal_free_hub(elements: int, t_end: float, dt: float) -> dict:
+    """Case M, the same motion: two 4-mode FFR panels on a free hub under the same slew law."""
+    return _spacecraft_cost(elements, t_end, dt, False, modes=4, slew=True)
 
 
 def run_exudyn_spacecraft(elements: int, t_end: float, dt: float) -> dict:
@@ -521,6 +559,8 @@ ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge"
            "spacecraft-free-base": run_spacecraft_free_base, "spacecraft-free-hub": run_spacecraft_free_hub,
            "spacecraft-modal-free-base": run_spacecraft_modal_free_base,
            "spacecraft-modal-free-hub": run_spacecraft_modal_free_hub,
+           "slew-free-base": run_slew_free_base, "slew-free-hub": run_slew_free_hub,
+           "slew-modal-free-base": run_slew_modal_free_base, "slew-modal-free-hub": run_slew_modal_free_hub,
            "exp1-ancf-hinge": run_exp1_ancf_hinge, "exp1-ffr-hinge": run_exp1_ffr_hinge, "chain": run_chain}
 
 if __name__ == "__main__":

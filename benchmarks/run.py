@@ -34,7 +34,8 @@ same time series side by side: the bus's angular velocity (bus axes) and panel a
 deflection, with their differences.
 Case M (issue 24, issue 26): case S's panels on the free bus against the same panels on a free
 1-DOF hub, ANCF and FFR on 4 modes, 60 s at 1 ms (what a moving base costs; the modal
-spacecraft's time per step).
+spacecraft's time per step): both slewed alike by the same PD law about the hub axis (slew-*),
+and case S's tumbling bus against a hub spun up by a constant torque (spacecraft-*).
 
 Case J (joints): experiment 1 (free hub, 6 elements) clamped against the same plate on a revolute
 (flap) joint with a stiff spring (its motion the clamped one's), ANCF and nodal FFR, alternating,
@@ -215,9 +216,12 @@ def moving_base(reps: int, t_end: float, dt: float, elements: int = 8) -> None:
     """Case M: what a free base costs. Case S's two panels (8 elements) on the free bus against
     the same panels on a free 1-DOF hub (issue 24: at most 1.3x), ANCF and FFR on 4 modes each
     (issue 26: the modal spacecraft, 60 s at 1 ms, output every 10 ms, within 0.5 s),
-    alternating, medians."""
-    engines = ["spacecraft-free-base", "spacecraft-free-hub", "spacecraft-modal-free-base",
-               "spacecraft-modal-free-hub"]
+    alternating, medians. Two motions: ``slew``, the same PD slew about the hub axis on both
+    (the like-for-like comparison: the base's other five degrees of freedom stay at rest), and
+    ``spacecraft``, case S's tumbling bus against a hub spun up by a constant torque (different
+    motions: the tumbling bus turns its ANCF panels through their charts)."""
+    engines = ["slew-free-base", "slew-free-hub", "slew-modal-free-base", "slew-modal-free-hub",
+               "spacecraft-free-base", "spacecraft-free-hub", "spacecraft-modal-free-base", "spacecraft-modal-free-hub"]
     runs = alternate({e: elements for e in engines}, reps, t_end, dt)
     print(f"\nCase M (case S's panels on a free base and on a free 1-DOF hub): {elements} elements per panel, "
           f"{t_end:g} s at dt = {dt:g} s, output every 10 ms; median of {reps}, {os.cpu_count()} cores")
@@ -227,10 +231,11 @@ def moving_base(reps: int, t_end: float, dt: float, elements: int = 8) -> None:
         seconds = median(runs[e], "integration_s")
         print(f"{e:28s} {seconds:13.3f} {1e6 * seconds / first['steps']:8.1f} {first['newton_per_step']:11.2f} "
               f"{first['factorisations_per_step']:8.3f}")
-    for kind in ("", "modal-"):
-        ratio = median(runs[f"spacecraft-{kind}free-base"], "integration_s") / median(
-            runs[f"spacecraft-{kind}free-hub"], "integration_s")
-        print(f"spacecraft-{kind}free-base / spacecraft-{kind}free-hub: integration {ratio:.2f}")
+    for motion in ("slew", "spacecraft"):
+        for kind in ("", "modal-"):
+            ratio = median(runs[f"{motion}-{kind}free-base"], "integration_s") / median(
+                runs[f"{motion}-{kind}free-hub"], "integration_s")
+            print(f"{motion}-{kind}free-base / {motion}-{kind}free-hub: integration {ratio:.2f}")
 
 
 def joints(reps: int, t_end: float, dt: float) -> None:

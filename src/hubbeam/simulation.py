@@ -245,7 +245,8 @@ class CompiledSteps(PythonSteps):
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
         tol = newton.tolerance * max(system.length_scale, 1.0)
         self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations,
-                        ga.multiplier_weights(system.layout, dt, params.beta, newton.tolerance), ga.KAPPA)
+                        ga.multiplier_weights(system.layout, dt, params.beta, newton.tolerance, newton.hold_torque is not False),
+                        ga.KAPPA)
         self.loop = compiled_alpha.loop_for(system)
         self.advance(state, 0, 0, 1, 1)  # compile or load the loop now, not inside the timed run
 
@@ -345,6 +346,8 @@ def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral
     t0_units, dt_units, scale = decimal_units(state.t, dt)
 
     measures = [(s.name, prepare_chunk(s, system)) for s in sensors]
+    if newton.hold_torque is None:  # tested as a torque where it is read or does work (NewtonOptions)
+        newton = replace(newton, hold_torque=system.hub.motion != "fixed" or any(s.kind == "hub_torque" for s in sensors))
 
     def record(chunk):
         if chunk is None:

@@ -97,6 +97,14 @@ class NewtonOptions:
     exceeds ``refresh_rate``. When an increment grows (rate >= 1) the fresh matrix is built
     at the previous iterate (the increment is taken back), or at the predictor when the
     matrix was from earlier steps.
+    ``hold_torque``: whether the drive multiplier of a held hub is tested as a torque
+    (:func:`multiplier_weight`), as a result must be (the ``hub_torque`` sensor, and the drive
+    power lambda theta' of a prescribed hub). None (the default) means True, except that
+    :func:`hubbeam.simulation.simulate` makes it False for a fixed hub whose holding torque no
+    sensor reads: theta' = 0 exactly, so that torque does no work, and it is then an internal
+    reaction tested as a length like the clamps' (on a free spacecraft bus slewed about the hub
+    axis the torque test alone took 1.97 Newton iterations per step against 1.42 without it:
+    benchmarks/run.py, case M).
     """
 
     tolerance: float = 1e-9
@@ -106,6 +114,7 @@ class NewtonOptions:
     update: str = "adaptive"
     refresh_rate: float = 0.25
     refresh_iterations: int = 2
+    hold_torque: bool | None = None
 
     def __post_init__(self) -> None:
         if self.update not in UPDATES:
@@ -203,9 +212,10 @@ def multiplier_weight(h: float, beta: float, tolerance: float) -> float:
     return float(min(max(weight, 1.0), max(tolerance / (ROUND_OFF_MARGIN * np.finfo(float).eps), 1.0)))
 
 
-def multiplier_weights(layout, h: float, beta: float, tolerance: float) -> np.ndarray:
+def multiplier_weights(layout, h: float, beta: float, tolerance: float, hold_torque: bool = True) -> np.ndarray:
     """The weight of each multiplier's increment in the Newton test (:func:`apply_increment`):
-    :func:`multiplier_weight` for the drive's multiplier of a held hub, 1 for the clamps'.
+    :func:`multiplier_weight` for the drive's multiplier of a held hub (1 with ``hold_torque``
+    False: see :class:`NewtonOptions`), 1 for the clamps'.
 
     The drive's multiplier is a result: the torque that holds or drives the hub (the
     ``hub_torque`` sensor) and, times the hub speed, the drive power of the energy balance;
@@ -217,7 +227,7 @@ def multiplier_weights(layout, h: float, beta: float, tolerance: float) -> np.nd
     FFR 30 times the factorisations (exp1: 0.18 per step against 0.006; docs/dynamics.md).
     The base's multipliers (its norm, a table-driven base's drives) keep the length test."""
     weights = np.ones(layout.n_lambda)
-    if layout.drive_lambda is not None:
+    if layout.drive_lambda is not None and hold_torque:
         weights[layout.drive_lambda] = multiplier_weight(h, beta, tolerance)
     return weights
 
@@ -394,7 +404,7 @@ def step(system: MultibodySystem, state: AlphaState, h: float, p: AlphaParameter
     ck = beta * h * h
     s = system.mass_scale
     tol = options.tolerance * max(system.length_scale, 1.0)
-    weight = multiplier_weights(system.layout, h, beta, options.tolerance)
+    weight = multiplier_weights(system.layout, h, beta, options.tolerance, options.hold_torque is not False)
     coefs = (ck * bprime, ck * gprime, ck, s)
     zx, zl = system.layout.z_of_x, system.layout.z_of_lambda
     update = options.update_code
