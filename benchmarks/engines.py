@@ -14,7 +14,8 @@ lowest clamped modes) and exudyn-ffrf (Exudyn's ObjectFFRFreducedOrder on a Hex2
 of the plate, benchmarks/solid_plate.py, its 4 lowest clamped modes; ELEMENTS counts the
 hexahedra along the length). Case J (joints): exp1-ancf-hinge and exp1-ffr-hinge (experiment 1 with
 the plate on a stiff flap hinge), chain (ELEMENTS counts the links of a chain on lag hinges,
-4 elements each, every hinge started at 1 rad/s) and chain-first (only the first hinge started). Output: integration wall time (s), steps, Newton iterations and LU
+4 elements each, every hinge started at 1 rad/s) and chain-first (only the first hinge started).
+Output: integration wall time (s), steps, Newton iterations and LU
 factorisations per step (when the engine reports them) and the tip deflection (case A:
 vertical, case B: tangential, m) at the end and its minimum over the run, so that equal
 accuracy can be checked. Exudyn's Newton tolerances are set as issue 6 prescribes.
@@ -476,6 +477,23 @@ def run_exp1_ffr_hinge(elements: int, t_end: float, dt: float) -> dict:
     return _run_exp1(elements, t_end, dt, ['beam.formulation="ffr"', HINGE])
 
 
+def chain_scenario(links: int, t_end: float, dt: float, every_hinge: bool = True):
+    """The scenario of :func:`run_chain` (a validated Scenario), the last link's tip_deflection as ``tip``."""
+    from hubbeam.io.scenario import validate
+
+    beams = []
+    for k in range(links):
+        beam = {"name": f"link{k}", "elements": 4, "length": 0.4, "width": B, "thickness": H, "density": RHO,
+                "youngs_modulus": E, "twist": 90.0,
+                "joint": {"kind": "revolute", "axis": "lag", "stiffness": 5.0,
+                          "initial_rate": 1.0 if every_hinge or k == 0 else 0.0}}
+        beam.update({"parent": f"link{k - 1}"} if k else {"radius": 0.35})
+        beams.append(beam)
+    return validate({"name": "chain", "hub": {"motion": "fixed"}, "beams": beams,
+                     "analysis": {"kind": "dynamic", "t_end": t_end, "dt": dt, "spectral_radius": 0.8},
+                     "sensors": [{"name": "tip", "kind": "tip_deflection", "beam": f"link{links - 1}"}]})
+
+
 def run_chain(links: int, t_end: float, dt: float, every_hinge: bool = True) -> dict:
     """Case J: a chain of ``links`` equal links of the plate's section (0.4 m, 4 ANCF elements each,
     laid flat: gravity bends the weak axis) on a fixed hub, the first on the hub, each next on the
@@ -486,27 +504,9 @@ def run_chain(links: int, t_end: float, dt: float, every_hinge: bool = True) -> 
     import numpy as np
 
     from hubbeam import api
-    from hubbeam.io.scenario import validate
 
-    beams = []
-    for k in range(links):
-        beam = {"name": f"link{k}", "elements": 4, "length": 0.4, "width": B, "thickness": H, "density": RHO,
-                "youngs_modulus": E, "twist": 90.0,
-                "joint": {"kind": "revolute", "axis": "lag", "stiffness": 5.0,
-                          "initial_rate": 1.0 if every_hinge or k == 0 else 0.0}}
-        if k:
-            beam["parent"] = f"link{k - 1}"
-        else:
-            beam["radius"] = 0.35
-        beams.append(beam)
-
-    def scenario(end):
-        return validate({"name": "chain", "hub": {"motion": "fixed"}, "beams": beams,
-                         "analysis": {"kind": "dynamic", "t_end": end, "dt": dt, "spectral_radius": 0.8},
-                         "sensors": [{"name": "tip", "kind": "tip_deflection", "beam": f"link{links - 1}"}]})
-
-    api.run(scenario(2 * dt))  # loads the compiled code
-    traj, failure = api.run(scenario(t_end))
+    api.run(chain_scenario(links, 2 * dt, dt, every_hinge))  # loads the compiled code
+    traj, failure = api.run(chain_scenario(links, t_end, dt, every_hinge))
     if failure is not None:
         raise failure
     values = np.array([r["vertical"] for r in traj.records["tip"]])
