@@ -13,8 +13,9 @@ with modal reduction: hubbeam-ffr-modal (the FFR beam, its 4
 lowest clamped modes) and exudyn-ffrf (Exudyn's ObjectFFRFreducedOrder on a Hex20 solid mesh
 of the plate, benchmarks/solid_plate.py, its 4 lowest clamped modes; ELEMENTS counts the
 hexahedra along the length). Case J (joints): exp1-ancf-hinge and exp1-ffr-hinge (experiment 1 with
-the plate on a stiff flap hinge) and chain (ELEMENTS counts the links of a chain on lag hinges,
-4 elements each). Output: integration wall time (s), steps, Newton iterations and LU
+the plate on a stiff flap hinge), chain (ELEMENTS counts the links of a chain on lag hinges,
+4 elements each, every hinge started at 1 rad/s) and chain-first (only the first hinge started).
+Output: integration wall time (s), steps, Newton iterations and LU
 factorisations per step (when the engine reports them) and the tip deflection (case A:
 vertical, case B: tangential, m) at the end and its minimum over the run, so that equal
 accuracy can be checked. Exudyn's Newton tolerances are set as issue 6 prescribes.
@@ -514,34 +515,36 @@ def run_exp1_ffr_hinge(elements: int, t_end: float, dt: float) -> dict:
     return _run_exp1(elements, t_end, dt, ['beam.formulation="ffr"', HINGE])
 
 
-def run_chain(links: int, t_end: float, dt: float) -> dict:
-    """Case J: a chain of ``links`` equal links of the plate's section (0.4 m, 4 ANCF elements each,
-    laid flat: gravity bends the weak axis) on a fixed hub, the first on the hub, each next on the
-    tip of the one before, every root on a lag hinge (about the vertical) with a spring of
-    5 N m/rad, every hinge started at 1 rad/s; the last link's vertical tip deflection."""
-    import numpy as np
-
-    from hubbeam import api
+def chain_scenario(links: int, t_end: float, dt: float, every_hinge: bool = True):
+    """The scenario of :func:`run_chain` (a validated Scenario), the last link's tip_deflection as ``tip``."""
     from hubbeam.io.scenario import validate
 
     beams = []
     for k in range(links):
         beam = {"name": f"link{k}", "elements": 4, "length": 0.4, "width": B, "thickness": H, "density": RHO,
                 "youngs_modulus": E, "twist": 90.0,
-                "joint": {"kind": "revolute", "axis": "lag", "stiffness": 5.0, "initial_rate": 1.0}}
-        if k:
-            beam["parent"] = f"link{k - 1}"
-        else:
-            beam["radius"] = 0.35
+                "joint": {"kind": "revolute", "axis": "lag", "stiffness": 5.0,
+                          "initial_rate": 1.0 if every_hinge or k == 0 else 0.0}}
+        beam.update({"parent": f"link{k - 1}"} if k else {"radius": 0.35})
         beams.append(beam)
+    return validate({"name": "chain", "hub": {"motion": "fixed"}, "beams": beams,
+                     "analysis": {"kind": "dynamic", "t_end": t_end, "dt": dt, "spectral_radius": 0.8},
+                     "sensors": [{"name": "tip", "kind": "tip_deflection", "beam": f"link{links - 1}"}]})
 
-    def scenario(end):
-        return validate({"name": "chain", "hub": {"motion": "fixed"}, "beams": beams,
-                         "analysis": {"kind": "dynamic", "t_end": end, "dt": dt, "spectral_radius": 0.8},
-                         "sensors": [{"name": "tip", "kind": "tip_deflection", "beam": f"link{links - 1}"}]})
 
-    api.run(scenario(2 * dt))  # loads the compiled code
-    traj, failure = api.run(scenario(t_end))
+def run_chain(links: int, t_end: float, dt: float, every_hinge: bool = True) -> dict:
+    """Case J: a chain of ``links`` equal links of the plate's section (0.4 m, 4 ANCF elements each,
+    laid flat: gravity bends the weak axis) on a fixed hub, the first on the hub, each next on the
+    tip of the one before, every root on a lag hinge (about the vertical) with a spring of
+    5 N m/rad, every hinge started at 1 rad/s (so that link k turns at k rad/s), or with
+    ``every_hinge`` False only the first (the chain starts turning as one body, every link at
+    1 rad/s); the last link's vertical tip deflection."""
+    import numpy as np
+
+    from hubbeam import api
+
+    api.run(chain_scenario(links, 2 * dt, dt, every_hinge))  # loads the compiled code
+    traj, failure = api.run(chain_scenario(links, t_end, dt, every_hinge))
     if failure is not None:
         raise failure
     values = np.array([r["vertical"] for r in traj.records["tip"]])
@@ -549,6 +552,11 @@ def run_chain(links: int, t_end: float, dt: float) -> dict:
             "newton_per_step": traj.newton_iterations / traj.steps,
             "factorisations_per_step": traj.factorisations / traj.steps,
             "tip_end": float(values[-1]), "tip_min": float(values.min())}
+
+
+def run_chain_first(links: int, t_end: float, dt: float) -> dict:
+    """Case J: :func:`run_chain` with only the first hinge started: every link turns at the same speed."""
+    return run_chain(links, t_end, dt, every_hinge=False)
 
 
 ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge": run_exudyn_ge,
@@ -561,7 +569,8 @@ ENGINES = {"hubbeam": run_hubbeam, "exudyn-cable": run_exudyn_cable, "exudyn-ge"
            "spacecraft-modal-free-hub": run_spacecraft_modal_free_hub,
            "slew-free-base": run_slew_free_base, "slew-free-hub": run_slew_free_hub,
            "slew-modal-free-base": run_slew_modal_free_base, "slew-modal-free-hub": run_slew_modal_free_hub,
-           "exp1-ancf-hinge": run_exp1_ancf_hinge, "exp1-ffr-hinge": run_exp1_ffr_hinge, "chain": run_chain}
+           "exp1-ancf-hinge": run_exp1_ancf_hinge, "exp1-ffr-hinge": run_exp1_ffr_hinge, "chain": run_chain,
+           "chain-first": run_chain_first}
 
 if __name__ == "__main__":
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])

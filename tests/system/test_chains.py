@@ -102,3 +102,34 @@ def test_newton_matrix_of_a_chain_on_joints_is_the_residuals_derivative(parent, 
     for r in rows:
         assert np.max(np.abs(A[r] - D[r])) <= 2e-4 * scale, r
         assert np.max(np.abs(A[:, r] - D[:, r])) <= 2e-4 * scale, r
+
+
+@pytest.mark.parametrize("joint", [None, ("lag", "pitch")])
+@pytest.mark.parametrize("stiffness", ["dynamic", "exact"])
+def test_the_band_holds_every_entry_of_a_chain_junction(joint, stiffness):
+    """Three ANCF links on each other's tips (clamped to the tip, or on a two-axis joint), the
+    first on a flap hinge of a free hub: the Newton matrix assembled in the band that
+    ancf_bandwidth sizes (the clamp's Jacobian and Hessian pairs only: 17 or so at a junction,
+    not the 21 of its whole span) equals the one assembled in a band as wide as the matrix, at
+    a generic state (coordinates, rates and multipliers perturbed at random): no entry falls
+    outside the band."""
+
+    def system():
+        def mount(parent, twist):
+            return Mount(0.0, twist, 0.0, 0.1, parent=parent, joint=Joint.named(*joint) if joint else None)
+
+        parts = [_part("ancf", 0.6, 2, Mount(RADIUS, TWIST, 0.0, PRECONE, joint=Joint.named("flap", stiffness=(5.0,)))),
+                 _part("ancf", 0.5, 2, mount(0, 0.2)), _part("ancf", 0.4, 2, mount(1, -0.3))]
+        return MultibodySystem(parts, Hub("free", 1.5), gravity=(0.0, -9.81, 0.0))
+
+    tight, wide = system(), system()
+    wide.bandwidth_for = lambda layout: layout.nz - layout.border - 1
+    assert tight.bandwidth < wide.bandwidth
+    x, F = tight.initial_state(0.3)
+    rng = np.random.default_rng(7)
+    x[1:] += 0.02 * rng.normal(size=x.size - 1)
+    v, acc = rng.normal(size=x.size), rng.normal(size=x.size)
+    lam = rng.normal(size=tight.layout.n_lambda)
+    matrices = [s.equations(x, v, acc, lam, F, 0.3, 1.0, 0.5, 0.3e-6, s.mass_scale, stiffness=stiffness)[1].to_dense()
+                for s in (tight, wide)]
+    assert np.max(np.abs(matrices[0] - matrices[1])) <= 1e-14 * np.max(np.abs(matrices[1]))

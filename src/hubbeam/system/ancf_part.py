@@ -28,7 +28,7 @@ from hubbeam.system import terms
 from hubbeam.system.assembly import add_element_blocks_banded
 from hubbeam.system.beam import NODE_DOFS, AncfBeam
 from hubbeam.system.clamp import ROOT_COORDINATES, add_clamp_matrix, clamp_residual, frame_clamp
-from hubbeam.system.frames import Chain, ancf_tip, chain_state, constant, displacement_in_reference
+from hubbeam.system.frames import Chain, LinkKind, ancf_tip, chain_state, constant, displacement_in_reference
 from hubbeam.system.loads import tip_moment_terms
 from hubbeam.system.mount import Mount, about_axis
 from hubbeam.system.parts import ChartedBeamPart
@@ -428,21 +428,49 @@ def ancf_tips(pack, ctx, F, x, out):
                                   out[pack.index[k]])
 
 
+def turns_frame(link, j: int) -> bool:
+    """Whether coordinate j of a chain's ``link`` can turn the frame (frames.py: the position
+    coordinates of a FREE or ANCF_TIP link, its first three, only move it; an FFR tip's may do
+    both)."""
+    if link.kind in (LinkKind.FREE, LinkKind.ANCF_TIP):
+        return j >= 3
+    return link.kind != LinkKind.CONSTANT
+
+
 def ancf_bandwidth(system, layout) -> int:
     """Half-bandwidth of the ANCF beams' blocks: 15 (16 x 16 element blocks; the clamp rows reach
-    12 ahead), or what the clamp needs to reach its frame's coordinates outside the border (a
-    joint angle, a parent beam's tip); 1 without ANCF beams."""
+    12 ahead), or what the clamp's entries need to reach its frame's coordinates outside the
+    border (a joint angle, a parent beam's tip); 1 without ANCF beams.
+
+    The clamp (:mod:`hubbeam.system.clamp`) puts entries at its multipliers' rows and columns
+    against the frame's coordinates and the root's seven (its Jacobian), among the frame's
+    coordinates, and between the frame's coordinates that turn it and the root slope r0'(0)
+    (its Hessian: a_2 . r0'(0) and a_3 . r0'(0) are bilinear in the frame's axes and the slope;
+    the root position and twist enter linearly): the band must reach those pairs only, not
+    from a parent's tip position to the child's root twist (a chain's junction: 17 instead of
+    21)."""
     width = 1
     zx = layout.z_of_x
     for k, b in enumerate(system.beams):
         if not isinstance(b, AncfPart):
             continue
         width = max(width, BANDWIDTH)
-        own = [zx[layout.beam_x(k).start + j] for j in range(ROOT_COORDINATES)] + list(
-            layout.z_of_lambda[layout.clamp_lambda(k)])
-        frame = [zx[c] for c in system.frames.chain(system.frames.root(k)).coordinates if zx[c] >= layout.border]
-        every = own + frame
-        width = max(width, max(every) - min(every))
+        start = layout.beam_x(k).start
+        root = [zx[start + j] for j in range(ROOT_COORDINATES)]
+        slope = root[3:6]
+        multipliers = list(layout.z_of_lambda[layout.clamp_lambda(k)])
+        frame, turning = [], []
+        for link in system.frames.chain(system.frames.root(k)).links:
+            for j in range(link.coordinates):
+                z = zx[link.coordinate + j]
+                if z >= layout.border:
+                    frame.append(z)
+                    if turns_frame(link, j):
+                        turning.append(z)
+        pairs = [(a, c) for a in multipliers for c in frame + root] + [(a, c) for a in turning for c in slope]
+        if frame:
+            pairs.append((min(frame), max(frame)))
+        width = max([width] + [abs(int(a) - int(c)) for a, c in pairs])
     return width
 
 

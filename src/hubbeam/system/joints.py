@@ -289,8 +289,14 @@ def joint_bandwidth(system, layout) -> int:
     return width
 
 
+def joint_latches_pending(pack) -> bool:
+    """Whether a free axis of ``pack`` has a latch (else :func:`joint_events` can never be true)."""
+    return bool(np.any((pack.places[:, LOCK] < 0) & (pack.constants[:, SIDE] != 0.0)))
+
+
 KIND = terms.register(JointLaws, pack_joint_laws, joint_equations, joint_energies, joint_power,
-                      bandwidth=joint_bandwidth, drive_power=joint_drive_power, events=joint_events)
+                      bandwidth=joint_bandwidth, drive_power=joint_drive_power, events=joint_events,
+                      events_possible=joint_latches_pending)
 
 
 # ================================================================ Python: what the sensors and the latch read

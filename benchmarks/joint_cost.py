@@ -1,0 +1,266 @@
+"""Where a joint's cost goes (case J): the compiled time loop alone and its parts, per step.
+
+    python benchmarks/joint_cost.py hinge [REPS]   # exp1 (6 elements, 10 s at 1 ms) clamped / on the stiff flap hinge
+    python benchmarks/joint_cost.py chain [REPS]   # case J's chain of 1, 2, 4, 8 links (1 s at 1 ms), both starts
+    python benchmarks/joint_cost.py newton [REPS]  # why the FFR beam on the hinge refactorises (about 2 minutes)
+
+For each model: the time loop alone (:class:`hubbeam.simulation.CompiledSteps`, process time per
+step, median and range of REPS runs that alternate with the other models in this one process: on a
+loaded machine process time varies less than wall time), Newton iterations and LU factorisations
+per step, and the cost of one call of each part of a step (process time, best of 3): the residual,
+the residual with the Newton matrix, the band LU, a band solve and the step's powers; "parts"
+adds them as a step spends them: (1 + N) residuals, LU x (matrix - residual + factor), N solves
+and the powers. numba's cache must be warm (run case J once first).
+
+``newton``: exp1 with the nodal FFR beam, clamped and on the hinge. (1) The spectral radius of
+I - A^-1 D at step 300 (t = 0.3 s), A the code's Newton matrix at step 300 - lag, D central
+differences of the residual along the generalized-alpha correction at step 300: it bounds the
+contraction of Newton iterations on a matrix kept from lag steps before (lag 0: the tangent's
+own inexactness). (2) The first 1.5 s in Python steps with the code's matrix and with the
+residual's differences as the iteration matrix (an exact tangent, rates' derivatives included):
+Newton iterations and factorisations per step. (3) The compiled loop with the controller's
+``refresh_iterations`` at 2 (the default) and 3, alternating.
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import sys
+import time
+
+import numpy as np
+from numba import njit
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from engines import HINGE, chain_scenario
+
+from hubbeam import api
+from hubbeam.io.scenario import load_example
+from hubbeam.simulation import CompiledSteps, initial_state
+from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.system.assembly import BorderedBandMatrix, bordered_factor, bordered_solve
+from hubbeam.system.equations import step_powers, system_equations
+
+
+@njit
+def _equations(n, want, model, F, x, v, a, lam, res, ab, brow, bcol, bb):
+    s = 0.0
+    for _ in range(n):
+        s += system_equations(model, F, x, v, a, lam, 0.1, 1.0, 0.5, 0.3e-6, 1.0, 1.0, False, want, res, ab, brow,
+                              bcol, bb)[1]
+    return s
+
+
+@njit
+def _factor(n, ab0, ab, bw, ipiv, brow, bcol, bb, Y, schur, copy_only):
+    s = 0
+    for _ in range(n):
+        ab[:] = ab0
+        if not copy_only:
+            s += bordered_factor(ab, bw, ipiv, brow, bcol, bb, Y, schur)
+    return s
+
+
+@njit
+def _solve(n, ab, bw, ipiv, brow, Y, schur, rhs0, rhs):
+    for _ in range(n):
+        rhs[:] = rhs0
+        bordered_solve(ab, bw, ipiv, brow, Y, schur, rhs)
+
+
+@njit
+def _powers(n, model, F, x, v, lam):
+    s = 0.0
+    for _ in range(n):
+        s += step_powers(model, F, 0.1, x, v, lam)[0]
+    return s
+
+
+def _best(f, n):
+    f(1)
+    out = np.inf
+    for _ in range(3):
+        t = time.process_time()
+        f(n)
+        out = min(out, (time.process_time() - t) / n * 1e6)
+    return out
+
+
+def call_costs(system, state) -> dict:
+    """One call of each part of a step (us): residual, matrix (residual with the Newton matrix),
+    factor (the bordered band LU), solve, powers."""
+    model, layout = system.model(), system.layout
+    res = np.empty(layout.nz)
+    m = BorderedBandMatrix.empty(layout.nz, layout.border, model.bandwidth)
+    x, v, a, lam = state.x, state.v, state.xdd, state.lam
+    F = np.ascontiguousarray(state.chart)
+    args = (model, F, x, v, a, lam, res, m.ab, m.brow, m.bcol, m.bb)
+    out = {"residual": _best(lambda n: _equations(n, False, *args), 5000),
+           "matrix": _best(lambda n: _equations(n, True, *args), 2000),
+           "powers": _best(lambda n: _powers(n, model, F, x, v, lam), 5000)}
+    _equations(1, True, *args)
+    ab0, ab = m.ab.copy(order="F"), m.ab.copy(order="F")  # LAPACK's column-major storage
+    ipiv = np.zeros(ab.shape[1], dtype=np.int32)
+    Y, schur = np.zeros((layout.border, ab.shape[1])), np.zeros((layout.border, layout.border))
+    fargs = (ab0, ab, model.bandwidth, ipiv, m.brow, m.bcol, m.bb, Y, schur)
+    out["factor"] = _best(lambda n: _factor(n, *fargs, False), 2000) - _best(lambda n: _factor(n, *fargs, True), 2000)
+    _factor(1, *fargs, False)  # the factors for the solves
+    rhs0 = np.ones(layout.nz)
+    rhs = rhs0.copy()
+    out["solve"] = _best(lambda n: _solve(n, ab, model.bandwidth, ipiv, m.brow, Y, schur, rhs0, rhs), 5000)
+    return out
+
+
+def compare(models: dict, steps: int, reps: int, dt: float = 1e-3) -> dict:
+    """{label: (us per step of each rep, Newton per step, LU per step, steps)} of the compiled loop
+    alone, the models alternating within each repetition."""
+    p = ga.AlphaParameters.from_spectral_radius(0.8)
+    built = {label: (s, initial_state(s)) for label, s in ((k, api.build_system(sc)) for k, sc in models.items())}
+    out = {label: [] for label in models}
+    for _ in range(reps):
+        for label, (system, state) in built.items():
+            loop = CompiledSteps(system, p, ga.NewtonOptions(), dt, state)
+            t = time.process_time()
+            _, n, its, _, err, _ = loop.advance(state, steps, 0, 10, steps)
+            if err is not None:
+                raise err
+            out[label].append((1e6 * (time.process_time() - t) / n, its / n, loop.factorisations / n, n))
+    return {label: ([r[0] for r in rows], rows[0][1], rows[0][2], rows[0][3], built[label])
+            for label, rows in out.items()}
+
+
+def report(results: dict) -> dict:
+    per = {}
+    for label, (times, newton, lu, steps, (system, state)) in results.items():
+        c = call_costs(system, state)
+        parts = (1 + newton) * c["residual"] + lu * (c["matrix"] - c["residual"] + c["factor"]) + newton * c["solve"] \
+            + c["powers"]
+        per[label] = statistics.median(times)
+        print(f"{label:22s} {per[label]:7.1f} us/step ({min(times):.1f}-{max(times):.1f}; {steps} steps)  "
+              f"Newton {newton:.3f}  LU {lu:.4f}  | nz {system.layout.nz}, half-bandwidth {system.bandwidth}: "
+              f"residual {c['residual']:.1f}, matrix {c['matrix']:.1f}, factor {c['factor']:.1f}, solve "
+              f"{c['solve']:.2f}, powers {c['powers']:.2f} us; parts {parts:.1f} us/step", flush=True)
+    return per
+
+
+def _differences_matrix(system, state, h, p, equations=None):
+    """(the code's Newton matrix (``equations``: default the system's dynamic_equations), central
+    differences of the residual along the correction), dense."""
+    am, af, beta, gamma = p.alpha_m, p.alpha_f, p.beta, p.gamma
+    ck = beta * h * h
+    bp, gp = (1 - am) / (ck * (1 - af)), gamma / (beta * h)
+    s, layout = system.mass_scale, system.layout
+    x, v, a, lam, F, t = state.x, state.v, state.xdd, state.lam, state.chart, state.t
+
+    def residual(z):
+        dx, dmu = layout.split_z(z)
+        return system.dynamic_residual(x + dx, v + gp * dx, a + bp * dx, lam + s / ck * dmu, F, t, ck, s)
+
+    A = (equations or system.dynamic_equations)(x, v, a, lam, F, t, ck * bp, ck * gp, ck, s)[1].to_dense()
+    D = np.empty_like(A)
+    for j in range(A.shape[0]):
+        e = np.zeros(A.shape[0])
+        e[j] = 1e-7
+        D[:, j] = (residual(e) - residual(-e)) / 2e-7
+    return A, D
+
+
+class _Dense:
+    """A dense iteration matrix with the factorise() of a BorderedBandMatrix."""
+
+    def __init__(self, D):
+        self.D = D
+
+    def factorise(self):
+        import scipy.linalg
+
+        from hubbeam.system.assembly import Factorisation
+
+        lu = scipy.linalg.lu_factor(self.D)
+        return Factorisation(lambda rhs: scipy.linalg.lu_solve(lu, rhs))
+
+
+def newton(reps: int) -> None:
+    h, p = 1e-3, ga.AlphaParameters.from_spectral_radius(0.8)
+    ffr = ['beam.formulation="ffr"']
+    for kind, extra in (("clamped", []), ("hinge", [HINGE])):
+        system = api.build_system(load_example("exp1", ffr + extra))
+        states, kept = [initial_state(system)], None
+        for _ in range(300):
+            state, _, kept = ga.step(system, states[-1], h, p, ga.NewtonOptions(), kept)
+            states.append(state)
+        _, D = _differences_matrix(system, states[300], h, p)
+        radii = []
+        for lag in (0, 1, 3, 10, 30):
+            A, _ = _differences_matrix(system, states[300 - lag], h, p)
+            radii.append(np.max(np.abs(np.linalg.eigvals(np.eye(len(A)) - np.linalg.solve(A, D)))))
+        print(f"FFR nodal, {kind}: spectral radius of I - A^-1 D at step 300, A from lag 0 / 1 / 3 / 10 / 30 steps "
+              "before: " + " / ".join(f"{r:.1e}" for r in radii), flush=True)
+    system = api.build_system(load_example("exp1", ffr + [HINGE]))
+    code, start = system.dynamic_equations, initial_state(system)
+    for label in ("the code's matrix", "the residual's differences"):
+        calls = [0]
+
+        def matrix(x, v, a, lam, F, t, coef_m, coef_c, coef_k, s, exact=label != "the code's matrix", calls=calls):
+            calls[0] += 1
+            res, m = code(x, v, a, lam, F, t, coef_m, coef_c, coef_k, s)
+            if not exact:
+                return res, m
+            state = ga.AlphaState(t, x, v, a, a, lam, F)
+            return res, _Dense(_differences_matrix(system, state, h, p, code)[1])
+
+        system.dynamic_equations = matrix
+        state, kept, its = start, None, 0
+        for _ in range(1500):
+            state, n, kept = ga.step(system, state, h, p, ga.NewtonOptions(), kept)
+            its += n
+        print(f"FFR nodal, hinge, first 1.5 s with {label}: Newton {its / 1500:.3f}, LU {calls[0] / 1500:.4f} per step",
+              flush=True)
+    system.dynamic_equations = code
+    runs = {}
+    for _ in range(reps):
+        for form, extra in (("FFR nodal", ffr), ("FFR 4 modes", ffr + ["beam.modes=4"])):
+            system = api.build_system(load_example("exp1", extra + [HINGE]))
+            state = initial_state(system)
+            for ri in (2, 3):
+                loop = CompiledSteps(system, p, ga.NewtonOptions(refresh_iterations=ri), h, state)
+                t = time.process_time()
+                _, n, its, _, _, _ = loop.advance(state, 10000, 0, 10, 10000)
+                runs.setdefault((form, ri), []).append((1e6 * (time.process_time() - t) / n, its / n,
+                                                        loop.factorisations / n))
+    for (form, ri), rows in runs.items():
+        times = [r[0] for r in rows]
+        print(f"{form}, hinge, refresh_iterations {ri}: {statistics.median(times):.1f} us/step "
+              f"({min(times):.1f}-{max(times):.1f}), Newton {rows[0][1]:.3f}, LU {rows[0][2]:.4f}")
+
+
+def main() -> None:
+    what = sys.argv[1] if len(sys.argv) > 1 else "hinge"
+    reps = int(sys.argv[2]) if len(sys.argv) > 2 else 3
+    print(f"{what}: the compiled loop alone, process time, median (range) of {reps} alternating runs; "
+          f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    if what == "newton":
+        newton(reps)
+    elif what == "hinge":
+        forms = {"ANCF": [], "FFR nodal": ['beam.formulation="ffr"'],
+                 "FFR 4 modes": ['beam.formulation="ffr"', "beam.modes=4"]}
+        models = {f"{name}, {kind}": load_example("exp1", extra + ([HINGE] if kind == "hinge" else []))
+                  for name, extra in forms.items() for kind in ("clamped", "hinge")}
+        per = report(compare(models, 10000, reps))
+        for name in forms:
+            print(f"{name}: hinge / clamped {per[f'{name}, hinge'] / per[f'{name}, clamped']:.3f}")
+    else:
+        for every in (True, False):
+            start = "every hinge at 1 rad/s" if every else "only the first hinge started"
+            print(start)
+            models = {f"{n} link{'s' if n > 1 else ''}": chain_scenario(n, 1.0, 1e-3, every) for n in (1, 2, 4, 8)}
+            per = report(compare(models, 1000, reps))
+            one = per["1 link"]
+            ratios = [per[label] / (n * one) for n, label in zip((1, 2, 4, 8), per)]
+            print("  x n times one link: " + ", ".join(f"{n}: {r:.2f}" for n, r in zip((1, 2, 4, 8), ratios)))
+
+
+if __name__ == "__main__":
+    main()
