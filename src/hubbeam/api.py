@@ -437,8 +437,11 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     loads or, for a hub driven at a constant omega_s, about the steadily rotating state (other
     prescribed profiles: at rest with the hub held). ``inputs``: a list of "hub_torque" (free
     hub, N m, added to the torque law), "joint_torque:BEAM" (N m, in the joint of BEAM, added to
-    its motor law) and "tip_force:BEAM" (N, three components); default: the hub torque of a free
-    hub (the first beam's tip force on a held one) and every joint motor's torque. Outputs: the
+    its motor law), "tip_force:BEAM" (N, three components) and "load:NAME" (three components
+    ``load_NAME_x|y|z``: a force of 1 N/m along the axes of the span load NAME, uniform over
+    its stations, or, for ``load:tip``, of 1 N at the tip of the tip loads' beam; docs/loads.md);
+    default: the hub torque of a free hub (the first beam's tip force on a held one) and every
+    joint motor's torque. Outputs: the
     scenario's sensors (``outputs``: only those columns, in that order). ``open_loop``: leave
     the scenario's torque laws out, the hub's and the joints' motors, and its controllers (the
     plant a controller is designed for); otherwise the controllers ([[controllers]]) are closed
@@ -503,7 +506,7 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     closing = [] if open_loop else list(scenario.controllers)
     extra = [o for c in closing for o in c.outputs if o not in inputs]
     model = linearise(system, equilibrium, omega, list(inputs) + list(dict.fromkeys(extra)), scenario.sensors, about,
-                      progress)
+                      progress, tip_beam=scenario.beam_index(scenario.loads.beam))
     if closing:
         from hubbeam.analysis.state_space import closed_loop
         from hubbeam.io.scenario.controllers import controller_of

@@ -268,6 +268,10 @@ class MultibodySystem:
         """The same system with other beam parts (the same number, each in its place)."""
         return self._with(beams=list(beams))
 
+    def with_attachments(self, attachments) -> "MultibodySystem":
+        """The same system with these parts of other kinds (``attachments``) instead of its own."""
+        return self._with(attachments=tuple(attachments))
+
     def without_controllers(self) -> "MultibodySystem":
         """The same system without its controllers (the plant they close the loop around)."""
         return self._with(controllers=())
