@@ -188,14 +188,47 @@ def base_of(scenario: Scenario) -> Base:
                 inertia, b.centre_of_mass, table, law)
 
 
-def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> MultibodySystem:
+def load_function_argument(loads, scenario: Scenario) -> list:
+    """The ``loads`` argument of :func:`run`, :func:`static` and :func:`build_system` as a list
+    of :class:`~hubbeam.system.load_functions.LoadFunction` with the beam's place: None (none),
+    a LoadFunction (its ``beam`` a place or a beam's name) or a Python function
+    f(t, x, position, velocity, frame) -> (force, moment) on the first beam, or a list of these.
+    TypeError naming ``loads`` for anything else; ScenarioError for a beam the scenario has not."""
+    from dataclasses import replace as replaced
+
+    from hubbeam.system.load_functions import LoadFunction
+
+    if loads is None:
+        return []
+    items = list(loads) if isinstance(loads, (list, tuple)) else [loads]
+    out = []
+    for i, item in enumerate(items):
+        if not isinstance(item, LoadFunction):
+            if not callable(item):
+                raise TypeError(f"loads[{i}]: expected a LoadFunction or a function f(t, x, position, velocity, frame) "
+                                f"(got {type(item).__name__} {item!r:.60})")
+            item = LoadFunction(item, 0, name=f"function{i + 1}")
+        beam = item.beam
+        if isinstance(beam, str):
+            beam = scenario.beam_index(beam)
+        elif isinstance(beam, bool) or not isinstance(beam, (int, np.integer)) or not 0 <= beam < len(scenario.beam_names):
+            raise ScenarioError(f"loads[{i}].beam: a beam's name or place 0 .. {len(scenario.beam_names) - 1} "
+                                f"(got {beam!r})")
+        out.append(replaced(item, beam=int(beam)))
+    return out
+
+
+def build_system(scenario: Scenario, torque: TorqueLaw | None = None, loads=None) -> MultibodySystem:
     """The system a scenario describes: its base, its hub and its beams. ``torque``: a torque law
     that replaces the scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function
     torque(t, theta, omega), which integrates step by step in Python; a number or a bare function
-    is taken as :func:`torque_argument` says; a free hub only). ``scenario``: a Scenario or a
-    scenario file's path."""
+    is taken as :func:`torque_argument` says; a free hub only). ``loads``: loads per unit length
+    from Python functions f(t, x, position, velocity, frame) (:func:`load_function_argument`,
+    docs/loads.md), added to the scenario's; they too integrate step by step in Python.
+    ``scenario``: a Scenario or a scenario file's path."""
     scenario = as_scenario(scenario)
     torque = torque_argument(torque, scenario)
+    functions = load_function_argument(loads, scenario)
     hub = scenario.hub
     drive = drive_profile(hub.drive, "hub.drive") if hub.drive is not None else DriveProfile("rest")
     law = torque if torque is not None else torque_law(hub.torque_law)
@@ -206,7 +239,8 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> Multibo
     from hubbeam.io.scenario.controllers import controller_of
 
     parts = [beam_part(spec, scenario.beam_key(spec.index)) for spec in scenario.resolved_beams()]
-    return MultibodySystem(parts, Hub(hub.motion, inertia, law, drive), attachments=load_attachments(scenario, parts),
+    return MultibodySystem(parts, Hub(hub.motion, inertia, law, drive),
+                           attachments=load_attachments(scenario, parts) + functions,
                            gravity=np.array(scenario.environment.gravity),
                            damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
                            placement=HubPlacement(hub.position, np.radians(hub.orientation)),
@@ -246,12 +280,12 @@ FREE_FALL_NOTE = ("the base is free: its uniform gravity field is left out of th
                   "(a free body in free fall is not deformed by it)")
 
 
-def equilibrium_system(scenario: Scenario, notes: list | None = None) -> MultibodySystem:
+def equilibrium_system(scenario: Scenario, notes: list | None = None, loads=None) -> MultibodySystem:
     """The system of a scenario for statics, modes and linearize: a free base's uniform gravity
     is removed (the equivalence principle: a body in free fall is not deformed by it), with a
     note in ``notes``. Without the scenario's controllers: statics and modes leave them out (with
     a note), ``linearize`` closes them around the linear model (:func:`linearize`)."""
-    system = build_system(scenario).without_controllers()
+    system = build_system(scenario, loads=loads).without_controllers()
     if scenario.controllers and notes is not None:
         notes.append("the controllers ([[controllers]]) are left out of the equilibrium (and of modes); linearize "
                      "closes them around the linear model unless --open-loop")
@@ -395,12 +429,13 @@ class ModalResult:
         }
 
 
-def static(scenario: Scenario) -> StaticResult:
+def static(scenario: Scenario, loads=None) -> StaticResult:
     """Static equilibrium under gravity and loads, hub held at theta = 0 and a free base at its
-    initial pose (load stepping; a free base's gravity left out: :func:`equilibrium_system`)."""
+    initial pose (load stepping; a free base's gravity left out: :func:`equilibrium_system`).
+    ``loads``: loads from Python functions as :func:`build_system` takes them (at t = 0, at rest)."""
     scenario = as_scenario(scenario)
     notes: list[str] = []
-    system = equilibrium_system(scenario, notes)
+    system = equilibrium_system(scenario, notes, loads)
     return StaticResult(system, solve_static(system, load_steps=scenario.analysis.load_steps), notes)
 
 
@@ -437,8 +472,11 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     loads or, for a hub driven at a constant omega_s, about the steadily rotating state (other
     prescribed profiles: at rest with the hub held). ``inputs``: a list of "hub_torque" (free
     hub, N m, added to the torque law), "joint_torque:BEAM" (N m, in the joint of BEAM, added to
-    its motor law) and "tip_force:BEAM" (N, three components); default: the hub torque of a free
-    hub (the first beam's tip force on a held one) and every joint motor's torque. Outputs: the
+    its motor law), "tip_force:BEAM" (N, three components) and "load:NAME" (three components
+    ``load_NAME_x|y|z``: a force of 1 N/m along the axes of the span load NAME, uniform over
+    its stations, or, for ``load:tip``, of 1 N at the tip of the tip loads' beam; docs/loads.md);
+    default: the hub torque of a free hub (the first beam's tip force on a held one) and every
+    joint motor's torque. Outputs: the
     scenario's sensors (``outputs``: only those columns, in that order). ``open_loop``: leave
     the scenario's torque laws out, the hub's and the joints' motors, and its controllers (the
     plant a controller is designed for); otherwise the controllers ([[controllers]]) are closed
@@ -503,7 +541,7 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     closing = [] if open_loop else list(scenario.controllers)
     extra = [o for c in closing for o in c.outputs if o not in inputs]
     model = linearise(system, equilibrium, omega, list(inputs) + list(dict.fromkeys(extra)), scenario.sensors, about,
-                      progress)
+                      progress, tip_beam=scenario.beam_index(scenario.loads.beam))
     if closing:
         from hubbeam.analysis.state_space import closed_loop
         from hubbeam.io.scenario.controllers import controller_of
@@ -538,11 +576,14 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     return model
 
 
-def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None, state: bool = False):
+def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None, state: bool = False,
+        loads=None):
     """Time integration of a scenario's dynamic analysis with all its settings (step,
     spectral radius, output step, Newton options). ``torque`` replaces the scenario's torque
     law on a free hub (a TorqueLaw, a number of N m or a function torque(t, theta, omega),
-    :func:`torque_argument`; a function takes the slower Python step path); ``sensors`` its
+    :func:`torque_argument`; a function takes the slower Python step path); ``loads`` adds loads
+    per unit length from Python functions f(t, x, position, velocity, frame) -> (force, moment)
+    (:func:`load_function_argument`, docs/loads.md; the Python step path too); ``sensors`` its
     sensors (Sensor objects, tables or names of the scenario's sensors, :func:`with_sensors`);
     ``state=True`` also records the hub angle and every beam's geometry at the
     output times (:class:`hubbeam.snapshots.StateRecorder`; ``hubbeam run --state``). Returns (trajectory, failure): on a ComputationError, failure is that error and
@@ -566,12 +607,14 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     a = scenario.analysis
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
-        system = build_system(scenario, torque)
+        system = build_system(scenario, torque, loads)
         if not system.compiled:  # the one model that cannot integrate in compiled code says so
             import warnings
 
-            warnings.warn(f"{system.hub.torque!r} is a Python function: the run takes the Python step path, "
-                          "several times slower than the compiled laws of a scenario file", stacklevel=2)
+            what = (f"{system.hub.torque!r} is a Python function" if system.hub.torque.function is not None
+                    else "a load is a Python function")
+            warnings.warn(f"{what}: the run takes the Python step path, several times slower than the compiled "
+                          "laws and loads of a scenario file", stacklevel=2)
         recorder = None
         if state:
             from hubbeam.snapshots import StateRecorder

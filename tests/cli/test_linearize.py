@@ -55,6 +55,19 @@ def test_tip_force_inputs_on_a_held_hub():
     assert d["outputs"] == ["tip_radial", "tip_vertical", "tip_tangential"]
 
 
+def test_load_inputs_from_the_command_line():
+    """``--inputs load:NAME,load:tip``: the load channels load_NAME_x|y|z (a span load's force
+    per length, the tip loads' force); an unknown load is exit 2 naming it and the loads there are."""
+    span = ["--set", "loads.span=[{name = 'gust', force = [0.0, -0.01, 0.0]}]"]
+    code, out, err = cli("linearize", EXAMPLES / "cantilever.toml", *SMALL, *span, "--inputs", "load:gust,load:tip",
+                         "--json")
+    assert_contract(code, out, err, json_out=True)
+    assert json.loads(out)["inputs"] == ["load_gust_x", "load_gust_y", "load_gust_z", "load_tip_x", "load_tip_y",
+                                         "load_tip_z"]
+    code, out, err = cli("linearize", EXAMPLES / "cantilever.toml", *SMALL, *span, "--inputs", "load:wind")
+    assert code == 2 and "--inputs: load:wind: no load of that name (loads: tip, gust)" in err
+
+
 def test_bad_input_is_one_line_naming_the_option(tmp_path):
     code, out, err = cli("linearize", EXAMPLES / "cantilever.toml", *SMALL, "--inputs", "hub_torque")
     assert_contract(code, out, err)

@@ -146,10 +146,30 @@ def test_a_span_load_in_time_does_the_work_the_energy_sensor_counts(formulation,
     assert np.max(np.abs(balance)) < 1e-3 * np.max(np.abs(work))
 
 
+def test_constant_tip_loads_do_the_work_the_energy_sensor_counts(tmp_path):
+    """The constant ``[loads]`` tip force and moment on a beam on a free hub (they bend the beam
+    and turn the hub from t = 0): total energy - its start = the drive's work - the dissipated
+    energy. A modal FFR beam (3 modes) integrated without numerical dissipation (spectral radius
+    1), so that the balance closes to the integrator's error (measured 9.8e-8, 3.0e-8, 1.0e-8 J
+    at dt = 2, 1, 0.5 ms against 0.10 J of work); before the tip loads' power entered the
+    drive's work it was off by the whole work. (ANCF beams need numerical dissipation against
+    the high modes that the sudden load excites: there the test below compares the work with
+    that of the same load from a table.)"""
+    data = scenario("ffr", tmp_path, t_end=0.3, tip_force=[0.3, -2.0, 1.5], tip_moment=[0.1, 0.2, -0.4])
+    data["beam"]["modes"] = 3
+    data["analysis"]["spectral_radius"] = 1.0
+    r = run(data, tmp_path)
+    work = r["energy_drive"]
+    balance = r["energy_total"] - r["energy_total"][0] - work + r["energy_dissipated"]
+    assert np.max(np.abs(work)) > 0.05  # the loads do work
+    assert np.max(np.abs(r["omega"])) > 0.1  # and turn the hub
+    assert np.max(np.abs(balance)) < 1e-5 * np.max(np.abs(work))
+
+
 @pytest.mark.parametrize("formulation", ["ancf", "ffr"])
 def test_a_constant_tip_table_runs_as_the_constant_tip_load(formulation, tmp_path):
-    """A tip force from a one-row table and the same constant ``[loads]`` tip force: the same run
-    to round-off (the same generalized force, no load stiffness in either's Newton matrix). With a
+    """A tip force from a one-row table and the same constant ``[loads]`` tip force: the same run,
+    and the same work of the loads in the energy sensor's drive part, to round-off (the same generalized force, no load stiffness in either's Newton matrix). With a
     tip moment too, the same run to Newton's tolerance: the constant ANCF tip moment puts its load
     stiffness into the Newton matrix and the table's does not, so Newton's iterates differ."""
     (tmp_path / "f.csv").write_text("time,fx,fy,fz\n0.0,0.3,-2.0,1.5\n")
@@ -166,3 +186,8 @@ def test_a_constant_tip_table_runs_as_the_constant_tip_load(formulation, tmp_pat
             size = np.max(np.abs(constant[name]))
             assert size > 1e-5
             assert np.max(np.abs(tables[name] - constant[name])) < tolerance, (name, tolerance)
+        # the drive's work: the table's counted by the span loads' power, the constant load's by
+        # its beam's (ancf_drive_power, ffr_drive_power), each from its own generalized force
+        work = np.max(np.abs(constant["energy_drive"]))
+        assert work > 1e-3
+        assert np.max(np.abs(tables["energy_drive"] - constant["energy_drive"])) < 1e-6 * work

@@ -31,7 +31,10 @@ the axis, its reaction on the parent): B_x the unit vector of its angle psi; ``t
 (N): a force at the tip centroid of beam NAME, three inputs along the global x, y, z (about
 steady rotation: the axes of the hub frame, which turn with the hub; at t = 0 they are the
 global ones), its B_x column the difference of the residuals with and without a unit tip force
-(the residual is affine in a dead load, so the difference is exact).
+(the residual is affine in a dead load, so the difference is exact); ``load:NAME`` (N/m): a
+uniform force per unit length along the three axes of the load NAME along the span (its own
+axes: global or its root section frame; :func:`load_columns`), and ``load:tip`` (N) the tip
+force of the tip loads' beam, named ``load_NAME_x|y|z``.
 
 Outputs: the scenario's sensors, each linearised about the equilibrium by central differences
 of the sensor (:mod:`hubbeam.sensors`) along the basis directions: y moves x = x0 + N y, y'
@@ -311,9 +314,11 @@ def _check_fmax(fmax) -> None:
 BASE_TORQUE_INPUTS = ("base_torque_x", "base_torque_y", "base_torque_z")
 
 
-def input_columns(system: MultibodySystem, names, x, v, acc, lam, F) -> tuple[np.ndarray, list[str], list[str]]:
-    """(B_x (nx x m), input names, units) of the inputs ``names``: "hub_torque" (a free hub) and
-    "tip_force:NAME" (three components). ScenarioError ("inputs: ...") for an unknown one."""
+def input_columns(system: MultibodySystem, names, x, v, acc, lam, F, tip_beam: int = 0
+                  ) -> tuple[np.ndarray, list[str], list[str]]:
+    """(B_x (nx x m), input names, units) of the inputs ``names``: "hub_torque" (a free hub),
+    "tip_force:NAME" and "load:NAME" (three components each: :func:`load_columns`; the tip
+    loads' "load:tip" on beam ``tip_beam``). ScenarioError ("inputs: ...") for an unknown one."""
     columns, labels, units = [], [], []
     held = system.hub.held
     for spec in names:
@@ -352,20 +357,70 @@ def input_columns(system: MultibodySystem, names, x, v, acc, lam, F) -> tuple[np
             k = 0 if not beam else (names_.index(beam) if beam in names_ else None)
             if k is None:
                 raise ScenarioError(f"inputs: tip_force:{beam}: no beam of that name (beams: {', '.join(names_)})")
-            base = _forces(system, x, v, acc, lam, F)
-            for i, axis in enumerate(AXES):
-                part = system.beams[k]
-                pushed = replace(part, tip_force=np.asarray(part.tip_force, dtype=float) + np.eye(3)[i])
-                variant = system.with_beams([pushed if j == k else b for j, b in enumerate(system.beams)])
-                columns.append(base - _forces(variant, x, v, acc, lam, F))  # residual is affine in a dead load
+            for axis, column in zip(AXES, _tip_force_columns(system, k, x, v, acc, lam, F)):
+                columns.append(column)
                 labels.append(f"tip_force_{axis}_{system.beams[k].name}")
                 units.append("N")
+        elif kind == "load":
+            for column, label, unit in load_columns(system, beam.strip(), x, v, acc, lam, F, tip_beam):
+                columns.append(column)
+                labels.append(label)
+                units.append(unit)
         else:
-            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque, base_torque_x|y|z, joint_torque:BEAM "
-                                f"or tip_force:BEAM)")
+            raise ScenarioError(f"inputs: unknown input {spec!r} (use hub_torque, base_torque_x|y|z, joint_torque:BEAM, "
+                                f"tip_force:BEAM or load:NAME)")
     if len(set(labels)) != len(labels):
         raise ScenarioError(f"inputs: an input is given twice ({', '.join(map(str, names))})")
     return np.array(columns).T.reshape(system.nx, len(columns)), labels, units
+
+
+#: the name of the tip loads of ``[loads]`` among the load inputs (``load:tip``)
+TIP_LOAD = "tip"
+
+
+def load_columns(system: MultibodySystem, name: str, x, v, acc, lam, F, tip_beam: int = 0) -> list:
+    """The three inputs ``load_NAME_x|y|z`` of the load ``name`` as (B_x column, label, unit):
+    for a load along the span ([[loads.span]] ``name``), a force of 1 N/m along axis x, y or z
+    (the load's axes: global, or its root section frame), uniform over the stations the load
+    acts on (its table's x range; the whole span for a uniform load), whatever the load's own
+    values; for ``tip`` (the tip loads of [loads], on beam ``tip_beam``) a force of 1 N at the
+    tip centroid along the global axis. The column is the difference of the force rows with and
+    without that unit load at (x, v): exact, the residual being affine in an applied load at a
+    given state. ScenarioError ("inputs: ...") for a name that is no load."""
+    from hubbeam.system.span_loads import SpanLoad
+
+    if name == TIP_LOAD:
+        return [(column, f"load_{TIP_LOAD}_{axis}", "N")
+                for axis, column in zip(AXES, _tip_force_columns(system, tip_beam, x, v, acc, lam, F))]
+    # the loads along the span by name (a tip table's load acts at the one station x = L: it is the tip's)
+    spans = {a.name: a for a in system.attachments if isinstance(a, SpanLoad) and a.stations.size > 1}
+    load = spans.get(name)
+    if load is None:
+        raise ScenarioError(f"inputs: load:{name}: no load of that name (loads: "
+                            f"{', '.join([TIP_LOAD] + list(spans))})")
+    base = _forces(system, x, v, acc, lam, F)
+    out = []
+    for i, axis in enumerate(AXES):
+        values = np.zeros((1, load.stations.size, 6))
+        values[0, :, i] = 1.0
+        unit = SpanLoad(load.beam, load.stations, load.weights, [0.0], values, load.section_axes, f"{name}_unit")
+        variant = system.with_attachments(list(system.attachments) + [unit])
+        out.append((base - _forces(variant, x, v, acc, lam, F), f"load_{name}_{axis}", "N/m"))
+    return out
+
+
+def _tip_force_columns(system: MultibodySystem, k: int, x, v, acc, lam, F) -> list[np.ndarray]:
+    """The generalized forces (B_x columns) of a unit force at beam k's tip centroid along the
+    global x, y, z: the force rows without it minus with it (exact: the residual is affine in a
+    dead load)."""
+    base = _forces(system, x, v, acc, lam, F)
+    part = system.beams[k]
+    out = []
+    for i in range(3):
+        pushed = replace(part, tip_force=np.asarray(part.tip_force, dtype=float) + np.eye(3)[i])
+        variant = system.with_beams([pushed if j == k else b for j, b in enumerate(system.beams)])
+        out.append(base - _forces(variant, x, v, acc, lam, F))
+    return out
 
 
 def _forces(system: MultibodySystem, x, v, acc, lam, F) -> np.ndarray:
@@ -394,10 +449,11 @@ def rest_matrices(system: MultibodySystem, x, lam_held, F):
 
 
 def linearise(system: MultibodySystem, equilibrium: StaticSolution, omega: float = 0.0, inputs=("hub_torque",),
-              sensors=(), about: str = "", progress=None) -> LinearModel:
+              sensors=(), about: str = "", progress=None, tip_beam: int = 0) -> LinearModel:
     """The state space of ``system`` about ``equilibrium`` (a ``solve_static`` solution; with
     ``spin=omega`` for a hub driven at the constant speed omega rad/s, then the system's hub is
-    held). ``inputs``: names (see :func:`input_columns`); ``sensors``: a scenario's sensors."""
+    held). ``inputs``: names (see :func:`input_columns`; ``tip_beam`` the beam of the tip loads'
+    ``load:tip``); ``sensors``: a scenario's sensors."""
     held = system.hub.held
     lam = system.lambda_from_held(equilibrium.multipliers, held)
     x0, F = equilibrium.x, equilibrium.chart
@@ -410,7 +466,7 @@ def linearise(system: MultibodySystem, equilibrium: StaticSolution, omega: float
     else:
         v0 = a0 = np.zeros(system.nx)
         M, C, K, A = rest_matrices(system, x0, equilibrium.multipliers, F)
-    Bx, in_names, in_units = input_columns(system, inputs, x0, v0, a0, lam, F)
+    Bx, in_names, in_units = input_columns(system, inputs, x0, v0, a0, lam, F, tip_beam)
     N = null_space(A)
     n, m = N.shape[1], Bx.shape[1]
     Mr, Cr, Kr, Br = N.T @ M @ N, N.T @ C @ N, N.T @ K @ N, N.T @ Bx

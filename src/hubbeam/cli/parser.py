@@ -50,7 +50,8 @@ def build_parser() -> argparse.ArgumentParser:
     lin = scenario_cmd("linearize", "state space (A, B, C, D) about the equilibrium (steady rotation for a "
                                     "constant drive)")
     lin.add_argument("-o", "--output", help="NetCDF file of A, B, C, D")
-    lin.add_argument("--inputs", help="comma-separated: hub_torque, joint_torque:BEAM, tip_force:BEAM (default: "
+    lin.add_argument("--inputs", help="comma-separated: hub_torque, joint_torque:BEAM, tip_force:BEAM, load:NAME (a "
+                                      "span load's force per length, or load:tip) (default: "
                                       "hub_torque on a free hub, the first beam's tip force on a held one, and every "
                                       "joint motor's torque)")
     lin.add_argument("--open-loop", action="store_true", help="leave the scenario's torque laws (the hub's and the "

@@ -418,6 +418,30 @@ def ancf_power(pack, ctx, F, x, v):
     return power
 
 
+def ancf_drive_power(pack, ctx, F, t, x, v, lam):
+    """The power of the constant tip force and tip moment on every ANCF beam (W), Q_tip . q' with
+    Q_tip their generalized force of :func:`applied_load` (the tip moment's through
+    :func:`hubbeam.system.loads.tip_moment_terms`): the drive's work of the energy balance, as
+    the loads along the span count theirs (:func:`hubbeam.system.span_loads.span_load_power`)."""
+    power = 0.0
+    tQ, tJ = np.empty(4), np.empty((4, 3))
+    for k in range(pack.index.shape[0]):
+        force, moment = pack.tip_force[k], pack.tip_moment[k]
+        pushed = force[0] != 0.0 or force[1] != 0.0 or force[2] != 0.0
+        turned = moment[0] != 0.0 or moment[1] != 0.0 or moment[2] != 0.0
+        if not (pushed or turned):
+            continue
+        _, nq, Fk, q, qd = ancf_beam(pack, k, F, x, v)
+        tip = nq - NODE_DOFS
+        for i in range(3):
+            power += force[i] * qd[tip + i]
+        if turned:
+            tip_moment_terms(q[tip + 3 : tip + 6], moment, Fk, tQ, tJ)
+            for i in range(4):
+                power += tQ[i] * qd[tip + 3 + i]
+    return power
+
+
 def ancf_tips(pack, ctx, F, x, out):
     """Each ANCF beam's tip centroid displacement from its undeformed place (the root frame's
     axis carried out to the length), along its reference frame's axes (m)."""
@@ -475,4 +499,4 @@ def ancf_bandwidth(system, layout) -> int:
 
 
 KIND = terms.register(AncfBeams, pack_ancf_beams, ancf_equations, ancf_energies, ancf_power, ancf_tips,
-                      bandwidth=ancf_bandwidth, momenta=ancf_momenta)
+                      bandwidth=ancf_bandwidth, drive_power=ancf_drive_power, momenta=ancf_momenta)

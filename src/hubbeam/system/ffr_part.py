@@ -39,7 +39,8 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ffr.body import FfrBeam
-from hubbeam.elements.ffr.kernels import ffr_dissipated_power, ffr_energies, ffr_momentum, ffr_vspace_terms, tip_lever
+from hubbeam.elements.ffr.kernels import (ffr_dissipated_power, ffr_energies, ffr_momentum, ffr_vspace_terms, tip_lever,
+                                          tip_load_power)
 from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
@@ -571,6 +572,28 @@ def ffr_power(pack, ctx, F, x, v):
     return power
 
 
+def ffr_drive_power(pack, ctx, F, t, x, v, lam):
+    """The power of the constant tip force and tip moment on every FFR beam (W): the drive's
+    work of the energy balance, as the loads along the span count theirs
+    (:func:`hubbeam.system.span_loads.span_load_power`)."""
+    power = 0.0
+    places = pack.places
+    vec = pack.vectors
+    for k in range(places.shape[0]):
+        loaded = False
+        for i in range(3):
+            if vec[k, 1, i] != 0.0 or vec[k, 2, i] != 0.0:  # slots of FFR_GROUPS["vectors"]: tip_force, tip_moment
+                loaded = True
+        if not loaded:
+            continue
+        nf = places[k, NF]
+        x0 = places[k, X0]
+        r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
+        _, tip, _ = ffr_arguments(pack, k, ctx.drag)
+        power += tip_load_power(tip, R, x[x0:x0 + nf], vb)
+    return power
+
+
 def ffr_tips(pack, ctx, F, x, out):
     """Each FFR beam's tip centroid displacement along its reference frame's axes (m)."""
     tip_at = np.empty(3)
@@ -587,4 +610,4 @@ def ffr_tips(pack, ctx, F, x, out):
 
 
 KIND = terms.register(FfrBeams, pack_ffr_beams, ffr_equations, ffr_beam_energies, ffr_power, ffr_tips,
-                      bandwidth=ffr_bandwidth, momenta=ffr_momenta)
+                      bandwidth=ffr_bandwidth, drive_power=ffr_drive_power, momenta=ffr_momenta)

@@ -180,6 +180,7 @@ class MultibodySystem:
         self.frames = Frames(base, placement, self.beams, self.layout)
         self.rigid_bodies = self._rigid_bodies()
         self._models: dict[tuple[bool, bool], SystemModel] = {}
+        self._function_loads: dict[tuple[bool, bool], object] = {}
 
     def _rigid_bodies(self) -> list[RigidBody]:
         """The hub's rotor (its inertia about its axis) and a free base's body."""
@@ -267,6 +268,10 @@ class MultibodySystem:
     def with_beams(self, beams) -> "MultibodySystem":
         """The same system with other beam parts (the same number, each in its place)."""
         return self._with(beams=list(beams))
+
+    def with_attachments(self, attachments) -> "MultibodySystem":
+        """The same system with these parts of other kinds (``attachments``) instead of its own."""
+        return self._with(attachments=tuple(attachments))
 
     def without_controllers(self) -> "MultibodySystem":
         """The same system without its controllers (the plant they close the loop around)."""
@@ -465,8 +470,26 @@ class MultibodySystem:
     def compiled(self) -> bool:
         """Whether the time integration runs in compiled code: every part does; a torque law
         that is a Python function takes the Python step (on a free hub: a held hub ignores its
-        torque law)."""
-        return self.hub.held or self.hub.torque.compilable
+        torque law), as does a load from a Python function (:attr:`load_functions`)."""
+        return (self.hub.held or self.hub.torque.compilable) and not self.load_functions
+
+    @property
+    def load_functions(self) -> list:
+        """The attachments that are loads from Python functions
+        (:class:`hubbeam.system.load_functions.LoadFunction`), evaluated in Python."""
+        from hubbeam.system.load_functions import LoadFunction
+
+        return [a for a in self.attachments if isinstance(a, LoadFunction)]
+
+    def _functions_for(self, held: bool, static: bool):
+        """The :class:`~hubbeam.system.load_functions.FunctionLoads` of the layout (held, static)."""
+        from hubbeam.system.load_functions import FunctionLoads
+
+        key = (bool(held), bool(static) and self.base.moves)
+        if key not in self._function_loads:
+            self._function_loads[key] = FunctionLoads(self, self.layout_for(*key), self.model(*key).context,
+                                                      self.load_functions)
+        return self._function_loads[key]
 
     def model(self, held: bool | None = None, static: bool = False) -> SystemModel:
         """The constants of the compiled equations for the hub held or not (default: its motion)
@@ -517,6 +540,9 @@ class MultibodySystem:
             res[layout.z_of_x[th]] -= coef_k * load_factor * torque
             if want_matrix:
                 matrix.add(layout.z_of_x[th], layout.z_of_x[th], -load_factor * (coef_k * d_theta + coef_c * d_omega))
+        if self.load_functions:  # loads from Python functions (their matrix by differences)
+            self._functions_for(held, static).add(t, x, v, F, coef_c, coef_k, load_factor, want_matrix, res, matrix,
+                                                  layout.z_of_x)
         return res, matrix
 
     def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
@@ -912,6 +938,8 @@ class MultibodySystem:
                                                        x, v, lam)
         if not self.hub.torque.compilable and not self.hub.held:
             drive += self.applied_torque(t, x, v) * float(v[self.layout.theta])
+        if self.load_functions:
+            drive += self._functions_for(self.hub.held, False).power(t, x, v, F)
         return float(dissipated), float(drive)
 
     def tip_position(self, x, beam: int = 0, F=None) -> np.ndarray:

@@ -110,14 +110,15 @@ class SpanLoad:
         return cls(beam, [part.length], [1.0], times, values.reshape(times.size, 1, 6), False, name)
 
 
-def span_stations(part, x_start: float, x_end: float, breaks=()) -> tuple[np.ndarray, np.ndarray]:
-    """Quadrature stations and weights (m) on [x_start, x_end] of a beam part: :data:`PIECE_GAUSS`
+def span_stations(part, x_start: float, x_end: float, breaks=(), gauss: int = PIECE_GAUSS
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """Quadrature stations and weights (m) on [x_start, x_end] of a beam part: ``gauss``
     Gauss points on every piece between its element boundaries and ``breaks``."""
     beam = part.beam
     nodes = np.linspace(0.0, part.length, beam.elements + 1)
     cuts = np.unique(np.concatenate([nodes, np.asarray(breaks, dtype=float), [x_start, x_end]]))
     cuts = cuts[(cuts >= x_start) & (cuts <= x_end)]
-    xi, w = gauss_legendre(PIECE_GAUSS)
+    xi, w = gauss_legendre(gauss)
     a, b = cuts[:-1], cuts[1:]
     keep = b - a > 1e-12 * part.length
     a, b = a[keep], b[keep]
@@ -146,11 +147,15 @@ class SpanLoads(NamedTuple):
 
 def pack_span_loads(system, layout) -> SpanLoads | None:
     """The :class:`SpanLoads` of ``system`` (its attachments of this kind; None without any)."""
+    loads = [a for a in system.attachments if isinstance(a, SpanLoad)]
+    return pack_loads(system, layout, loads) if loads else None
+
+
+def pack_loads(system, layout, loads) -> SpanLoads:
+    """The :class:`SpanLoads` of the :class:`SpanLoad` s ``loads`` on the beams of ``system``
+    placed by ``layout``."""
     from hubbeam.system.ancf_part import AncfPart
 
-    loads = [a for a in system.attachments if isinstance(a, SpanLoad)]
-    if not loads:
-        return None
     nl = len(loads)
     ns = max(a.stations.size for a in loads)
     nt = max(a.times.size for a in loads)

@@ -183,6 +183,23 @@ def _applied_loads(m, Sbar, F, Mo, T, R, length, nf, A, St, p, gravity, factor, 
 
 
 @njit(cache=True, error_model="numpy")
+def tip_load_power(tip, A, p, vb):
+    """The power (W) of the beam's tip force and tip moment, Q_tip . vb: their generalized force
+    on v (:func:`_applied_loads` without gravity, whose work is the potential energy) times the
+    v-space rates vb = [r_C', omega^b, p']; ``tip`` the group of the module docstring, A the body
+    frame, p the elastic coordinates."""
+    F, Mo, T, R, length = tip
+    nf = p.shape[0]
+    Q = np.zeros(6 + nf)
+    zero = np.zeros(3)
+    _applied_loads(0.0, T, F, Mo, T, R, length, nf, A, zero, p, zero, 1.0, Q)
+    power = 0.0
+    for i in range(6 + nf):
+        power += Q[i] * vb[i]
+    return power
+
+
+@njit(cache=True, error_model="numpy")
 def _mass_matrix(m, Sbar, J, Mff, nf, A, St, Q2, R2, Mv):
     """M_v of Eq. 66 (6 + nf square) on v."""
     n = 6 + nf

@@ -83,6 +83,8 @@ class Loads(StrictTable):
         for i, name in enumerate(names):
             if name in names[:i]:
                 raise ValueError(f"span[{i}].name: {name!r} names two span loads")
+            if name == "tip":
+                raise ValueError(f"span[{i}].name: 'tip' names the tip loads (linearize's load:tip); choose another")
         return self
 
     @property
