@@ -218,9 +218,23 @@ def _chunk_tip_deflection(sensor, system):
     return tip
 
 
+def _chunk_base(component):
+    """A base sensor over a chunk of records, the base frame's motion of every record in one
+    compiled call (:meth:`MultibodySystem.base_motions`): ``component`` (r, R, vel, w) -> (n, 3)."""
+    def factory(sensor, system):
+        def measure(chunk):
+            values = component(*system.base_motions(chunk.states.x, chunk.states.v))
+            return [{"x": a, "y": b, "z": c} for a, b, c in values.tolist()]
+        return measure
+    return factory
+
+
 #: sensor kind -> factory(sensor, system) of its measurement over a chunk of records, for the
 #: kinds that read arrays computed for the whole chunk (the others read the records one by one)
 CHUNK_MEASURES = {
+    "base_position": _chunk_base(lambda r, R, vel, w: r),
+    "base_velocity": _chunk_base(lambda r, R, vel, w: vel),
+    "base_angular_velocity": _chunk_base(lambda r, R, vel, w: (R.transpose(0, 2, 1) @ w[:, :, None])[:, :, 0]),
     "surface_strain": _chunk_surface_strain,
     "hub_angle": lambda sensor, system: lambda chunk: chunk.states.x[:, system.theta_index].tolist(),
     "hub_angular_velocity": lambda sensor, system: lambda chunk: chunk.states.v[:, system.theta_index].tolist(),

@@ -71,3 +71,44 @@ def test_the_energy_changes_at_the_rate_of_the_drive_minus_the_dissipated_power(
     scale = abs(drive) + dissipated + np.sqrt(np.mean(v ** 2))
     assert abs(drive) + dissipated > 1e-3  # something does work here
     assert abs(rate - (drive - dissipated)) < 2e-7 * scale  # measured: 3.6e-8 (spacecraft: round-off), others 6e-11
+
+
+@pytest.mark.parametrize("example, overrides", [
+    # a free base (rigid body), an ANCF panel (clamp) and an FFR panel on modes, with tip bodies
+    ("spacecraft3d", ['beams[1].formulation="ffr"', "beams[1].modes=3", "base.initial.angular_velocity=[0.1, 0.3, 0.2]"]),
+    # beams on lag hinges, children on their parents' tips; the second an FFR beam
+    ("articulated", ['beams[1].formulation="ffr"']),
+])
+def test_the_equations_read_no_hessian_that_evaluate_chains_leaves_out(example, overrides):
+    """:func:`hubbeam.system.frames.evaluate_chains` takes a chain's Hessians only where the
+    system marks it (the beams' root frames, the rigid bodies'); every other chain's hess keeps
+    what an earlier evaluation left there. At a moving state, with every chain's hess first
+    filled with garbage, the residual and the Newton matrix are bit for bit those of the same
+    equations with every chain evaluated to order 2: a part that read an unmarked chain's
+    Hessians would read the garbage."""
+    from hubbeam.system.assembly import BorderedBandMatrix
+    from hubbeam.system.equations import system_equations
+
+    system = api.build_system(load_example(example, overrides))
+    state = initial_state(system)
+    rng = np.random.default_rng(3)
+    x, F = state.x + 1e-3 * rng.standard_normal(state.x.size), np.ascontiguousarray(state.chart)
+    v, acc = rng.standard_normal(x.size), rng.standard_normal(x.size)
+    lam = rng.standard_normal(state.lam.size)
+    model = system.model()
+    table = model.context.chains
+    assert 1 in table.orders and 2 in table.orders  # the case has both kinds of chain
+    every = model._replace(context=model.context._replace(chains=table._replace(
+        orders=np.full_like(table.orders, 2), hess=table.hess.copy())))
+    layout = system.layout
+    out = []
+    for m in (model, every):
+        m.context.chains.hess[...] = 1e300  # garbage where no evaluation writes
+        res = np.empty(layout.nz)
+        mat = BorderedBandMatrix.empty(layout.nz, layout.border, m.bandwidth)
+        system_equations(m, F, x, v, acc, lam, 0.1, 1.0, 0.5, 0.3e-6, 1.0, 1.0, False, True, res, mat.ab, mat.brow,
+                         mat.bcol, mat.bb)
+        out.append((res, mat.to_dense()))
+    assert np.all(np.isfinite(out[0][0]))
+    np.testing.assert_array_equal(out[0][0], out[1][0])
+    np.testing.assert_array_equal(out[0][1], out[1][1])

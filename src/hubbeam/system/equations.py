@@ -71,7 +71,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     valid.
     """
     ctx = model.context
-    evaluate_chains(ctx.chains, x, F)
+    evaluate_chains(ctx.chains, x, F, 2)
     for i in range(res.shape[0]):
         res[i] = 0.0
     if want_matrix:
@@ -101,7 +101,7 @@ def step_powers(model, F, t, x, v, lam):
     the parts took stack that the loop's frame never gave back, ~1.3 kB a step, and a chunk of
     ~6000 steps died of SIGSEGV (tests/solvers/test_compiled_alpha.py)."""
     ctx = model.context
-    evaluate_chains(ctx.chains, x, F)
+    evaluate_chains(ctx.chains, x, F, 1)
     dissipated = 0.0
     drive = 0.0
     for pack in literal_unroll(model.parts):
@@ -130,7 +130,7 @@ def beam_energies(model, F, x, v, beams, hub):
     of beam k (its place among all beams; tip bodies in their beam's row), hub = (T, U, V)
     of every part's energy that belongs to no beam (the hub's rotor, the base)."""
     ctx = model.context
-    evaluate_chains(ctx.chains, x, F)
+    evaluate_chains(ctx.chains, x, F, 1)
     beams[:, :] = 0.0
     hub[0] = 0.0
     hub[1] = 0.0
@@ -148,7 +148,7 @@ def tip_displacements(model, F, x, out):
     frame's axes at x (m; radial, along the hub axis, tangential): out[k] for beam k (its
     place among all beams)."""
     ctx = model.context
-    evaluate_chains(ctx.chains, x, F)
+    evaluate_chains(ctx.chains, x, F, 1)
     for pack in literal_unroll(model.parts):
         part_tips(pack, ctx, F, x, out)
 
@@ -158,7 +158,7 @@ def system_momenta(model, F, x, v, out):
     """out (10,) = the system's mass (kg), first moment m r_cm (kg m), linear momentum (N s) and
     angular momentum about the global origin (N m s) at (x, v)."""
     ctx = model.context
-    evaluate_chains(ctx.chains, x, F)
+    evaluate_chains(ctx.chains, x, F, 1)
     for i in range(out.shape[0]):
         out[i] = 0.0
     for pack in literal_unroll(model.parts):

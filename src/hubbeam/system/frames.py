@@ -212,9 +212,12 @@ class ChainTable(NamedTuple):
     hess: np.ndarray  # (n_chains, 2, 3, w, w): Hr, Hw
     work: np.ndarray  # (w, W_WIDTH): scratch of :func:`chain_kinematics_into` for the widest chain
     maps: np.ndarray  # (n,): the FFR tips' rows M (6 x nf, row-major), each from its link's params[1]
+    orders: np.ndarray  # int64 (n_chains,): 2 for a chain whose hess the equations read, else 1 (:func:`evaluate_chains`)
 
     @classmethod
-    def of(cls, chains) -> "ChainTable":
+    def of(cls, chains, second=None) -> "ChainTable":
+        """The table of ``chains``; ``second``: the indices of the chains whose derivatives
+        hess the system's equations read (default every chain's), :func:`evaluate_chains`."""
         links, params, start, columns, cstart, maps = [], [], [0], [], [0], []
         for chain in chains:
             for link in chain.merged().links:
@@ -233,7 +236,8 @@ class ChainTable(NamedTuple):
         return cls(ints(links, (len(links), 3)), np.array(params, dtype=float).reshape(len(params), 13),
                    ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)),
                    np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((w, W_WIDTH)),
-                   np.array(maps, dtype=float))
+                   np.array(maps, dtype=float),
+                   np.array([2 if second is None or k in second else 1 for k in range(n)], dtype=np.int64))
 
     def width(self, k: int) -> int:
         """Number of coordinate columns of chain k."""
@@ -668,13 +672,20 @@ def _tip_blocks(table, P, work, nc, H):
 
 
 @njit(cache=True, _nrt=False)
-def evaluate_chains(table, x, F):
+def evaluate_chains(table, x, F, order):
     """Every chain's kinematics at the coordinates x (charts F) into the table's pose, jac and
     hess: once per evaluation of the system's functions, before its parts read them
-    (:func:`chain_state`). Compiled without numba's reference counting (it allocates nothing):
-    one call per evaluation, no count of the table's arrays per chain."""
+    (:func:`chain_state`). Chain k is evaluated to the order min(``order``, table.orders[k]):
+    its hess only where the system's equations read it (the root frames of beams and the
+    frames of rigid bodies: their velocity products and the clamps' second derivatives;
+    :meth:`hubbeam.system.multibody.Frames.table`); 1 for the functions of the state alone
+    (powers, energies, momenta, tips). The Hessians cost most (case M's 10 frames: 3.0 us
+    to order 2, 0.7 us to order 1, measured); a chain evaluated to order 1 leaves its hess
+    as it was. Compiled without numba's reference counting (it allocates nothing): one call
+    per evaluation, no count of the table's arrays per chain."""
     for k in range(table.start.shape[0] - 1):
-        chain_kinematics_into(table, k, x, F, 2, table.pose[k], table.jac[k], table.hess[k], table.work)
+        chain_kinematics_into(table, k, x, F, min(order, table.orders[k]), table.pose[k], table.jac[k],
+                              table.hess[k], table.work)
 
 
 @njit(cache=True, inline="always")
@@ -790,6 +801,30 @@ def frame_motion(Jr, Jw, Hr, Hw, cols, v, acc_x, vel, w, acc, alpha):
         w[a] = sw
         acc[a] = sa
         alpha[a] = sal
+
+
+@njit(cache=True)
+def chain_motions(table, k, X, V, F, r, R, vel, w):
+    """Chain k's origin r[i] (m), axes R[i], origin velocity vel[i] = Jr c' (m/s) and angular
+    velocity w[i] = Jw c' (rad/s, global) at each state (X[i], V[i]) (charts F): the records of
+    a run at once (a sensor over a chunk of records; one call instead of one per record)."""
+    nc = table.column_start[k + 1] - table.column_start[k]
+    cols = table.columns[table.column_start[k]:table.column_start[k + 1]]
+    P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
+    work = np.empty((nc, W_WIDTH))
+    for s in range(X.shape[0]):
+        chain_kinematics_into(table, k, X[s], F, 1, P, J, H, work)
+        for i in range(3):
+            r[s, i] = P[i, 0]
+            for j in range(3):
+                R[s, i, j] = P[i, 1 + j]
+            sv = 0.0
+            sw = 0.0
+            for c in range(nc):
+                sv += J[0, i, c] * V[s, cols[c]]
+                sw += J[1, i, c] * V[s, cols[c]]
+            vel[s, i] = sv
+            w[s, i] = sw
 
 
 @njit(cache=True)

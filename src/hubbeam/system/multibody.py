@@ -107,6 +107,7 @@ class Frames:
             self._joint.append(self.add(axis))
             self._root.append(self.add(root))
             tips.append(part.tip_frame(layout.beam_x(k).start, k, root))
+        self._second: set[int] = set()  # chains whose Hessians the equations read, besides the roots
         self._table: ChainTable | None = None
 
     def add(self, chain: Chain) -> int:
@@ -131,10 +132,21 @@ class Frames:
         """Beam k's joint frame (a, b, c): its axis frame before its joint and twist."""
         return self._joint[k]
 
+    def needs_hessian(self, index: int) -> int:
+        """Mark chain ``index`` as one whose derivatives Hr, Hw the system's equations read
+        (:func:`hubbeam.system.frames.evaluate_chains` evaluates only those to order 2);
+        returns the index."""
+        self._second.add(index)
+        self._table = None
+        return index
+
     @property
     def table(self) -> ChainTable:
+        """Every chain in arrays; the Hessians of the beams' root frames (their velocity
+        products, the ANCF clamps' second derivatives) and of the chains marked by
+        :meth:`needs_hessian` (the rigid bodies') are evaluated in the equations."""
         if self._table is None:
-            self._table = ChainTable.of(self._chains)
+            self._table = ChainTable.of(self._chains, self._second | set(self._root))
         return self._table
 
     def pose(self, index: int, x, F=None) -> tuple[np.ndarray, np.ndarray]:
@@ -187,12 +199,13 @@ class MultibodySystem:
         bodies = []
         if self.hub.inertia > 0.0:
             J = float(self.hub.inertia)
-            bodies.append(RigidBody("hub", self.frames.hub, 0.0, ((0.0, 0.0, 0.0), (0.0, J, 0.0), (0.0, 0.0, 0.0))))
+            bodies.append(RigidBody("hub", self.frames.needs_hessian(self.frames.hub), 0.0,
+                                    ((0.0, 0.0, 0.0), (0.0, J, 0.0), (0.0, 0.0, 0.0))))
         if self.base.moves and self.base.mass > 0.0:
             from hubbeam.system.frames import constant
 
             chain = self.frames.chain(self.frames.base).then(constant(self.base.centre_of_mass))
-            bodies.append(RigidBody("base", self.frames.add(chain), self.base.mass,
+            bodies.append(RigidBody("base", self.frames.needs_hessian(self.frames.add(chain)), self.base.mass,
                                     tuple(map(tuple, self.base.inertia_matrix()))))
         return bodies
 
@@ -888,6 +901,18 @@ class MultibodySystem:
     def base_motion(self, x, v):
         """The base frame (origin, axes, origin velocity, angular velocity; global) at (x, v)."""
         return self.frames.motion(self.frames.base, x, v)
+
+    def base_motions(self, X, V):
+        """:meth:`base_motion` at each row of X, V (states x nx) in one compiled call: (origins
+        (n, 3), axes (n, 3, 3), origin velocities (n, 3), angular velocities (n, 3); global)."""
+        from hubbeam.system.frames import chain_motions
+
+        X = np.ascontiguousarray(X, dtype=float).reshape(-1, self.nx)
+        V = np.ascontiguousarray(V, dtype=float).reshape(-1, self.nx)
+        n = X.shape[0]
+        r, R, vel, w = np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3))
+        chain_motions(self.frames.table, self.frames.base, X, V, np.zeros((1, 3, 3)), r, R, vel, w)
+        return r, R, vel, w
 
     def base_rotation_vector(self, x) -> np.ndarray:
         """The rotation vector (rad, |phi| <= pi) of the base axes at x."""

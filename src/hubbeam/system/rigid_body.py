@@ -60,6 +60,10 @@ def pack_rigid_bodies(system, layout) -> RigidBodies | None:
     bodies = list(system.rigid_bodies)
     if not bodies:
         return None
+    orders = system.frames.table.orders
+    for b in bodies:  # their velocity products and gravity stiffness read the frame's Hessians
+        if orders[b.chain] < 2:
+            raise ValueError(f"rigid body {b.name!r}: its frame {b.chain} was not marked by Frames.needs_hessian")
     return RigidBodies(np.array([b.chain for b in bodies], dtype=np.int64),
                        np.array([b.mass for b in bodies], dtype=float),
                        np.array([b.inertia_matrix() for b in bodies], dtype=float).reshape(len(bodies), 3, 3))
