@@ -501,9 +501,11 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
             about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
         equilibrium = solve_static(system, load_steps=load_steps)
     closing = [] if open_loop else list(scenario.controllers)
-    extra = [o for c in closing for o in c.outputs if o not in inputs]
-    model = linearise(system, equilibrium, omega, list(inputs) + list(dict.fromkeys(extra)), scenario.sensors, about,
-                      progress)
+    # the controllers' outputs as linearise names its inputs (joint_torque_NAME is "joint_torque:NAME")
+    as_input = lambda o: "joint_torque:" + o[len("joint_torque_"):] if o.startswith("joint_torque_") else o  # noqa: E731
+    extra = list(dict.fromkeys(as_input(o) for c in closing for o in c.outputs if as_input(o) not in inputs))
+    model = linearise(system, equilibrium, omega, list(inputs) + extra, scenario.sensors, about, progress)
+    wanted = model.inputs[:len(model.inputs) - len(extra)]  # every extra input is one column
     if closing:
         from hubbeam.analysis.state_space import closed_loop
         from hubbeam.io.scenario.controllers import controller_of
@@ -514,7 +516,7 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
                 model = closed_loop(model, controller, table.inputs, table.outputs, controller.name)
             except ValueError as exc:
                 raise ScenarioError(f"controllers[{i}]: {exc}") from None
-        model = model.select(inputs=list(inputs))
+        model = model.select(inputs=wanted)
     if outputs is not None:
         try:
             model = model.select(outputs=list(outputs))
@@ -523,7 +525,7 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     model.notes.extend(notes)
     if not system.hub.held:
         needed = -float(equilibrium.multipliers[system.layout_for(True, static=True).drive_lambda])  # the torque that holds it
-        missing = needed - system.applied_torque(0.0, equilibrium.x, np.zeros(system.nx))
+        missing = needed - system.applied_torque(0.0, equilibrium.x, np.zeros(system.nx), equilibrium.chart)
         scale = system.static_force_scale(equilibrium.x, equilibrium.chart) * system.length_scale  # N m
         if abs(missing) > 1e-4 * max(scale, abs(needed)):  # above the discretisation's own small torque
             model.notes.append(f"the free hub is not in equilibrium there: it needs {missing:+.6g} N m more torque "

@@ -679,17 +679,34 @@ class MultibodySystem:
         i = self.layout.drive_lambda
         return float(-lam[i]) if i is not None and lam.shape[0] == self.layout.n_lambda else 0.0
 
-    def applied_torque(self, t: float, x: np.ndarray, v: np.ndarray) -> float:
-        """The free hub's torque law and its controllers' torque at the state (N m); zero for a held hub."""
+    def applied_torque(self, t: float, x: np.ndarray, v: np.ndarray, F=None) -> float:
+        """The free hub's torque law and its controllers' torque at the state (N m; charts F,
+        default the initial ones); zero for a held hub."""
         if self.hub.held:
             return 0.0
         th = self.layout.theta
         torque = float(self.hub.torque(t, x[th], v[th])[0])
-        if self.controllers:
-            from hubbeam.system.controllers import hub_torque, pack_controllers
+        return torque + self.controller_torques(x, v, F)[0]
 
-            torque += hub_torque(pack_controllers(self, self.layout), x[th], v[th], v[self.layout.controllers_x])
-        return torque
+    def controller_torques(self, x, v, F=None) -> tuple[float, dict[int, float], np.ndarray]:
+        """The controllers' torques at (x, v) (charts F, default the initial ones): (on the hub,
+        {beam k: in its joint}, on the base about its axes (3,)) (N m)."""
+        hub, joints, base = 0.0, {}, np.zeros(3)
+        if not self.controllers:
+            return hub, joints, base
+        from hubbeam.system.controller_inputs import OutputKind
+        from hubbeam.system.controllers import controller_values
+
+        F = self.initial_state()[1] if F is None else F
+        _, y, outputs = controller_values(self, x, v, F)
+        for value, out in zip(y, outputs):
+            if out.kind == OutputKind.HUB_TORQUE:
+                hub += float(value)
+            elif out.kind == OutputKind.JOINT_TORQUE:
+                joints[out.beam] = joints.get(out.beam, 0.0) + float(value)
+            else:
+                base[out.axis] += float(value)
+        return hub, joints, base
 
     def energies(self, x, v, F, beam: int | None = None) -> dict[str, float]:
         """Kinetic (rigid bodies and beams, rotary inertia and tip bodies included), strain and
@@ -869,16 +886,18 @@ class MultibodySystem:
 
         return rotation_vector(self.frames.pose(self.frames.base, x)[1])
 
-    def base_torque(self, t, x, v) -> np.ndarray:
-        """A free base's attitude torque (N m, base axes) at the state; zero without a law."""
+    def base_torque(self, t, x, v, F=None) -> np.ndarray:
+        """A free base's attitude torque (N m, base axes) at the state, its controllers' included
+        (charts F, default the initial ones); zero without a law or a controller."""
         from hubbeam.system.base_laws import BaseLaws, attitude_torque
 
         laws = [p for p in self.model().parts if isinstance(p, BaseLaws)]
+        torque = self.controller_torques(x, v, F)[2]
         if not laws:
-            return np.zeros(3)
+            return torque
         _, R, _, w = self.base_motion(x, v)
         e = np.ascontiguousarray(x[self.layout.base_x][3:], dtype=float)
-        return np.array(attitude_torque(laws[0], float(t), e, R.T @ w))
+        return torque + np.array(attitude_torque(laws[0], float(t), e, R.T @ w))
 
     def base_torque_column(self, x, axis: int) -> np.ndarray:
         """The generalized force (on x) of a unit torque on a moving base about its base axis
@@ -910,8 +929,9 @@ class MultibodySystem:
         x, v, lam = (np.ascontiguousarray(u, dtype=float) for u in (x, v, lam))
         dissipated, drive = self.functions.step_powers(self.model(), np.ascontiguousarray(F, dtype=float), float(t),
                                                        x, v, lam)
-        if not self.hub.torque.compilable and not self.hub.held:
-            drive += self.applied_torque(t, x, v) * float(v[self.layout.theta])
+        if not self.hub.torque.compilable and not self.hub.held:  # the controllers' power is compiled
+            th = self.layout.theta
+            drive += float(self.hub.torque(t, x[th], v[th])[0]) * float(v[th])
         return float(dissipated), float(drive)
 
     def tip_position(self, x, beam: int = 0, F=None) -> np.ndarray:

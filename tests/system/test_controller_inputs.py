@@ -1,0 +1,159 @@
+"""Controllers' inputs beyond the hub and outputs on the base and the joints
+(hubbeam.system.controller_inputs, issue 28): each input against the sensor that measures the same
+column, the Newton matrix's controller entries against central differences of the residual, and
+the outputs' power against the energy balance of a run."""
+
+import numpy as np
+import pytest
+
+from hubbeam import api
+from hubbeam.io.scenario import load_example, validate
+from hubbeam.sensors import measure
+from hubbeam.system.controllers import Controllers, controller_values
+
+SENSORS = [
+    {"name": "w", "kind": "base_angular_velocity"},
+    {"name": "psi", "kind": "joint_angle", "beam": "panel_a"},
+    {"name": "psi_dot", "kind": "joint_rate", "beam": "panel_a"},
+    {"name": "eps_a", "kind": "surface_strain", "beam": "panel_a", "x": 0.7, "surface": "upper"},
+    {"name": "eps_b", "kind": "surface_strain", "beam": "panel_b", "x": 0.5, "y": 0.1, "z": 0.002},
+    {"name": "e", "kind": "energy"},
+]
+#: every input form: the base's rate (3), a joint angle and its rates, an ANCF strain and its rate,
+#: an FFR strain (modal, geometrically stiffened: a quadratic form) and its rate
+INPUTS = ["w_x", "w_y", "w_z", "psi", "psi_rate", "psi_dot", "eps_a", "eps_a_rate", "eps_b", "eps_b_rate"]
+OUTPUTS = ["base_torque_x", "base_torque_y", "base_torque_z", "joint_torque_panel_a"]
+
+
+def save(tmp_path, name, A, B, C, D):
+    path = tmp_path / name
+    np.savez(path, A=np.asarray(A, dtype=float), B=np.asarray(B, dtype=float), C=np.asarray(C, dtype=float),
+             D=np.asarray(D, dtype=float))
+    return str(path)
+
+
+def model(tmp_path, scale=1.0, t_end=0.5, base_law=True):
+    """spacecraft3d made small and mixed: panel_a ANCF (2 elements) on a flap joint with a spring,
+    panel_b modal FFR (3 modes, geometric stiffening), a 2-state controller with every input form
+    and every output (``scale`` multiplies B, C, D: 0 gives the same layout without the loop)."""
+    d = load_example("spacecraft3d").to_dict()
+    a, b = d["beams"]
+    a.update(elements=2, joint={"kind": "revolute", "axis": "flap", "stiffness": 400.0, "damping": 0.0})
+    b.update(formulation="ffr", elements=3, modes=3, geometric_stiffening=True)
+    if not base_law:
+        d["base"].pop("torque")
+    d["analysis"].update(t_end=t_end, dt=5e-3)
+    d["sensors"] = SENSORS
+    rng = np.random.default_rng(3)
+    n, m, p = 2, len(INPUTS), len(OUTPUTS)
+    A = np.array([[-3.0, 1.0], [-1.0, -2.0]])
+    B = scale * rng.normal(size=(n, m))
+    C = scale * rng.normal(size=(p, n))
+    D = scale * rng.normal(size=(p, m))
+    D[:, INPUTS.index("eps_a")] *= 100.0  # strains are ~1e-4: a gain that moves something
+    d["controllers"] = [{"name": "k", "file": save(tmp_path, f"k{scale}.npz", A, B, C, D), "inputs": INPUTS,
+                         "outputs": OUTPUTS}]
+    return validate(d, base_dir=tmp_path)
+
+
+def moving_state(system, seed=5):
+    """A state away from rest: the initial one, every coordinate and rate nudged at random (the
+    base's Euler parameters kept on their norm), the charts the initial ones."""
+    x, F = system.initial_state()
+    rng = np.random.default_rng(seed)
+    x = x + 1e-3 * rng.normal(size=x.size)
+    e = system.layout.base_x.start + 3
+    x[e:e + 4] /= np.linalg.norm(x[e:e + 4])
+    v = 0.05 * rng.normal(size=x.size)
+    return x, v, F
+
+
+def residual_jacobians(system, x, v, F, h=1e-7):
+    """(dres/dx, dres/dv) of the force rows by central differences, and the Newton matrix's
+    (coef_k = 1) and (coef_c = 1) parts (dense, z order)."""
+    lam = np.zeros(system.layout.n_lambda)
+    acc = np.zeros_like(x)
+    zx = system.layout.z_of_x
+
+    def res(xx, vv):
+        return system.equations(xx, vv, acc, lam, F, 0.3, 0.0, 0.0, 1.0, 1.0, want_matrix=False)[0]
+
+    Jx, Jv = np.zeros((system.layout.nz, x.size)), np.zeros((system.layout.nz, x.size))
+    for j in range(x.size):
+        d = np.zeros(x.size)
+        d[j] = h
+        Jx[:, j] = (res(x + d, v) - res(x - d, v)) / (2 * h)
+        Jv[:, j] = (res(x, v + d) - res(x, v - d)) / (2 * h)
+    Kx = system.equations(x, v, acc, lam, F, 0.3, 0.0, 0.0, 1.0, 1.0)[1].to_dense()[:, zx]
+    Cv = system.equations(x, v, acc, lam, F, 0.3, 0.0, 1.0, 0.0, 1.0)[1].to_dense()[:, zx]
+    return Jx, Jv, Kx, Cv
+
+
+@pytest.fixture(scope="module")
+def systems(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("ctrl")
+    return tmp, api.build_system(model(tmp)), api.build_system(model(tmp, scale=0.0))
+
+
+def test_each_input_is_its_sensors_value_or_rate(systems):
+    # the compiled inputs against the sensors (hubbeam.sensors: independent Python code); the rates
+    # against a central difference of the sensor along the state's motion (x + s v)
+    from hubbeam.analysis.output_jacobian import Probe
+
+    tmp, system, _ = systems
+    scenario = model(tmp)
+    x, v, F = moving_state(system)
+    u = controller_values(system, x, v, F)[0]
+    columns = {c: s for s in scenario.sensors for c in s.columns}
+
+    def sensor(name, xx, vv):
+        s = columns[name]
+        value = measure(s, system, Probe(0.3, xx, vv, np.zeros(system.layout.n_lambda), F), {})
+        return value[name[len(s.name) + 1:]] if isinstance(value, dict) else value
+
+    h = 1e-6
+    for i, name in enumerate(INPUTS):
+        if name.endswith("_rate"):
+            base = name[:-len("_rate")]
+            expected = (sensor(base, x + h * v, v) - sensor(base, x - h * v, v)) / (2 * h)
+        else:
+            expected = sensor(name, x, v)
+        assert abs(u[i] - expected) < 1e-6 * max(abs(expected), 1e-3), name
+
+
+def test_the_newton_matrix_entries_of_the_loop_are_the_residuals_derivatives(systems):
+    # the controller's entries (the system's less the same system with B = C = D = 0: same layout)
+    # against central differences of the residual, along x (coef_k) and v (coef_c): exact, every
+    # input form and every output (the base torque's db/dx included)
+    _, system, plain = systems
+    x, v, F = moving_state(system)
+    Jx, Jv, Kx, Cv = residual_jacobians(system, x, v, F)
+    Jx0, Jv0, Kx0, Cv0 = residual_jacobians(plain, x, v, F)
+    fd_x, fd_v = Jx - Jx0, Jv - Jv0
+    ours_x, ours_v = Kx - Kx0, Cv - Cv0
+    assert np.max(np.abs(fd_x)) > 1.0 and np.max(np.abs(fd_v)) > 1.0  # the loop is there
+    assert np.max(np.abs(ours_x - fd_x)) < 1e-6 * np.max(np.abs(fd_x))
+    assert np.max(np.abs(ours_v - fd_v)) < 1e-6 * np.max(np.abs(fd_v))
+
+
+def test_the_energy_balance_closes_with_base_and_joint_torques(tmp_path):
+    # a run with only the controller acting on the base and the joint (no attitude law), kicked by
+    # the initial rates: E(t) - E(0) = the drive work (the controller's power) to the integrator's
+    # tolerance; leaving the controller's power out leaves a residual the size of its work
+    scenario = model(tmp_path, scale=20.0, t_end=1.0, base_law=False)
+    d = scenario.to_dict()
+    d["base"]["initial"] = {"angular_velocity": [0.02, -0.03, 0.05]}
+    scenario = validate(d, base_dir=tmp_path)
+    traj, failure = api.run(scenario)
+    assert failure is None
+    r = traj.records["e"]
+    total, drive, dissipated = (np.array([e[p] for e in r]) for p in ("total", "drive", "dissipated"))
+    work = np.max(np.abs(drive - drive[0]))
+    assert work > 1e-3 * np.max(np.abs(total))
+    residual = (total - total[0]) - (drive - drive[0]) + (dissipated - dissipated[0])
+    assert np.max(np.abs(residual)) < 1e-3 * work
+
+
+def test_a_pack_is_built_for_the_controllers(systems):
+    _, system, _ = systems
+    assert any(isinstance(p, Controllers) for p in system.model().parts)
