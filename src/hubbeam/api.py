@@ -188,7 +188,7 @@ def base_of(scenario: Scenario) -> Base:
                 inertia, b.centre_of_mass, table, law)
 
 
-def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> MultibodySystem:
+def build_system(scenario: Scenario, torque: TorqueLaw | None = None, laws=()) -> MultibodySystem:
     """The system a scenario describes: its base, its hub and its beams. ``torque``: a torque law
     that replaces the scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function
     torque(t, theta, omega), which integrates step by step in Python; a number or a bare function
@@ -203,14 +203,15 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None) -> Multibo
     # a hub fixed to a base that moves is part of it: no rotor of its own (a free base's body holds
     # its inertia; on a table base hub.inertia of a fixed hub is unused, as on a fixed base)
     inertia = 0.0 if (base.moves and hub.motion == "fixed") else hub.inertia
-    from hubbeam.io.scenario.controllers import controller_of
+    from hubbeam.io.scenario.controllers import controller_of, law_of
 
     parts = [beam_part(spec, scenario.beam_key(spec.index)) for spec in scenario.resolved_beams()]
     return MultibodySystem(parts, Hub(hub.motion, inertia, law, drive), attachments=load_attachments(scenario, parts),
                            gravity=np.array(scenario.environment.gravity),
                            damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
                            placement=HubPlacement(hub.position, np.radians(hub.orientation)),
-                           controllers=[controller_of(scenario, i) for i in range(len(scenario.controllers))])
+                           controllers=[controller_of(scenario, i) for i in range(len(scenario.controllers))]
+                           + [law_of(scenario, law, i) for i, law in enumerate(laws)])
 
 
 def load_attachments(scenario: Scenario, parts) -> list:
@@ -540,13 +541,18 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     return model
 
 
-def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None, state: bool = False):
+def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None, state: bool = False,
+        laws=None):
     """Time integration of a scenario's dynamic analysis with all its settings (step,
     spectral radius, output step, Newton options). ``torque`` replaces the scenario's torque
     law on a free hub (a TorqueLaw, a number of N m or a function torque(t, theta, omega),
     :func:`torque_argument`; a function takes the slower Python step path); ``sensors`` its
     sensors (Sensor objects, tables or names of the scenario's sensors, :func:`with_sensors`);
-    ``state=True`` also records the hub angle and every beam's geometry at the
+    ``laws``: Python controller laws in the loop beside the scenario's ``[[controllers]]``, each
+    a table {"function": f(t, u) -> y, "inputs": [sensor columns], "outputs": [names as
+    ``[[controllers]]``' outputs], "name": optional}: f receives t (s) and the inputs' current
+    values (an array) and returns the outputs' torques (N m), no states (the Python step path;
+    dy/du by central differences); ``state=True`` also records the hub angle and every beam's geometry at the
     output times (:class:`hubbeam.snapshots.StateRecorder`; ``hubbeam run --state``). Returns (trajectory, failure): on a ComputationError, failure is that error and
     the trajectory holds the results up to it. A run too large to do (steps, records' memory)
     is a ScenarioError before anything is built; an interruption (KeyboardInterrupt,
@@ -568,11 +574,12 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     a = scenario.analysis
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
-        system = build_system(scenario, torque)
+        system = build_system(scenario, torque, list(laws or ()))
         if not system.compiled:  # the one model that cannot integrate in compiled code says so
             import warnings
 
-            warnings.warn(f"{system.hub.torque!r} is a Python function: the run takes the Python step path, "
+            what = f"{system.hub.torque!r} is" if not system.controller_laws else "the controller laws are"
+            warnings.warn(f"{what} a Python function: the run takes the Python step path, "
                           "several times slower than the compiled laws of a scenario file", stacklevel=2)
         recorder = None
         if state:

@@ -226,3 +226,35 @@ def test_strain_rate_feedback_designed_on_the_linear_model_damps_the_run_as_desi
     total, drive = (np.array([e[part] for e in r]) for part in ("total", "drive"))
     swing = np.max(np.abs(total - total[0]))
     assert np.max(np.abs((total - total[0]) - (drive - drive[0]))) < 1e-3 * swing
+
+
+def test_a_python_law_adds_the_same_terms_as_its_static_gain(systems):
+    # A Python law y = D u + C s0 ... here a static gain y = D u (the model's D) given as a function:
+    # its residual and Newton matrix (dy/du by central differences: exact for a linear law up to
+    # round-off) are the linear controller's without states, checked against central differences
+    # of the residual as above; the law's outputs in the sensors are its y
+    tmp, _, plain = systems
+    scenario = model(tmp, scale=0.0)
+    rng = np.random.default_rng(11)
+    D = rng.normal(size=(len(OUTPUTS), len(INPUTS)))
+    D[:, INPUTS.index("eps_a")] *= 100.0
+    calls = []
+
+    def law(t, u):
+        calls.append(t)
+        return D @ u
+
+    system = api.build_system(scenario, laws=[{"function": law, "inputs": INPUTS, "outputs": OUTPUTS}])
+    assert not system.compiled
+    x, v, F = moving_state(system)
+    Jx, Jv, Kx, Cv = residual_jacobians(system, x, v, F)
+    Jx0, Jv0, Kx0, Cv0 = residual_jacobians(plain, x, v, F)
+    assert np.max(np.abs(Jx - Jx0)) > 1.0
+    assert np.max(np.abs((Kx - Kx0) - (Jx - Jx0))) < 1e-6 * np.max(np.abs(Jx - Jx0))
+    assert np.max(np.abs((Cv - Cv0) - (Jv - Jv0))) < 1e-6 * np.max(np.abs(Jv - Jv0))
+    assert calls and set(calls) == {0.3}
+    u = controller_values(systems[1], x, v, F)[0]  # the same inputs, from the compiled controller
+    y = D @ u
+    torques = system.controller_torques(0.3, x, v, F)
+    assert np.allclose(torques[2], y[:3], rtol=1e-12, atol=0.0)
+    assert torques[1] == {0: pytest.approx(y[3], rel=1e-12)}

@@ -102,6 +102,29 @@ class LinearController:
         return self.A.shape[0]
 
 
+@dataclass(frozen=True)
+class ControllerLaw:
+    """A Python controller law y = ``function``(t, u) (p numbers, N m) of its ``inputs`` u (m
+    :class:`ControllerInput`) at time t (s), applied to its ``outputs`` (p
+    :class:`ControllerOutput`): no states. Not compilable: a system with one takes the Python
+    step path, the law's derivatives dy/du by central differences (as a Python torque law's),
+    the inputs' du/dx, du/dv exact (:func:`law_terms`)."""
+
+    function: object
+    inputs: tuple
+    outputs: tuple
+    name: str = "law"
+    states = 0
+
+    def __call__(self, t: float, u) -> np.ndarray:
+        """y (p,) at (t, u); ValueError when the function does not give p finite numbers."""
+        y = np.asarray(self.function(float(t), np.array(u, dtype=float)), dtype=float).reshape(-1)
+        if y.size != len(self.outputs) or not np.all(np.isfinite(y)):
+            raise ValueError(f"controller law {self.name!r}: must return {len(self.outputs)} finite numbers of N m "
+                             f"(got {y!r:.80})")
+        return y
+
+
 class Controllers(NamedTuple):
     """Every controller of a system as one block-diagonal controller (their outputs add), with
     its inputs packed (:func:`~hubbeam.system.controller_inputs.pack_inputs`) and its outputs'
@@ -170,15 +193,30 @@ def output_places(system, layout, outputs) -> tuple[np.ndarray, np.ndarray]:
     return np.array(kinds, dtype=np.int64), np.array(index, dtype=np.int64)
 
 
-def pack_controllers(system, layout) -> Controllers | None:
-    controllers = getattr(system, "controllers", ())
-    if not controllers:
-        return None
-    A, B, C, D, inputs, outputs = combined(controllers)
+def linear_controllers(system) -> list:
+    """The system's :class:`LinearController` (compiled), in order."""
+    return [c for c in getattr(system, "controllers", ()) if isinstance(c, LinearController)]
+
+
+def _pack(system, layout, A, B, C, D, inputs, outputs) -> Controllers:
     form, rate, axis, starts, cols, coef, quad, gauges, width = pack_inputs(system, inputs)
     kinds, index = output_places(system, layout, outputs)
     return Controllers(layout.controllers_x.start, np.ascontiguousarray(A), B, C, D, form, rate, axis, starts, cols,
                        coef, quad, gauges, width, system.frames.base if system.base.moves else -1, kinds, index)
+
+
+def pack_controllers(system, layout) -> Controllers | None:
+    controllers = linear_controllers(system)
+    if not controllers:
+        return None
+    return _pack(system, layout, *combined(controllers))
+
+
+def law_pack(system, layout, law: ControllerLaw) -> Controllers:
+    """A pack of ``law``'s inputs and outputs (no states; D zero: :func:`law_terms` gives dy/du)."""
+    m, p = len(law.inputs), len(law.outputs)
+    return _pack(system, layout, np.zeros((0, 0)), np.zeros((0, m)), np.zeros((p, 0)), np.zeros((p, m)),
+                 list(law.inputs), list(law.outputs))
 
 
 @njit(cache=True)
@@ -209,7 +247,7 @@ def controller_values(system, x, v, F=None) -> tuple[np.ndarray, np.ndarray, lis
     F = system.initial_charts() if F is None else F
     u, y = _controller_outputs(pack, model.context, np.ascontiguousarray(F, dtype=float),
                                np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float))
-    return u, y, combined(system.controllers)[5]
+    return u, y, combined(linear_controllers(system))[5]
 
 
 def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
@@ -218,8 +256,8 @@ def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
     y b on the driven coordinates' rows (module docstring), with their Newton-matrix entries."""
     zx, ku = ctx.z_of_x, ctx.ku
     u, cols, dx, dv, count = input_values(pack, ctx, F, x, v)
-    A, B, C, D, x0 = pack.A, pack.B, pack.C, pack.D, pack.x0
-    n, m, p = A.shape[0], B.shape[1], D.shape[0]
+    A, B, D, x0 = pack.A, pack.B, pack.D, pack.x0
+    n, m = A.shape[0], B.shape[1]
     for j in range(n):
         zw = zx[x0 + j]
         row = acc[x0 + j]
@@ -237,6 +275,20 @@ def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
                         add_entry(ab, brow, bcol, bb, ku, zw, zx[cols[i, r]],
                                   -B[j, i] * (coef_k * dx[i, r] + coef_c * dv[i, r]))
     y = output_values(pack, u, v)
+    apply_outputs(pack, ctx, y, D, cols, dx, dv, count, coef_c, coef_k, load_factor, want_matrix, res, ab, brow, bcol,
+                  bb)
+    return 2.0, 0.0
+
+
+@njit(cache=True)
+def apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, want_matrix, res, ab, brow, bcol,
+                  bb):
+    """-coef_k load_factor y_o b_o on the rows the outputs drive, and the Newton-matrix entries
+    -load_factor (coef_k y_o db_o/dx + coef_c C b_o (the controllers' columns) + b_o J (coef_k
+    du/dx + coef_c du/dv)), J = dy/du (D, or a Python law's differences)."""
+    zx, ku = ctx.z_of_x, ctx.ku
+    C, x0 = pack.C, pack.x0
+    n, m = C.shape[1], J.shape[1]
     has_base = pack.base_chain >= 0
     nbc = 7 if has_base else 1
     base_cols = np.zeros(nbc, dtype=np.int64)
@@ -244,7 +296,7 @@ def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
     dB = np.zeros((3, nbc, nbc))
     if has_base:
         base_cols, b_all, dB = axis_force_columns(ctx, pack.base_chain)
-    for o in range(p):
+    for o in range(y.shape[0]):
         base = pack.out_kind[o] == OutputKind.BASE_TORQUE
         a = pack.out_index[o]
         nrows = base_cols.shape[0] if base else 1
@@ -253,7 +305,7 @@ def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
             bc = b_all[c, a] if base else 1.0
             zr = zx[xc]
             res[zr] -= coef_k * load_factor * y[o] * bc
-            if not want_matrix or (bc == 0.0 and not base):
+            if not want_matrix:
                 continue
             if base:
                 for l in range(nrows):
@@ -261,17 +313,15 @@ def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
             for k in range(n):
                 add_entry(ab, brow, bcol, bb, ku, zr, zx[x0 + k], -load_factor * coef_c * C[o, k] * bc)
             for i in range(m):
-                if D[o, i] != 0.0:
+                if J[o, i] != 0.0:
                     for r in range(count[i]):
                         add_entry(ab, brow, bcol, bb, ku, zr, zx[cols[i, r]],
-                                  -load_factor * bc * D[o, i] * (coef_k * dx[i, r] + coef_c * dv[i, r]))
-    return 2.0, 0.0
+                                  -load_factor * bc * J[o, i] * (coef_k * dx[i, r] + coef_c * dv[i, r]))
 
 
-def controller_drive_power(pack, ctx, F, t, x, v, lam):
-    """The outputs' power y b . v (W): drive work in the energy balance (the chains evaluated at x)."""
-    u = input_values(pack, ctx, F, x, v)[0]
-    y = output_values(pack, u, v)
+@njit(cache=True)
+def output_power(pack, ctx, y, v):
+    """sum_o y_o b_o . v (W): the outputs' power (the chains evaluated at the state)."""
     power = 0.0
     has_base = pack.base_chain >= 0
     for o in range(y.shape[0]):
@@ -284,13 +334,59 @@ def controller_drive_power(pack, ctx, F, t, x, v, lam):
     return power
 
 
+def controller_drive_power(pack, ctx, F, t, x, v, lam):
+    """The outputs' power y b . v (W): drive work in the energy balance (the chains evaluated at x)."""
+    u = input_values(pack, ctx, F, x, v)[0]
+    return output_power(pack, ctx, output_values(pack, u, v), v)
+
+
+@njit(cache=True)
+def law_inputs(pack, ctx, F, x, v):
+    evaluate_chains(ctx.chains, x, F)
+    return input_values(pack, ctx, F, x, v)
+
+
+def law_terms(law: ControllerLaw, pack: Controllers, ctx, F, x, v, t, coef_c, coef_k, load_factor,
+              want_matrix, res, matrix) -> float:
+    """Add a Python law's outputs to the residual ``res`` and the Newton ``matrix`` (as the
+    compiled outputs, :func:`apply_outputs`, with J = dy/du by central differences of the
+    law, steps 1e-6 max(1, |u_i|)); returns their power (W)."""
+    u, cols, dx, dv, count = law_inputs(pack, ctx, F, x, v)
+    y = law(t, u)
+    J = np.zeros((y.size, u.size))
+    if want_matrix:
+        for i in range(u.size):
+            h = 1e-6 * max(1.0, abs(float(u[i])))
+            up, um = u.copy(), u.copy()
+            up[i] += h
+            um[i] -= h
+            J[:, i] = (law(t, up) - law(t, um)) / (2.0 * h)
+    if matrix is None:
+        apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, False, res, np.zeros((1, 1)),
+                      np.zeros((1, 1)), np.zeros((1, 1)), np.zeros((0, 0)))
+    else:
+        apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, want_matrix, res, matrix.ab,
+                      matrix.brow, matrix.bcol, matrix.bb)
+    return float(output_power(pack, ctx, y, v))
+
+
 def controller_bandwidth(system, layout) -> int:
     """Half-bandwidth the controllers' entries need off the border: an output's row (a joint
     angle's, or theta's without a border) and the columns its inputs read through D, or the
     controllers' columns."""
-    pack = pack_controllers(system, layout)
-    if pack is None:
-        return 1
+    width = 1
+    linear = pack_controllers(system, layout)
+    if linear is not None:
+        width = _coupling_width(linear, layout, linear.D)
+    for law in getattr(system, "controllers", ()):
+        if isinstance(law, ControllerLaw):
+            pack = law_pack(system, layout, law)
+            width = max(width, _coupling_width(pack, layout, np.ones_like(pack.D)))
+    return width
+
+
+def _coupling_width(pack, layout, J) -> int:
+    """The half-bandwidth of an output row's entries off the border (J: which outputs read which inputs)."""
     zx = layout.z_of_x
     border = layout.border
     width = 1
@@ -300,8 +396,8 @@ def controller_bandwidth(system, layout) -> int:
             continue  # the base's rows are in the border
         zr = int(zx[pack.out_index[o]])
         reads = [int(zx[pack.x0 + k]) for k in range(pack.A.shape[0]) if pack.C[o, k] != 0.0]
-        for i in range(pack.D.shape[1]):
-            if pack.D[o, i] == 0.0:
+        for i in range(J.shape[1]):
+            if J[o, i] == 0.0:
                 continue
             a, b = pack.starts[i, 0], pack.starts[i + 1, 0]
             if pack.form[i] == 0:

@@ -299,7 +299,7 @@ def joint_torques(system, t: float, x, v, lam, F=None) -> dict[int, np.ndarray]:
     motor and controllers together (charts F, default the initial ones); a locked axis's lock
     reaction -lambda."""
     out = {}
-    controlled = system.controller_torques(x, v, F)[1]
+    controlled = system.controller_torques(t, x, v, F)[1]
     for k, joint, first in beam_joints(system):
         values = np.empty(joint.count)
         for i in range(joint.count):

@@ -180,6 +180,7 @@ class MultibodySystem:
         self.frames = Frames(base, placement, self.beams, self.layout)
         self.rigid_bodies = self._rigid_bodies()
         self._models: dict[tuple[bool, bool], SystemModel] = {}
+        self._laws: dict[tuple[bool, bool], list] = {}
 
     def _rigid_bodies(self) -> list[RigidBody]:
         """The hub's rotor (its inertia about its axis) and a free base's body."""
@@ -466,7 +467,24 @@ class MultibodySystem:
         """Whether the time integration runs in compiled code: every part does; a torque law
         that is a Python function takes the Python step (on a free hub: a held hub ignores its
         torque law)."""
-        return self.hub.held or self.hub.torque.compilable
+        return (self.hub.held or self.hub.torque.compilable) and not self.controller_laws
+
+    @property
+    def controller_laws(self) -> list:
+        """The controllers that are Python laws (:class:`~hubbeam.system.controllers.ControllerLaw`)."""
+        from hubbeam.system.controllers import ControllerLaw
+
+        return [c for c in self.controllers if isinstance(c, ControllerLaw)]
+
+    def _law_packs(self, held: bool, static: bool) -> list:
+        """(law, its pack) of each Python controller law for the layout (held, static), built once."""
+        from hubbeam.system.controllers import law_pack
+
+        key = (bool(held), bool(static))
+        if key not in self._laws:
+            layout = self.layout_for(held, static)
+            self._laws[key] = [(law, law_pack(self, layout, law)) for law in self.controller_laws]
+        return self._laws[key]
 
     def model(self, held: bool | None = None, static: bool = False) -> SystemModel:
         """The constants of the compiled equations for the hub held or not (default: its motion)
@@ -517,6 +535,12 @@ class MultibodySystem:
             res[layout.z_of_x[th]] -= coef_k * load_factor * torque
             if want_matrix:
                 matrix.add(layout.z_of_x[th], layout.z_of_x[th], -load_factor * (coef_k * d_theta + coef_c * d_omega))
+        if self.controller_laws and not static:  # Python controller laws (dy/du by differences)
+            from hubbeam.system.controllers import law_terms
+
+            for law, pack in self._law_packs(held, static):
+                law_terms(law, pack, model.context, F, x, v, t, coef_c, coef_k, load_factor, want_matrix,
+                          res, matrix)
         return res, matrix
 
     def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
@@ -686,20 +710,27 @@ class MultibodySystem:
             return 0.0
         th = self.layout.theta
         torque = float(self.hub.torque(t, x[th], v[th])[0])
-        return torque + self.controller_torques(x, v, F)[0]
+        return torque + self.controller_torques(t, x, v, F)[0]
 
-    def controller_torques(self, x, v, F=None) -> tuple[float, dict[int, float], np.ndarray]:
-        """The controllers' torques at (x, v) (charts F, default the initial ones): (on the hub,
-        {beam k: in its joint}, on the base about its axes (3,)) (N m)."""
+    def controller_torques(self, t, x, v, F=None) -> tuple[float, dict[int, float], np.ndarray]:
+        """The controllers' torques at (t, x, v) (charts F, default the initial ones): (on the
+        hub, {beam k: in its joint}, on the base about its axes (3,)) (N m)."""
         hub, joints, base = 0.0, {}, np.zeros(3)
         if not self.controllers:
             return hub, joints, base
         from hubbeam.system.controller_inputs import OutputKind
-        from hubbeam.system.controllers import controller_values
+        from hubbeam.system.controllers import controller_values, law_inputs, linear_controllers
 
-        F = self.initial_state()[1] if F is None else F
-        _, y, outputs = controller_values(self, x, v, F)
-        for value, out in zip(y, outputs):
+        F = np.ascontiguousarray(self.initial_state()[1] if F is None else F, dtype=float)
+        pairs = []
+        if linear_controllers(self):
+            _, y, outputs = controller_values(self, x, v, F)
+            pairs += list(zip(y, outputs))
+        for law, pack in self._law_packs(self.hub.held, False):
+            u = law_inputs(pack, self.model().context, F, np.ascontiguousarray(x, dtype=float),
+                            np.ascontiguousarray(v, dtype=float))[0]
+            pairs += list(zip(law(t, u), law.outputs))
+        for value, out in pairs:
             if out.kind == OutputKind.HUB_TORQUE:
                 hub += float(value)
             elif out.kind == OutputKind.JOINT_TORQUE:
@@ -892,7 +923,7 @@ class MultibodySystem:
         from hubbeam.system.base_laws import BaseLaws, attitude_torque
 
         laws = [p for p in self.model().parts if isinstance(p, BaseLaws)]
-        torque = self.controller_torques(x, v, F)[2]
+        torque = self.controller_torques(t, x, v, F)[2]
         if not laws:
             return torque
         _, R, _, w = self.base_motion(x, v)
@@ -932,6 +963,13 @@ class MultibodySystem:
         if not self.hub.torque.compilable and not self.hub.held:  # the controllers' power is compiled
             th = self.layout.theta
             drive += float(self.hub.torque(t, x[th], v[th])[0]) * float(v[th])
+        if self.controller_laws:
+            from hubbeam.system.controllers import law_terms
+
+            scratch = np.zeros(self.layout.nz)
+            for law, pack in self._law_packs(self.hub.held, False):
+                drive += law_terms(law, pack, self.model().context, np.ascontiguousarray(F, dtype=float),
+                                   x, v, t, 0.0, 1.0, 1.0, False, scratch, None)
         return float(dissipated), float(drive)
 
     def tip_position(self, x, beam: int = 0, F=None) -> np.ndarray:

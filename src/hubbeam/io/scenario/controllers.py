@@ -26,7 +26,7 @@ from hubbeam.system.controller_inputs import (
     ControllerInput,
     ControllerOutput,
 )
-from hubbeam.system.controllers import LinearController
+from hubbeam.system.controllers import ControllerLaw, LinearController
 
 #: the suffix of an input that is a column's time derivative
 RATE = "_rate"
@@ -140,6 +140,24 @@ def controller_of(scenario, i: int) -> LinearController:
                                 table.name or f"controller{i + 1}")
     except ValueError as exc:
         raise ScenarioError(f"{where}.file: {Path(table.file).name}: {exc}") from None
+
+
+def law_of(scenario, law, i: int) -> ControllerLaw:
+    """The :class:`ControllerLaw` of ``law``, a table {"function": f(t, u) -> y, "inputs": sensor
+    columns, "outputs": output names, "name": optional} (``laws[i]`` in messages: TypeError for a
+    malformed table, ScenarioError naming the key for a column or output the scenario refuses)."""
+    where = f"laws[{i}]"
+    if not isinstance(law, dict) or not callable(law.get("function")) or set(law) - {"function", "inputs", "outputs",
+                                                                                        "name"}:
+        raise TypeError(f"{where}: a table {{'function': f(t, u), 'inputs': [...], 'outputs': [...]}} (got "
+                        f"{law!r:.80})")
+    inputs, outputs = law.get("inputs"), law.get("outputs")
+    for key, names in (("inputs", inputs), ("outputs", outputs)):
+        if not isinstance(names, (list, tuple)) or not names or not all(isinstance(n, str) for n in names):
+            raise TypeError(f"{where}.{key}: a non-empty list of names (got {names!r:.80})")
+    specs = [_input_of(scenario, c, f"{where}.inputs[{j}]") for j, c in enumerate(inputs)]
+    places = [_output_of(scenario, n, f"{where}.outputs[{j}]") for j, n in enumerate(outputs)]
+    return ControllerLaw(law["function"], tuple(specs), tuple(places), str(law.get("name", f"law{i + 1}")))
 
 
 def check_controllers(scenario) -> None:
