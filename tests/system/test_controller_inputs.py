@@ -258,3 +258,17 @@ def test_a_python_law_adds_the_same_terms_as_its_static_gain(systems):
     torques = system.controller_torques(0.3, x, v, F)
     assert np.allclose(torques[2], y[:3], rtol=1e-12, atol=0.0)
     assert torques[1] == {0: pytest.approx(y[3], rel=1e-12)}
+
+
+def test_linearize_closes_a_loop_on_the_base_and_a_joint(systems):
+    # the controller's outputs base_torque_x|y|z and joint_torque_panel_a become inputs of the plant
+    # for the closing (linearize's name joint_torque:panel_a), then are left out: the closed model
+    # has the plant's inputs and the controller's 2 states, and its A differs from the plant's
+    tmp = systems[0]
+    scenario = model(tmp)
+    closed = api.linearize(scenario, inputs=["base_torque_x"])
+    plant = api.linearize(scenario, inputs=["base_torque_x"], open_loop=True)
+    assert closed.inputs == plant.inputs == ["base_torque_x"]
+    assert closed.A.shape[0] == plant.A.shape[0] + 2
+    assert closed.states[-2:] == ["k_s1", "k_s2"]
+    assert np.max(np.abs(closed.A[:plant.A.shape[0], :plant.A.shape[0]] - plant.A)) > 1e-3 * np.max(np.abs(plant.A))
