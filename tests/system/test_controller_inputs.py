@@ -271,4 +271,4 @@ def test_linearize_closes_a_loop_on_the_base_and_a_joint(systems):
     assert closed.inputs == plant.inputs == ["base_torque_x"]
     assert closed.A.shape[0] == plant.A.shape[0] + 2
     assert closed.states[-2:] == ["k_s1", "k_s2"]
-    assert np.max(np.abs(closed.A[:plant.A.shape[0], :plant.A.shape[0]] - plant.A)) > 1e-3 * np.max(np.abs(plant.A))
+    assert np.max(np.abs(closed.A[:plant.A.shape[0], :plant.A.shape[0]] - plant.A)) > 1.0  # the loop's D (measured 193)
