@@ -218,13 +218,14 @@ def load_function_argument(loads, scenario: Scenario) -> list:
     return out
 
 
-def build_system(scenario: Scenario, torque: TorqueLaw | None = None, loads=None) -> MultibodySystem:
+def build_system(scenario: Scenario, torque: TorqueLaw | None = None, loads=None, laws=()) -> MultibodySystem:
     """The system a scenario describes: its base, its hub and its beams. ``torque``: a torque law
     that replaces the scenario's (e.g. ``TorqueLaw.callable(f)`` for a Python function
     torque(t, theta, omega), which integrates step by step in Python; a number or a bare function
     is taken as :func:`torque_argument` says; a free hub only). ``loads``: loads per unit length
     from Python functions f(t, x, position, velocity, frame) (:func:`load_function_argument`,
     docs/loads.md), added to the scenario's; they too integrate step by step in Python.
+    ``laws``: Python controller laws beside the scenario's ``[[controllers]]`` (:func:`run`).
     ``scenario``: a Scenario or a scenario file's path."""
     scenario = as_scenario(scenario)
     torque = torque_argument(torque, scenario)
@@ -236,7 +237,7 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None, loads=None
     # a hub fixed to a base that moves is part of it: no rotor of its own (a free base's body holds
     # its inertia; on a table base hub.inertia of a fixed hub is unused, as on a fixed base)
     inertia = 0.0 if (base.moves and hub.motion == "fixed") else hub.inertia
-    from hubbeam.io.scenario.controllers import controller_of
+    from hubbeam.io.scenario.controllers import controller_of, law_of
 
     parts = [beam_part(spec, scenario.beam_key(spec.index)) for spec in scenario.resolved_beams()]
     return MultibodySystem(parts, Hub(hub.motion, inertia, law, drive),
@@ -244,7 +245,8 @@ def build_system(scenario: Scenario, torque: TorqueLaw | None = None, loads=None
                            gravity=np.array(scenario.environment.gravity),
                            damping=(scenario.damping.linear, scenario.damping.quadratic), base=base,
                            placement=HubPlacement(hub.position, np.radians(hub.orientation)),
-                           controllers=[controller_of(scenario, i) for i in range(len(scenario.controllers))])
+                           controllers=[controller_of(scenario, i) for i in range(len(scenario.controllers))]
+                           + [law_of(scenario, law, i) for i, law in enumerate(laws)])
 
 
 def load_attachments(scenario: Scenario, parts) -> list:
@@ -539,9 +541,12 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
             about += f" with the hub held at rest (profile {system.drive.kind!r} does not turn steadily)"
         equilibrium = solve_static(system, load_steps=load_steps)
     closing = [] if open_loop else list(scenario.controllers)
-    extra = [o for c in closing for o in c.outputs if o not in inputs]
-    model = linearise(system, equilibrium, omega, list(inputs) + list(dict.fromkeys(extra)), scenario.sensors, about,
-                      progress, tip_beam=scenario.beam_index(scenario.loads.beam))
+    # the controllers' outputs as linearise names its inputs (joint_torque_NAME is "joint_torque:NAME")
+    as_input = lambda o: "joint_torque:" + o[len("joint_torque_"):] if o.startswith("joint_torque_") else o  # noqa: E731
+    extra = list(dict.fromkeys(as_input(o) for c in closing for o in c.outputs if as_input(o) not in inputs))
+    model = linearise(system, equilibrium, omega, list(inputs) + extra, scenario.sensors, about, progress,
+                      tip_beam=scenario.beam_index(scenario.loads.beam))
+    wanted = model.inputs[:len(model.inputs) - len(extra)]  # every extra input is one column
     if closing:
         from hubbeam.analysis.state_space import closed_loop
         from hubbeam.io.scenario.controllers import controller_of
@@ -552,7 +557,7 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
                 model = closed_loop(model, controller, table.inputs, table.outputs, controller.name)
             except ValueError as exc:
                 raise ScenarioError(f"controllers[{i}]: {exc}") from None
-        model = model.select(inputs=list(inputs))
+        model = model.select(inputs=wanted)
     if outputs is not None:
         try:
             model = model.select(outputs=list(outputs))
@@ -561,7 +566,7 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
     model.notes.extend(notes)
     if not system.hub.held:
         needed = -float(equilibrium.multipliers[system.layout_for(True, static=True).drive_lambda])  # the torque that holds it
-        missing = needed - system.applied_torque(0.0, equilibrium.x, np.zeros(system.nx))
+        missing = needed - system.applied_torque(0.0, equilibrium.x, np.zeros(system.nx), equilibrium.chart)
         scale = system.static_force_scale(equilibrium.x, equilibrium.chart) * system.length_scale  # N m
         if abs(missing) > 1e-4 * max(scale, abs(needed)):  # above the discretisation's own small torque
             model.notes.append(f"the free hub is not in equilibrium there: it needs {missing:+.6g} N m more torque "
@@ -577,7 +582,7 @@ def linearize(scenario: Scenario, inputs=None, open_loop: bool = False, outputs=
 
 
 def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sensors=None, state: bool = False,
-        loads=None):
+        loads=None, laws=None):
     """Time integration of a scenario's dynamic analysis with all its settings (step,
     spectral radius, output step, Newton options). ``torque`` replaces the scenario's torque
     law on a free hub (a TorqueLaw, a number of N m or a function torque(t, theta, omega),
@@ -585,7 +590,11 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     per unit length from Python functions f(t, x, position, velocity, frame) -> (force, moment)
     (:func:`load_function_argument`, docs/loads.md; the Python step path too); ``sensors`` its
     sensors (Sensor objects, tables or names of the scenario's sensors, :func:`with_sensors`);
-    ``state=True`` also records the hub angle and every beam's geometry at the
+    ``laws``: Python controller laws in the loop beside the scenario's ``[[controllers]]``, each
+    a table {"function": f(t, u) -> y, "inputs": [sensor columns], "outputs": [names as
+    ``[[controllers]]``' outputs], "name": optional}: f receives t (s) and the inputs' current
+    values (an array) and returns the outputs' torques (N m), no states (the Python step path;
+    dy/du by central differences); ``state=True`` also records the hub angle and every beam's geometry at the
     output times (:class:`hubbeam.snapshots.StateRecorder`; ``hubbeam run --state``). Returns (trajectory, failure): on a ComputationError, failure is that error and
     the trajectory holds the results up to it. A run too large to do (steps, records' memory)
     is a ScenarioError before anything is built; an interruption (KeyboardInterrupt,
@@ -607,12 +616,13 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     a = scenario.analysis
     newton = NewtonOptions(tolerance=a.tolerance, update=NEWTON_UPDATES[a.newton])
     try:
-        system = build_system(scenario, torque, loads)
+        system = build_system(scenario, torque, loads, list(laws or ()))
         if not system.compiled:  # the one model that cannot integrate in compiled code says so
             import warnings
 
-            what = (f"{system.hub.torque!r} is a Python function" if system.hub.torque.function is not None
-                    else "a load is a Python function")
+            what = ("the controller laws are Python functions" if system.controller_laws
+                    else "a load is a Python function" if system.load_functions
+                    else f"{system.hub.torque!r} is a Python function")
             warnings.warn(f"{what}: the run takes the Python step path, several times slower than the compiled "
                           "laws and loads of a scenario file", stacklevel=2)
         recorder = None

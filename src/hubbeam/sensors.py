@@ -6,6 +6,7 @@ it names one) measure the beam their ``beam`` key names (default: the first).
 
 from __future__ import annotations
 
+from hubbeam.system.controller_inputs import gauge_point
 from hubbeam.system.joints import joint_torques
 from hubbeam.system.multibody import MultibodySystem, energy_sums
 
@@ -48,12 +49,7 @@ def _beam(sensor, system: MultibodySystem) -> int:
 def section_point(sensor, system: MultibodySystem) -> tuple[float, float]:
     """(y, z) of a strain gauge on the section axes of its station: 'upper' is z = +h/2 (the face
     whose normal is +n), h the thickness at the station."""
-    h = system.beams[_beam(sensor, system)].section_size(sensor.x)[1]
-    if sensor.surface == "upper":
-        return 0.0, h / 2
-    if sensor.surface == "lower":
-        return 0.0, -h / 2
-    return sensor.y, sensor.z
+    return gauge_point(system, _beam(sensor, system), sensor.x, sensor.surface, sensor.y, sensor.z)
 
 
 def _energy(sensor, system):
@@ -124,7 +120,8 @@ def _joint_coordinate(which: str):
 
 def _joint_torque(sensor, system):
     joint, _, k = _joint(sensor, system)
-    return lambda state, work: _joint_values(joint, joint_torques(system, state.t, state.x, state.v, state.lam)[k])
+    return lambda state, work: _joint_values(joint, joint_torques(system, state.t, state.x, state.v, state.lam,
+                                                                  state.chart)[k])
 
 
 def _vector(measure):
@@ -156,12 +153,13 @@ MEASURES = {
     "centre_of_mass": _vector(lambda system, st: system.momenta(st.x, st.v, st.chart)["centre_of_mass"]),
     "linear_momentum": _vector(lambda system, st: system.momenta(st.x, st.v, st.chart)["linear"]),
     "system_angular_momentum": _vector(_system_angular_momentum),
-    "base_torque": _vector(lambda system, st: system.base_torque(st.t, st.x, st.v)),
+    "base_torque": _vector(lambda system, st: system.base_torque(st.t, st.x, st.v, st.chart)),
     "surface_strain": _surface_strain,
     "hub_angle": lambda sensor, system: lambda state, work: float(state.x[system.theta_index]),
     "hub_angular_velocity": lambda sensor, system: lambda state, work: float(state.v[system.theta_index]),
     "hub_torque": lambda sensor, system: lambda state, work: system.drive_torque(state.lam),
-    "applied_torque": lambda sensor, system: lambda state, work: system.applied_torque(state.t, state.x, state.v),
+    "applied_torque": lambda sensor, system: lambda state, work: system.applied_torque(state.t, state.x, state.v,
+                                                                                          state.chart),
     "tip_deflection": _tip_deflection,
     "energy": _energy,
     "angular_momentum": lambda sensor, system: lambda state, work: system.angular_momentum(state.x, state.v,

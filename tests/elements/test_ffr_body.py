@@ -168,3 +168,17 @@ def test_stiffened_elastic_force_and_tangent_are_derivatives_of_the_energy():
     stretch = np.zeros(beam.ndof)
     stretch[0::6] = 1e-4 * np.arange(1, 4)
     assert beam.elastic(stretch)[0] == pytest.approx(linear.elastic(stretch)[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("stiffening, modes", [(False, None), (True, None), (True, 3)])
+def test_the_strain_polynomial_is_the_surface_strain(stiffening, modes):
+    """c . p + p^T Q p / 2 of strain_polynomial is surface_strain at random states (nodal and
+    modal, with and without the stiffened element-mean strain, whose Q is not zero)."""
+    extra = {} if modes is None else {"modes": modes}
+    beam = FfrBeam(L, 3, plate(), geometric_stiffening=stiffening, **extra)
+    rng = np.random.default_rng(2)
+    c, Q = beam.strain_polynomial(0.61, 0.01, -0.002)
+    assert (np.max(np.abs(Q)) > 0.0) == stiffening
+    for _ in range(3):
+        p = 0.05 * rng.normal(size=beam.ndof)
+        assert c @ p + 0.5 * p @ Q @ p == pytest.approx(beam.surface_strain(p, 0.61, 0.01, -0.002), rel=1e-12)

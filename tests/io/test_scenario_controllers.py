@@ -50,6 +50,8 @@ def refused(path) -> str:
     ("unsupported sensor", "controllers[0].inputs[0]", "not supported as a controller input"),
     ("unknown output", "controllers[0].outputs[0]", "not a supported output"),
     ("held hub", "controllers[0].outputs[0]", "needs a free hub"),
+    ("fixed base", "controllers[0].outputs[0]", "base_torque_y needs a free base"),
+    ("clamped beam", "controllers[0].outputs[0]", "is not on a single-axis joint"),
     ("not a matrix file", "controllers[0].file", ".npz or NetCDF"),
     ("non-finite gain", "controllers[0].file", "D[0, 0] is nan"),
     ("infinite state matrix", "controllers[0].file", "A[0, 0] is inf"),
@@ -77,6 +79,10 @@ def test_a_bad_controller_table_is_exit_2_naming_its_key(tmp_path, case, key, wo
     elif case == "held hub":
         motion = "fixed"
         table["inputs"] = ["c_theta"]
+    elif case == "fixed base":
+        table["outputs"] = ["base_torque_y"]
+    elif case == "clamped beam":
+        table["outputs"] = ["joint_torque_panel_b"]
     elif case == "non-finite gain":
         table["file"] = gain(tmp_path, D=((float("nan"),),))
     elif case == "infinite state matrix":
@@ -94,3 +100,13 @@ def test_a_rate_of_the_hub_angle_is_an_input(tmp_path):
     path = write(tmp_path, {"file": gain(tmp_path), "inputs": ["c_theta_rate"], "outputs": ["hub_torque"]})
     scenario = load_scenario(str(path))
     assert scenario.controllers[0].inputs == ["c_theta_rate"]
+
+
+def test_no_output_overwrites_a_controllers_file(tmp_path):
+    """A controller's matrices are an input of the scenario, as its CSV tables: `linearize -o k.npz`
+    onto the file the controller reads is exit 2, and the file is kept."""
+    path = write(tmp_path, {"file": gain(tmp_path), "inputs": ["c_omega"], "outputs": ["hub_torque"]})
+    before = (tmp_path / "k.npz").read_bytes()
+    code, out, err = cli("linearize", path, "-o", tmp_path / "k.npz")
+    assert code == 2 and "matrices of controllers[0].file" in err and len(err.strip().splitlines()) == 1, err
+    assert (tmp_path / "k.npz").read_bytes() == before

@@ -68,6 +68,7 @@ def load(args):
     for line in dropped:
         say(f"hubbeam: note: {line}")
     args.tables = [(f"table of {key}", path) for _, key, path in table_files(scenario)]
+    args.tables += [(f"matrices of controllers[{i}].file", c.file) for i, c in enumerate(scenario.controllers)]
     return scenario
 
 

@@ -1,6 +1,6 @@
 """Linear time-invariant controllers in the loop: the kind "controllers".
 
-A controller (:class:`LinearController`) reads m sensor inputs u and applies p torques y:
+A controller (:class:`LinearController`) reads m inputs u and applies p torques y:
 
     s' = A s + B u,    y = C s + D u,    s(0) = 0
 
@@ -16,25 +16,22 @@ controller's equation is a force row of that coordinate,
     coef_k (w'' - A w' - B u(x, v)) = 0,
 
 a "mass" I, a "damping" -A and no stiffness. Its Newton-matrix entries are coef_m I - coef_c A
-on the controller's own columns and -coef_k B du/dx - coef_c B du/dv on the coordinates the
-inputs read; its output adds -coef_k y on the rows of the coordinates it drives, with
--coef_c C on the controller's columns and -coef_k D du/dx - coef_c D du/dv. This is exact:
+on the controller's own columns and -B (coef_k du/dx + coef_c du/dv) on the coordinates the
+inputs read; an output y_o adds -coef_k y_o b_o(x) to the rows of the coordinates it drives
+(b_o its generalized force per unit torque), with -coef_k y_o db_o/dx, -coef_c C b_o on the
+controller's columns and -b_o D (coef_k du/dx + coef_c du/dv). This is exact:
 generalized-alpha's update of the rates, v_{n+1} = v_n + h (1 - gamma) a_n + h gamma a_{n+1}
 with its algorithmic acceleration a, is the generalized-alpha method for first-order systems
 (Jansen, Whiting and Hulbert 2000) applied to s' = A s + B u, second-order accurate, with the
 equations enforced at t_{n+1} as the structure's; no extra approximation enters.
 
-**Inputs** (:data:`INPUTS`): the hub angle theta, its rate (``hub_angle`` with ``_rate``) and
-the hub's angular velocity theta' (``hub_angular_velocity``). A ``_rate`` of the angular
-velocity would read the acceleration: not allowed (:data:`ACCELERATION_RATES`).
-**Outputs** (:data:`OUTPUTS`): ``hub_torque``, a torque on a free hub's angle about -j_h in
-the sense of theta, added to its torque law. Its power y theta' is drive work in the energy
-balance (:func:`controller_drive_power`).
+**Inputs and outputs**: :mod:`hubbeam.system.controller_inputs` (the sensors a controller
+reads, with their exact derivatives; the hub, joint and base torques it applies). The
+outputs' power y_o b_o . v is drive work in the energy balance (:func:`controller_drive_power`).
 """
 
 from __future__ import annotations
 
-import enum
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -43,33 +40,15 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-
-
-class ControllerInput(enum.IntEnum):
-    """What an input reads (the members are what compiled code compares)."""
-
-    HUB_ANGLE = 0  # theta (rad)
-    HUB_SPEED = 1  # theta' (rad/s)
-
-
-class ControllerOutput(enum.IntEnum):
-    """Where an output acts."""
-
-    HUB_TORQUE = 0  # N m on theta (free hub)
-
-
-#: (sensor kind, is a ``_rate``) -> the input it gives
-INPUTS = {
-    ("hub_angle", False): ControllerInput.HUB_ANGLE,
-    ("hub_angle", True): ControllerInput.HUB_SPEED,
-    ("hub_angular_velocity", False): ControllerInput.HUB_SPEED,
-}
-#: sensor kinds whose time derivative reads the accelerations (or the multipliers)
-ACCELERATION_RATES = frozenset({"hub_angular_velocity", "hub_torque", "applied_torque", "base_velocity",
-                                "base_angular_velocity", "linear_momentum", "system_angular_momentum",
-                                "angular_momentum", "base_torque", "energy"})
-#: output names -> where they act
-OUTPUTS = {"hub_torque": ControllerOutput.HUB_TORQUE}
+from hubbeam.system.controller_inputs import (
+    ControllerInput,
+    ControllerOutput,
+    OutputKind,
+    axis_force_columns,
+    input_values,
+    pack_inputs,
+)
+from hubbeam.system.frames import evaluate_chains
 
 
 @dataclass(frozen=True)
@@ -109,24 +88,65 @@ class LinearController:
             if not np.all(np.isfinite(value)):
                 raise ValueError(f"{key}: every entry must be finite")
             object.__setattr__(self, key, np.ascontiguousarray(value))
-        object.__setattr__(self, "inputs", tuple(ControllerInput(i) for i in self.inputs))
-        object.__setattr__(self, "outputs", tuple(ControllerOutput(o) for o in self.outputs))
+        for value in self.inputs:
+            if not isinstance(value, ControllerInput):
+                raise ValueError(f"inputs: ControllerInput values, got {value!r}")
+        for value in self.outputs:
+            if not isinstance(value, ControllerOutput):
+                raise ValueError(f"outputs: ControllerOutput values, got {value!r}")
+        object.__setattr__(self, "inputs", tuple(self.inputs))
+        object.__setattr__(self, "outputs", tuple(self.outputs))
 
     @property
     def states(self) -> int:
         return self.A.shape[0]
 
 
+@dataclass(frozen=True)
+class ControllerLaw:
+    """A Python controller law y = ``function``(t, u) (p numbers, N m) of its ``inputs`` u (m
+    :class:`ControllerInput`) at time t (s), applied to its ``outputs`` (p
+    :class:`ControllerOutput`): no states. Not compilable: a system with one takes the Python
+    step path, the law's derivatives dy/du by central differences (as a Python torque law's),
+    the inputs' du/dx, du/dv exact (:func:`law_terms`)."""
+
+    function: object
+    inputs: tuple
+    outputs: tuple
+    name: str = "law"
+    states = 0
+
+    def __call__(self, t: float, u) -> np.ndarray:
+        """y (p,) at (t, u); ValueError when the function does not give p finite numbers."""
+        y = np.asarray(self.function(float(t), np.array(u, dtype=float)), dtype=float).reshape(-1)
+        if y.size != len(self.outputs) or not np.all(np.isfinite(y)):
+            raise ValueError(f"controller law {self.name!r}: must return {len(self.outputs)} finite numbers of N m "
+                             f"(got {y!r:.80})")
+        return y
+
+
 class Controllers(NamedTuple):
-    """Every controller of a system as one block-diagonal controller (their outputs add)."""
+    """Every controller of a system as one block-diagonal controller (their outputs add), with
+    its inputs packed (:func:`~hubbeam.system.controller_inputs.pack_inputs`) and its outputs'
+    places."""
 
     x0: int  # the first controller coordinate in x
     A: np.ndarray  # (n, n)
     B: np.ndarray  # (n, m)
     C: np.ndarray  # (p, n)
     D: np.ndarray  # (p, m)
-    inputs: np.ndarray  # int64 (m,): ControllerInput
-    outputs: np.ndarray  # int64 (p,): ControllerOutput
+    form: np.ndarray  # int64 (m,): InputForm
+    rate: np.ndarray  # int64 (m,): 1 for a rate
+    axis: np.ndarray  # int64 (m,): a base input's component, an ANCF input's gauge
+    starts: np.ndarray  # int64 (m + 1, 2): each input's columns in cols/coef and its form in quad
+    cols: np.ndarray  # int64: the polynomial inputs' columns in x
+    coef: np.ndarray  # their linear coefficients
+    quad: np.ndarray  # their quadratic forms, row-major
+    gauges: tuple  # the ANCF gauges (where, S, dS, d2S, section)
+    width: int  # the most columns an input reads
+    base_chain: int  # the base frame's chain (-1: the base does not move)
+    out_kind: np.ndarray  # int64 (p,): OutputKind
+    out_index: np.ndarray  # int64 (p,): the x index of a hub or joint output's coordinate; a base output's axis
 
 
 def combined(controllers) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, list, list]:
@@ -146,52 +166,98 @@ def combined(controllers) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarra
         C[k:k + pi, i:i + ni] = c.C
         D[k:k + pi, j:j + mi] = c.D
         i, j, k = i + ni, j + mi, k + pi
-    inputs = [int(u) for c in controllers for u in c.inputs]
-    outputs = [int(y) for c in controllers for y in c.outputs]
+    inputs = [u for c in controllers for u in c.inputs]
+    outputs = [y for c in controllers for y in c.outputs]
     return A.reshape(n, n), B, C, D, inputs, outputs
 
 
+def output_places(system, layout, outputs) -> tuple[np.ndarray, np.ndarray]:
+    """(kind, index) of each output (:attr:`Controllers.out_kind`, :attr:`Controllers.out_index`);
+    ValueError for an output the system cannot take."""
+    kinds, index = [], []
+    for out in outputs:
+        if out.kind == OutputKind.HUB_TORQUE:
+            if layout.held:
+                raise ValueError("hub_torque: the hub is held (a controller's hub torque needs a free hub)")
+            index.append(layout.theta)
+        elif out.kind == OutputKind.JOINT_TORQUE:
+            joint = system.beams[out.beam].mount.joint
+            if joint is None or joint.count != 1:
+                raise ValueError(f"joint_torque_{system.beams[out.beam].name}: needs a beam on a single-axis joint")
+            index.append(layout.joint_x(out.beam).start)
+        else:
+            if not system.base.moves or system.base.table is not None:
+                raise ValueError("base_torque_x|y|z: needs a free base")
+            index.append(out.axis)
+        kinds.append(int(out.kind))
+    return np.array(kinds, dtype=np.int64), np.array(index, dtype=np.int64)
+
+
+def linear_controllers(system) -> list:
+    """The system's :class:`LinearController` (compiled), in order."""
+    return [c for c in getattr(system, "controllers", ()) if isinstance(c, LinearController)]
+
+
+def _pack(system, layout, A, B, C, D, inputs, outputs) -> Controllers:
+    form, rate, axis, starts, cols, coef, quad, gauges, width = pack_inputs(system, inputs)
+    kinds, index = output_places(system, layout, outputs)
+    return Controllers(layout.controllers_x.start, np.ascontiguousarray(A), B, C, D, form, rate, axis, starts, cols,
+                       coef, quad, gauges, width, system.frames.base if system.base.moves else -1, kinds, index)
+
+
 def pack_controllers(system, layout) -> Controllers | None:
-    controllers = getattr(system, "controllers", ())
+    controllers = linear_controllers(system)
     if not controllers:
         return None
-    A, B, C, D, inputs, outputs = combined(controllers)
-    return Controllers(layout.controllers_x.start, np.ascontiguousarray(A), B, C, D,
-                       np.array(inputs, dtype=np.int64), np.array(outputs, dtype=np.int64))
+    return _pack(system, layout, *combined(controllers))
+
+
+def law_pack(system, layout, law: ControllerLaw) -> Controllers:
+    """A pack of ``law``'s inputs and outputs (no states; D zero: :func:`law_terms` gives dy/du)."""
+    m, p = len(law.inputs), len(law.outputs)
+    return _pack(system, layout, np.zeros((0, 0)), np.zeros((0, m)), np.zeros((p, 0)), np.zeros((p, m)),
+                 list(law.inputs), list(law.outputs))
 
 
 @njit(cache=True)
-def input_values(pack, theta, omega):
-    """(u, du/dtheta, du/dtheta') of the inputs (compiled where called)."""
-    m = pack.inputs.shape[0]
-    u, du_x, du_v = np.zeros(m), np.zeros(m), np.zeros(m)
-    for i in range(m):
-        if pack.inputs[i] == ControllerInput.HUB_ANGLE:
-            u[i] = theta
-            du_x[i] = 1.0
-        else:
-            u[i] = omega
-            du_v[i] = 1.0
-    return u, du_x, du_v
+def output_values(pack, u, v):
+    """y = C w' + D u (N m) of every output."""
+    A, C, D, x0 = pack.A, pack.C, pack.D, pack.x0
+    y = np.zeros(D.shape[0])
+    for o in range(D.shape[0]):
+        for k in range(A.shape[0]):
+            y[o] += C[o, k] * v[x0 + k]
+        for i in range(D.shape[1]):
+            y[o] += D[o, i] * u[i]
+    return y
 
 
-def hub_torque(pack: Controllers, theta: float, omega: float, rates: np.ndarray) -> float:
-    """The controllers' torque on the hub (N m) at theta (rad), theta' (rad/s) and their states
-    ``rates`` (the rates of their coordinates)."""
-    u = input_values(pack, theta, omega)[0]
-    y = pack.C @ rates + pack.D @ u
-    return float(np.sum(y[pack.outputs == ControllerOutput.HUB_TORQUE]))
+@njit(cache=True)
+def _controller_outputs(pack, ctx, F, x, v):
+    evaluate_chains(ctx.chains, x, F)
+    u = input_values(pack, ctx, F, x, v)[0]
+    return u, output_values(pack, u, v)
+
+
+def controller_values(system, x, v, F=None) -> tuple[np.ndarray, np.ndarray, list]:
+    """(u, y, outputs): the controllers' inputs, their outputs' torques (N m) and the outputs
+    (:class:`ControllerOutput`) at (x, v) (charts F, default the beams' initial ones)."""
+    model = system.model()
+    pack = next(p for p in model.parts if isinstance(p, Controllers))
+    F = system.initial_charts() if F is None else F
+    u, y = _controller_outputs(pack, model.context, np.ascontiguousarray(F, dtype=float),
+                               np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float))
+    return u, y, combined(linear_controllers(system))[5]
 
 
 def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
                          exact_stiffness, want_matrix, res, ab, brow, bcol, bb):
-    """The controllers' rows coef_k (w'' - A w' - B u) and their outputs' -coef_k load_factor y
-    on the driven coordinates' rows (module docstring), with their Newton-matrix entries."""
+    """The controllers' rows coef_k (w'' - A w' - B u) and their outputs' -coef_k load_factor
+    y b on the driven coordinates' rows (module docstring), with their Newton-matrix entries."""
     zx, ku = ctx.z_of_x, ctx.ku
-    z_theta = zx[ctx.theta]
-    u, du_x, du_v = input_values(pack, x[ctx.theta], v[ctx.theta])
-    A, B, C, D, x0 = pack.A, pack.B, pack.C, pack.D, pack.x0
-    n, m, p = A.shape[0], B.shape[1], D.shape[0]
+    u, cols, dx, dv, count = input_values(pack, ctx, F, x, v)
+    A, B, D, x0 = pack.A, pack.B, pack.D, pack.x0
+    n, m = A.shape[0], B.shape[1]
     for j in range(n):
         zw = zx[x0 + j]
         row = acc[x0 + j]
@@ -203,41 +269,146 @@ def controller_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
         if want_matrix:
             for k in range(n):
                 add_entry(ab, brow, bcol, bb, ku, zw, zx[x0 + k], (coef_m if j == k else 0.0) - coef_c * A[j, k])
-            g = 0.0
             for i in range(m):
-                g += B[j, i] * (coef_k * du_x[i] + coef_c * du_v[i])
-            add_entry(ab, brow, bcol, bb, ku, zw, z_theta, -g)
-    for o in range(p):
-        y = 0.0
-        for k in range(n):
-            y += C[o, k] * v[x0 + k]
-        for i in range(m):
-            y += D[o, i] * u[i]
-        # every output is ControllerOutput.HUB_TORQUE: on theta's row
-        res[z_theta] -= coef_k * load_factor * y
-        if want_matrix:
-            for k in range(n):
-                add_entry(ab, brow, bcol, bb, ku, z_theta, zx[x0 + k], -load_factor * coef_c * C[o, k])
-            g = 0.0
-            for i in range(m):
-                g += D[o, i] * (coef_k * du_x[i] + coef_c * du_v[i])
-            add_entry(ab, brow, bcol, bb, ku, z_theta, z_theta, -load_factor * g)
+                if B[j, i] != 0.0:
+                    for r in range(count[i]):
+                        add_entry(ab, brow, bcol, bb, ku, zw, zx[cols[i, r]],
+                                  -B[j, i] * (coef_k * dx[i, r] + coef_c * dv[i, r]))
+    y = output_values(pack, u, v)
+    apply_outputs(pack, ctx, y, D, cols, dx, dv, count, coef_c, coef_k, load_factor, want_matrix, res, ab, brow, bcol,
+                  bb)
     return 2.0, 0.0
 
 
-def controller_drive_power(pack, ctx, F, t, x, v, lam):
-    """The outputs' power y theta' (W): drive work in the energy balance."""
-    u, _, _ = input_values(pack, x[ctx.theta], v[ctx.theta])
-    A, C, D, x0 = pack.A, pack.C, pack.D, pack.x0
+@njit(cache=True)
+def apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, want_matrix, res, ab, brow, bcol,
+                  bb):
+    """-coef_k load_factor y_o b_o on the rows the outputs drive, and the Newton-matrix entries
+    -load_factor (coef_k y_o db_o/dx + coef_c C b_o (the controllers' columns) + b_o J (coef_k
+    du/dx + coef_c du/dv)), J = dy/du (D, or a Python law's differences)."""
+    zx, ku = ctx.z_of_x, ctx.ku
+    C, x0 = pack.C, pack.x0
+    n, m = C.shape[1], J.shape[1]
+    has_base = pack.base_chain >= 0
+    nbc = 7 if has_base else 1
+    base_cols = np.zeros(nbc, dtype=np.int64)
+    b_all = np.zeros((nbc, 3))
+    dB = np.zeros((3, nbc, nbc))
+    if has_base:
+        base_cols, b_all, dB = axis_force_columns(ctx, pack.base_chain)
+    for o in range(y.shape[0]):
+        base = pack.out_kind[o] == OutputKind.BASE_TORQUE
+        a = pack.out_index[o]
+        nrows = base_cols.shape[0] if base else 1
+        for c in range(nrows):
+            xc = base_cols[c] if base else a
+            bc = b_all[c, a] if base else 1.0
+            zr = zx[xc]
+            res[zr] -= coef_k * load_factor * y[o] * bc
+            if not want_matrix:
+                continue
+            if base:
+                for l in range(nrows):
+                    add_entry(ab, brow, bcol, bb, ku, zr, zx[base_cols[l]], -load_factor * coef_k * y[o] * dB[a, c, l])
+            for k in range(n):
+                add_entry(ab, brow, bcol, bb, ku, zr, zx[x0 + k], -load_factor * coef_c * C[o, k] * bc)
+            for i in range(m):
+                if J[o, i] != 0.0:
+                    for r in range(count[i]):
+                        add_entry(ab, brow, bcol, bb, ku, zr, zx[cols[i, r]],
+                                  -load_factor * bc * J[o, i] * (coef_k * dx[i, r] + coef_c * dv[i, r]))
+
+
+@njit(cache=True)
+def output_power(pack, ctx, y, v):
+    """sum_o y_o b_o . v (W): the outputs' power (the chains evaluated at the state)."""
     power = 0.0
-    for o in range(D.shape[0]):
-        y = 0.0
-        for k in range(A.shape[0]):
-            y += C[o, k] * v[x0 + k]
-        for i in range(D.shape[1]):
-            y += D[o, i] * u[i]
-        power += y * v[ctx.theta]
+    has_base = pack.base_chain >= 0
+    for o in range(y.shape[0]):
+        if pack.out_kind[o] == OutputKind.BASE_TORQUE and has_base:
+            cb, b, dB = axis_force_columns(ctx, pack.base_chain)
+            for c in range(cb.shape[0]):
+                power += y[o] * b[c, pack.out_index[o]] * v[cb[c]]
+        else:
+            power += y[o] * v[pack.out_index[o]]
     return power
 
 
-KIND = terms.register(Controllers, pack_controllers, controller_equations, drive_power=controller_drive_power)
+def controller_drive_power(pack, ctx, F, t, x, v, lam):
+    """The outputs' power y b . v (W): drive work in the energy balance (the chains evaluated at x)."""
+    u = input_values(pack, ctx, F, x, v)[0]
+    return output_power(pack, ctx, output_values(pack, u, v), v)
+
+
+@njit(cache=True)
+def law_inputs(pack, ctx, F, x, v):
+    evaluate_chains(ctx.chains, x, F)
+    return input_values(pack, ctx, F, x, v)
+
+
+def law_terms(law: ControllerLaw, pack: Controllers, ctx, F, x, v, t, coef_c, coef_k, load_factor,
+              want_matrix, res, matrix) -> float:
+    """Add a Python law's outputs to the residual ``res`` and the Newton ``matrix`` (as the
+    compiled outputs, :func:`apply_outputs`, with J = dy/du by central differences of the
+    law, steps 1e-6 max(1, |u_i|)); returns their power (W)."""
+    u, cols, dx, dv, count = law_inputs(pack, ctx, F, x, v)
+    y = law(t, u)
+    J = np.zeros((y.size, u.size))
+    if want_matrix:
+        for i in range(u.size):
+            h = 1e-6 * max(1.0, abs(float(u[i])))
+            up, um = u.copy(), u.copy()
+            up[i] += h
+            um[i] -= h
+            J[:, i] = (law(t, up) - law(t, um)) / (2.0 * h)
+    if matrix is None:
+        apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, False, res, np.zeros((1, 1)),
+                      np.zeros((1, 1)), np.zeros((1, 1)), np.zeros((0, 0)))
+    else:
+        apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, want_matrix, res, matrix.ab,
+                      matrix.brow, matrix.bcol, matrix.bb)
+    return float(output_power(pack, ctx, y, v))
+
+
+def controller_bandwidth(system, layout) -> int:
+    """Half-bandwidth the controllers' entries need off the border: an output's row (a joint
+    angle's, or theta's without a border) and the columns its inputs read through D, or the
+    controllers' columns."""
+    width = 1
+    linear = pack_controllers(system, layout)
+    if linear is not None:
+        width = _coupling_width(linear, layout, linear.D)
+    for law in getattr(system, "controllers", ()):
+        if isinstance(law, ControllerLaw):
+            pack = law_pack(system, layout, law)
+            width = max(width, _coupling_width(pack, layout, np.ones_like(pack.D)))
+    return width
+
+
+def _coupling_width(pack, layout, J) -> int:
+    """The half-bandwidth of an output row's entries off the border (J: which outputs read which inputs)."""
+    zx = layout.z_of_x
+    border = layout.border
+    width = 1
+    where = pack.gauges[0]
+    for o in range(pack.D.shape[0]):
+        if pack.out_kind[o] == OutputKind.BASE_TORQUE:
+            continue  # the base's rows are in the border
+        zr = int(zx[pack.out_index[o]])
+        reads = [int(zx[pack.x0 + k]) for k in range(pack.A.shape[0]) if pack.C[o, k] != 0.0]
+        for i in range(J.shape[1]):
+            if J[o, i] == 0.0:
+                continue
+            a, b = pack.starts[i, 0], pack.starts[i + 1, 0]
+            if pack.form[i] == 0:
+                reads += [int(zx[c]) for c in pack.cols[a:b]]
+            elif pack.form[i] == 2:
+                reads += [int(zx[where[pack.axis[i], 1] + j]) for j in range(16)]
+        for zc in reads:
+            if zr >= border and zc >= border:
+                width = max(width, abs(zr - zc))
+    return width
+
+
+KIND = terms.register(Controllers, pack_controllers, controller_equations, drive_power=controller_drive_power,
+                      bandwidth=controller_bandwidth)

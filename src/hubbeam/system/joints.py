@@ -300,10 +300,12 @@ KIND = terms.register(JointLaws, pack_joint_laws, joint_equations, joint_energie
 
 
 # ================================================================ Python: what the sensors and the latch read
-def joint_torques(system, t: float, x, v, lam) -> dict[int, np.ndarray]:
-    """{beam k: the torque on the beam about each of its joint's axes (N m)}: spring, damper and
-    motor together; a locked axis's lock reaction -lambda."""
+def joint_torques(system, t: float, x, v, lam, F=None) -> dict[int, np.ndarray]:
+    """{beam k: the torque on the beam about each of its joint's axes (N m)}: spring, damper,
+    motor and controllers together (charts F, default the initial ones); a locked axis's lock
+    reaction -lambda."""
     out = {}
+    controlled = system.controller_torques(t, x, v, F)[1]
     for k, joint, first in beam_joints(system):
         values = np.empty(joint.count)
         for i in range(joint.count):
@@ -312,7 +314,8 @@ def joint_torques(system, t: float, x, v, lam) -> dict[int, np.ndarray]:
                 values[i] = -float(lam[system.layout.lock_lambda(k).start])
                 continue
             motor = joint.torque(t, psi - joint.initial_angle[i], rate)[0] if joint.torque is not None else 0.0
-            values[i] = -joint.stiffness[i] * (psi - joint.neutral[i]) - joint.damping[i] * rate + motor
+            values[i] = -joint.stiffness[i] * (psi - joint.neutral[i]) - joint.damping[i] * rate + motor \
+                + controlled.get(k, 0.0)
         out[k] = values
     return out
 

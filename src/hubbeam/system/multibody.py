@@ -193,6 +193,7 @@ class MultibodySystem:
         self.rigid_bodies = self._rigid_bodies()
         self._models: dict[tuple[bool, bool], SystemModel] = {}
         self._function_loads: dict[tuple[bool, bool], object] = {}
+        self._laws: dict[tuple[bool, bool], list] = {}
 
     def _rigid_bodies(self) -> list[RigidBody]:
         """The hub's rotor (its inertia about its axis) and a free base's body."""
@@ -483,8 +484,9 @@ class MultibodySystem:
     def compiled(self) -> bool:
         """Whether the time integration runs in compiled code: every part does; a torque law
         that is a Python function takes the Python step (on a free hub: a held hub ignores its
-        torque law), as does a load from a Python function (:attr:`load_functions`)."""
-        return (self.hub.held or self.hub.torque.compilable) and not self.load_functions
+        torque law), as does a load from a Python function (:attr:`load_functions`) or a Python
+        controller law (:attr:`controller_laws`)."""
+        return (self.hub.held or self.hub.torque.compilable) and not self.load_functions and not self.controller_laws
 
     @property
     def load_functions(self) -> list:
@@ -503,6 +505,23 @@ class MultibodySystem:
             self._function_loads[key] = FunctionLoads(self, self.layout_for(*key), self.model(*key).context,
                                                       self.load_functions)
         return self._function_loads[key]
+
+    @property
+    def controller_laws(self) -> list:
+        """The controllers that are Python laws (:class:`~hubbeam.system.controllers.ControllerLaw`)."""
+        from hubbeam.system.controllers import ControllerLaw
+
+        return [c for c in self.controllers if isinstance(c, ControllerLaw)]
+
+    def _law_packs(self, held: bool, static: bool) -> list:
+        """(law, its pack) of each Python controller law for the layout (held, static), built once."""
+        from hubbeam.system.controllers import law_pack
+
+        key = (bool(held), bool(static))
+        if key not in self._laws:
+            layout = self.layout_for(held, static)
+            self._laws[key] = [(law, law_pack(self, layout, law)) for law in self.controller_laws]
+        return self._laws[key]
 
     def model(self, held: bool | None = None, static: bool = False) -> SystemModel:
         """The constants of the compiled equations for the hub held or not (default: its motion)
@@ -556,6 +575,12 @@ class MultibodySystem:
         if self.load_functions:  # loads from Python functions (their matrix by differences)
             self._functions_for(held, static).add(t, x, v, F, coef_c, coef_k, load_factor, want_matrix, res, matrix,
                                                   layout.z_of_x)
+        if self.controller_laws and not static:  # Python controller laws (dy/du by differences)
+            from hubbeam.system.controllers import law_terms
+
+            for law, pack in self._law_packs(held, static):
+                law_terms(law, pack, model.context, F, x, v, t, coef_c, coef_k, load_factor, want_matrix,
+                          res, matrix)
         return res, matrix
 
     def dynamic_residual(self, x, v, acc, lam, F, t, coef_k, scale):
@@ -718,17 +743,41 @@ class MultibodySystem:
         i = self.layout.drive_lambda
         return float(-lam[i]) if i is not None and lam.shape[0] == self.layout.n_lambda else 0.0
 
-    def applied_torque(self, t: float, x: np.ndarray, v: np.ndarray) -> float:
-        """The free hub's torque law and its controllers' torque at the state (N m); zero for a held hub."""
+    def applied_torque(self, t: float, x: np.ndarray, v: np.ndarray, F=None) -> float:
+        """The free hub's torque law and its controllers' torque at the state (N m; charts F,
+        default the initial ones); zero for a held hub."""
         if self.hub.held:
             return 0.0
         th = self.layout.theta
         torque = float(self.hub.torque(t, x[th], v[th])[0])
-        if self.controllers:
-            from hubbeam.system.controllers import hub_torque, pack_controllers
+        return torque + self.controller_torques(t, x, v, F)[0]
 
-            torque += hub_torque(pack_controllers(self, self.layout), x[th], v[th], v[self.layout.controllers_x])
-        return torque
+    def controller_torques(self, t, x, v, F=None) -> tuple[float, dict[int, float], np.ndarray]:
+        """The controllers' torques at (t, x, v) (charts F, default the initial ones): (on the
+        hub, {beam k: in its joint}, on the base about its axes (3,)) (N m)."""
+        hub, joints, base = 0.0, {}, np.zeros(3)
+        if not self.controllers:
+            return hub, joints, base
+        from hubbeam.system.controller_inputs import OutputKind
+        from hubbeam.system.controllers import controller_values, law_inputs, linear_controllers
+
+        F = np.ascontiguousarray(self.initial_state()[1] if F is None else F, dtype=float)
+        pairs = []
+        if linear_controllers(self):
+            _, y, outputs = controller_values(self, x, v, F)
+            pairs += list(zip(y, outputs))
+        for law, pack in self._law_packs(self.hub.held, False):
+            u = law_inputs(pack, self.model().context, F, np.ascontiguousarray(x, dtype=float),
+                            np.ascontiguousarray(v, dtype=float))[0]
+            pairs += list(zip(law(t, u), law.outputs))
+        for value, out in pairs:
+            if out.kind == OutputKind.HUB_TORQUE:
+                hub += float(value)
+            elif out.kind == OutputKind.JOINT_TORQUE:
+                joints[out.beam] = joints.get(out.beam, 0.0) + float(value)
+            else:
+                base[out.axis] += float(value)
+        return hub, joints, base
 
     def energies(self, x, v, F, beam: int | None = None) -> dict[str, float]:
         """Kinetic (rigid bodies and beams, rotary inertia and tip bodies included), strain and
@@ -920,16 +969,18 @@ class MultibodySystem:
 
         return rotation_vector(self.frames.pose(self.frames.base, x)[1])
 
-    def base_torque(self, t, x, v) -> np.ndarray:
-        """A free base's attitude torque (N m, base axes) at the state; zero without a law."""
+    def base_torque(self, t, x, v, F=None) -> np.ndarray:
+        """A free base's attitude torque (N m, base axes) at the state, its controllers' included
+        (charts F, default the initial ones); zero without a law or a controller."""
         from hubbeam.system.base_laws import BaseLaws, attitude_torque
 
         laws = [p for p in self.model().parts if isinstance(p, BaseLaws)]
+        torque = self.controller_torques(t, x, v, F)[2]
         if not laws:
-            return np.zeros(3)
+            return torque
         _, R, _, w = self.base_motion(x, v)
         e = np.ascontiguousarray(x[self.layout.base_x][3:], dtype=float)
-        return np.array(attitude_torque(laws[0], float(t), e, R.T @ w))
+        return torque + np.array(attitude_torque(laws[0], float(t), e, R.T @ w))
 
     def base_torque_column(self, x, axis: int) -> np.ndarray:
         """The generalized force (on x) of a unit torque on a moving base about its base axis
@@ -961,8 +1012,16 @@ class MultibodySystem:
         x, v, lam = (np.ascontiguousarray(u, dtype=float) for u in (x, v, lam))
         dissipated, drive = self.functions.step_powers(self.model(), np.ascontiguousarray(F, dtype=float), float(t),
                                                        x, v, lam)
-        if not self.hub.torque.compilable and not self.hub.held:
-            drive += self.applied_torque(t, x, v) * float(v[self.layout.theta])
+        if not self.hub.torque.compilable and not self.hub.held:  # the controllers' power is compiled
+            th = self.layout.theta
+            drive += float(self.hub.torque(t, x[th], v[th])[0]) * float(v[th])
+        if self.controller_laws:
+            from hubbeam.system.controllers import law_terms
+
+            scratch = np.zeros(self.layout.nz)
+            for law, pack in self._law_packs(self.hub.held, False):
+                drive += law_terms(law, pack, self.model().context, np.ascontiguousarray(F, dtype=float),
+                                   x, v, t, 0.0, 1.0, 1.0, False, scratch, None)
         if self.load_functions:
             drive += self._functions_for(self.hub.held, False).power(t, x, v, F)
         return float(dissipated), float(drive)

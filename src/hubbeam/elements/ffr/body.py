@@ -437,6 +437,16 @@ class FfrBeam:
             eps0 = P @ axial
         return eps0 + P @ bending
 
+    def strain_polynomial(self, x: float, y: float, z: float) -> tuple[np.ndarray, np.ndarray]:
+        """(c, Q) with :meth:`surface_strain` eps(p) = c . p + p^T Q p / 2 at the station x and
+        section point (y, z) (Q = 0 without geometric stiffening; with it, the element-mean
+        strain's second-order part): what a controller that reads the strain needs."""
+        e, axial, bending = self._station_rows(x, y, z)
+        if not self.geometric_stiffening:
+            return axial + bending, np.zeros((axial.size, axial.size))
+        t = self.centre_line_table
+        return t["mean_stretch"][e] + bending, np.array(t["mean_slope2"][e], dtype=float)
+
     def strain_row(self, x: float, y: float, z: float) -> np.ndarray:
         """The row of eps = u0' - y_b v0'' - z_b w0'' (the linear FFR fibre strain) over p, (y, z) on the
         local section axes as in :meth:`surface_strain`."""
