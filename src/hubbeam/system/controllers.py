@@ -234,7 +234,7 @@ def output_values(pack, u, v):
 
 @njit(cache=True)
 def _controller_outputs(pack, ctx, F, x, v):
-    evaluate_chains(ctx.chains, x, F)
+    evaluate_chains(ctx.chains, x, F, 2)
     u = input_values(pack, ctx, F, x, v)[0]
     return u, output_values(pack, u, v)
 
@@ -342,7 +342,7 @@ def controller_drive_power(pack, ctx, F, t, x, v, lam):
 
 @njit(cache=True)
 def law_inputs(pack, ctx, F, x, v):
-    evaluate_chains(ctx.chains, x, F)
+    evaluate_chains(ctx.chains, x, F, 2)
     return input_values(pack, ctx, F, x, v)
 
 

@@ -382,7 +382,7 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
     (its arrays allocated here: for tests, front ends and differences, not for every step)."""
     nc = table.column_start[k + 1] - table.column_start[k]
     P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
-    chain_kinematics_into(table, k, x, F, order, P, J, H, np.empty((nc, W_WIDTH)))
+    chain_kinematics_called(table, k, x, F, order, P, J, H, np.empty((nc, W_WIDTH)))
     for i in range(3):
         r[i] = P[i, 0]
         for j in range(3):
@@ -432,7 +432,8 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
     Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). J (2, 3, >= nc) and H (2, 3, >= nc, >= nc)
     are overwritten on their first nc columns; ``work`` (>= nc, W_WIDTH): scratch (a column's
     type, a translation's axis, the point a rotation turns about, an FFR tip's axes). Scalars only: no allocation (a
-    step evaluates every chain), inlined into its callers."""
+    step evaluates every chain), inlined into :func:`evaluate_chains` (the others call
+    :func:`chain_kinematics_called`)."""
     l0, l1 = table.start[k], table.start[k + 1]
     nc = table.column_start[k + 1] - table.column_start[k]
     par = table.params
@@ -671,6 +672,15 @@ def _tip_blocks(table, P, work, nc, H):
                 H[0, 2, i + j, i + m] = gaa * qaa2 + gbb * qbb2 + gcc * qcc2 + gab * qab2 + gac * qac2 + gbc * qbc2
 
 
+@njit(cache=True)
+def chain_kinematics_called(table, k, x, F, order, P, J, H, work):
+    """:func:`chain_kinematics_into` as a function of its own, for the callers off the step's
+    hot path (:func:`chain_kinematics`, :func:`chain_motions`): each function that inlines
+    :func:`chain_kinematics_into` compiles a copy of it, so only :func:`evaluate_chains` (every
+    evaluation of the equations) does, and these two call this one copy."""
+    chain_kinematics_into(table, k, x, F, order, P, J, H, work)
+
+
 @njit(cache=True, _nrt=False)
 def evaluate_chains(table, x, F, order):
     """Every chain's kinematics at the coordinates x (charts F) into the table's pose, jac and
@@ -813,7 +823,7 @@ def chain_motions(table, k, X, V, F, r, R, vel, w):
     P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
     work = np.empty((nc, W_WIDTH))
     for s in range(X.shape[0]):
-        chain_kinematics_into(table, k, X[s], F, 1, P, J, H, work)
+        chain_kinematics_called(table, k, X[s], F, 1, P, J, H, work)
         for i in range(3):
             r[s, i] = P[i, 0]
             for j in range(3):

@@ -190,6 +190,8 @@ class MultibodySystem:
             locks=tuple(0 if b.mount.joint is None else b.mount.joint.locks for b in self.beams),
             controller_states=sum(c.states for c in self.controllers))
         self.frames = Frames(base, placement, self.beams, self.layout)
+        if base.moves and self.controllers:  # their base torques and rates read the base frame's Hessians
+            self.frames.needs_hessian(self.frames.base)
         self.rigid_bodies = self._rigid_bodies()
         self._models: dict[tuple[bool, bool], SystemModel] = {}
         self._function_loads: dict[tuple[bool, bool], object] = {}
