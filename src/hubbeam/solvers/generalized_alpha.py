@@ -102,9 +102,8 @@ class NewtonOptions:
     power lambda theta' of a prescribed hub). None (the default) means True, except that
     :func:`hubbeam.simulation.simulate` makes it False for a fixed hub whose holding torque no
     sensor reads: theta' = 0 exactly, so that torque does no work, and it is then an internal
-    reaction tested as a length like the clamps' (on a free spacecraft bus slewed about the hub
-    axis the torque test alone took 1.97 Newton iterations per step against 1.42 without it:
-    benchmarks/run.py, case M).
+    reaction tested as a length like the clamps' (case M's tumbling bus with modal panels took
+    1.97 Newton iterations per step with the torque test, 1.00 without: benchmarks/run.py).
     """
 
     tolerance: float = 1e-9
