@@ -307,6 +307,11 @@ def input_values(pack, ctx, F, x, v):
     dx, dv = np.zeros((m, pack.width)), np.zeros((m, pack.width))
     count = np.zeros(m, dtype=np.int64)
     where, S, dS, d2S, section = pack.gauges
+    cb, base_b, base_dB = np.zeros(1, dtype=np.int64), np.zeros((1, 3)), np.zeros((3, 1, 1))
+    for i in range(m):
+        if pack.form[i] == InputForm.BASE_RATE:  # the base frame's force columns, once for every base input
+            cb, base_b, base_dB = axis_force_columns(ctx, pack.base_chain)
+            break
     for i in range(m):
         form = pack.form[i]
         rate = pack.rate[i] != 0
@@ -338,17 +343,16 @@ def input_values(pack, ctx, F, x, v):
             u[i] = value
             count[i] = k
         elif form == InputForm.BASE_RATE:
-            cb, b, dB = axis_force_columns(ctx, pack.base_chain)
             a = pack.axis[i]
             nc = cb.shape[0]
             value = 0.0
             for c in range(nc):
-                value += b[c, a] * v[cb[c]]
+                value += base_b[c, a] * v[cb[c]]
                 cols[i, c] = cb[c]
-                dv[i, c] = b[c, a]
+                dv[i, c] = base_b[c, a]
                 s = 0.0
                 for l in range(nc):
-                    s += v[cb[l]] * dB[a, l, c]
+                    s += v[cb[l]] * base_dB[a, l, c]
                 dx[i, c] = s
             u[i] = value
             count[i] = nc

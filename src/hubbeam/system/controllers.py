@@ -43,6 +43,7 @@ from hubbeam.system.assembly import add_entry
 from hubbeam.system.controller_inputs import (
     ControllerInput,
     ControllerOutput,
+    InputForm,
     OutputKind,
     axis_force_columns,
     input_values,
@@ -324,11 +325,15 @@ def output_power(pack, ctx, y, v):
     """sum_o y_o b_o . v (W): the outputs' power (the chains evaluated at the state)."""
     power = 0.0
     has_base = pack.base_chain >= 0
+    w = np.zeros(3)  # a moving base's angular velocity in its axes, b_a . v (the base outputs' rates)
+    if has_base:
+        cb, b, _ = axis_force_columns(ctx, pack.base_chain)
+        for a in range(3):
+            for c in range(cb.shape[0]):
+                w[a] += b[c, a] * v[cb[c]]
     for o in range(y.shape[0]):
         if pack.out_kind[o] == OutputKind.BASE_TORQUE and has_base:
-            cb, b, dB = axis_force_columns(ctx, pack.base_chain)
-            for c in range(cb.shape[0]):
-                power += y[o] * b[c, pack.out_index[o]] * v[cb[c]]
+            power += y[o] * w[pack.out_index[o]]
         else:
             power += y[o] * v[pack.out_index[o]]
     return power
@@ -347,10 +352,10 @@ def law_inputs(pack, ctx, F, x, v):
 
 
 def law_terms(law: ControllerLaw, pack: Controllers, ctx, F, x, v, t, coef_c, coef_k, load_factor,
-              want_matrix, res, matrix) -> float:
+              want_matrix, res, matrix) -> None:
     """Add a Python law's outputs to the residual ``res`` and the Newton ``matrix`` (as the
     compiled outputs, :func:`apply_outputs`, with J = dy/du by central differences of the
-    law, steps 1e-6 max(1, |u_i|)); returns their power (W)."""
+    law, steps 1e-6 max(1, |u_i|))."""
     u, cols, dx, dv, count = law_inputs(pack, ctx, F, x, v)
     y = law(t, u)
     J = np.zeros((y.size, u.size))
@@ -361,13 +366,14 @@ def law_terms(law: ControllerLaw, pack: Controllers, ctx, F, x, v, t, coef_c, co
             up[i] += h
             um[i] -= h
             J[:, i] = (law(t, up) - law(t, um)) / (2.0 * h)
-    if matrix is None:
-        apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, False, res, np.zeros((1, 1)),
-                      np.zeros((1, 1)), np.zeros((1, 1)), np.zeros((0, 0)))
-    else:
-        apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, want_matrix, res, matrix.ab,
-                      matrix.brow, matrix.bcol, matrix.bb)
-    return float(output_power(pack, ctx, y, v))
+    apply_outputs(pack, ctx, y, J, cols, dx, dv, count, coef_c, coef_k, load_factor, want_matrix, res, matrix.ab,
+                  matrix.brow, matrix.bcol, matrix.bb)
+
+
+def law_power(law: ControllerLaw, pack: Controllers, ctx, F, x, v, t) -> float:
+    """A Python law's outputs' power sum_o y_o b_o . v (W): drive work in the energy balance."""
+    u = law_inputs(pack, ctx, F, x, v)[0]
+    return float(output_power(pack, ctx, law(t, u), v))
 
 
 def controller_bandwidth(system, layout) -> int:
@@ -400,9 +406,9 @@ def _coupling_width(pack, layout, J) -> int:
             if J[o, i] == 0.0:
                 continue
             a, b = pack.starts[i, 0], pack.starts[i + 1, 0]
-            if pack.form[i] == 0:
+            if pack.form[i] == InputForm.POLYNOMIAL:
                 reads += [int(zx[c]) for c in pack.cols[a:b]]
-            elif pack.form[i] == 2:
+            elif pack.form[i] == InputForm.ANCF_STRAIN:
                 reads += [int(zx[where[pack.axis[i], 1] + j]) for j in range(16)]
         for zc in reads:
             if zr >= border and zc >= border:

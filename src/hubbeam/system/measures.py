@@ -310,12 +310,10 @@ class SystemMeasures:
             th = self.layout.theta
             drive += float(self.hub.torque(t, x[th], v[th])[0]) * float(v[th])
         if self.controller_laws:
-            from hubbeam.system.controllers import law_terms
+            from hubbeam.system.controllers import law_power
 
-            scratch = np.zeros(self.layout.nz)
             for law, pack in self._law_packs(self.hub.held, False):
-                drive += law_terms(law, pack, self.model().context, np.ascontiguousarray(F, dtype=float),
-                                   x, v, t, 0.0, 1.0, 1.0, False, scratch, None)
+                drive += law_power(law, pack, self.model().context, np.ascontiguousarray(F, dtype=float), x, v, t)
         if self.load_functions:
             drive += self._functions_for(self.hub.held, False).power(t, x, v, F)
         return float(dissipated), float(drive)
