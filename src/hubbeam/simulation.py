@@ -245,7 +245,7 @@ class CompiledSteps(PythonSteps):
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
         tol = newton.tolerance * max(system.length_scale, 1.0)
         self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations,
-                        ga.multiplier_weights(system.layout, dt, params.beta, newton.tolerance, newton.hold_torque is not False),
+                        ga.multiplier_weights(system.layout, dt, params.beta, newton.tolerance, newton.tests_hold_torque),
                         ga.KAPPA)
         self.loop = compiled_alpha.loop_for(system)
         self.advance(state, 0, 0, 1, 1)  # compile or load the loop now, not inside the timed run

@@ -120,6 +120,12 @@ class NewtonOptions:
             raise ValueError(f"Newton matrix update {self.update!r}: choose one of {UPDATES}")
 
     @property
+    def tests_hold_torque(self) -> bool:
+        """Whether the Newton test takes the held hub's drive multiplier as a torque (``hold_torque``
+        True or still None)."""
+        return self.hold_torque is not False
+
+    @property
     def update_code(self) -> int:
         """The :class:`MatrixUpdate` of ``update`` as an int (for compiled code)."""
         return int(MatrixUpdate[self.update.upper()])
@@ -403,7 +409,7 @@ def step(system: MultibodySystem, state: AlphaState, h: float, p: AlphaParameter
     ck = beta * h * h
     s = system.mass_scale
     tol = options.tolerance * max(system.length_scale, 1.0)
-    weight = multiplier_weights(system.layout, h, beta, options.tolerance, options.hold_torque is not False)
+    weight = multiplier_weights(system.layout, h, beta, options.tolerance, options.tests_hold_torque)
     coefs = (ck * bprime, ck * gprime, ck, s)
     zx, zl = system.layout.z_of_x, system.layout.z_of_lambda
     update = options.update_code
