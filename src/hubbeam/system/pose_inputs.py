@@ -108,7 +108,7 @@ def tip_deflection_input(chains, tip, rows, length, ucols, x, v, rate, dx, dv):
     of the rate) into dx, dv over the columns ``ucols`` (:func:`tip_columns`); the chains as
     :func:`~hubbeam.system.frames.evaluate_chains` left them (to order 2 for a rate)."""
     ca, ra, Ra, Jra, Jwa, Hra, Hwa = chain_state(chains, tip[TIP_ROOT])
-    cb, rb, Rb, Jrb, Jwb, Hrb, Hwb = chain_state(chains, tip[TIP_REFERENCE])
+    cb, _, Rb, _, Jwb, _, Hwb = chain_state(chains, tip[TIP_REFERENCE])
     j, start, nf = tip[TIP_PART], tip[TIP_START], tip[TIP_NF]
     n = ucols.shape[0]
     ia, ib = _places(ucols, ca), _places(ucols, cb)
