@@ -100,8 +100,8 @@ BASE_TORQUES = ("base_torque_x", "base_torque_y", "base_torque_z")
 @dataclass(frozen=True)
 class ControllerInput:
     """One input: a sensor ``kind`` (a key of :data:`SENSOR_INPUTS`), or its ``rate``; the
-    ``beam`` it measures (index; a joint, a strain gauge), ``part`` (a vector component 0, 1,
-    2; a joint's axis) and a strain gauge's ``station`` (m) and section point: ``surface``
+    ``beam`` it measures (index; a joint, a strain gauge, a tip), ``part`` (a vector component 0, 1,
+    2: x, y, z, or a tip deflection's radial, vertical, tangential; a joint's axis) and a strain gauge's ``station`` (m) and section point: ``surface``
     ("upper" z = +h/2, "lower") or (``y``, ``z``) (m, section axes)."""
 
     kind: str
