@@ -165,7 +165,9 @@ def test_the_newton_matrix_entries_of_tip_and_base_inputs_are_the_residuals_deri
 def test_the_base_rotations_rate_is_the_inverse_of_its_tangent_map_on_omega(tmp_path):
     # the rate of the rotation vector against omega = T(phi) phi' (T = I + (1 - cos a) / a^2 [phi]x
     # + (a - sin a) / a^3 [phi]x^2, the global angular velocity of R = exp([phi]x)): at a large
-    # angle (2.3 rad) and near zero (1e-5 rad, the series branch), omega the base frame's (Jw v)
+    # angle (2.3 rad), near zero (1e-5 rad) and on each side of where G's derivatives change from
+    # their series to their closed forms (|b| / a = 0.29, 0.31), omega the base frame's (Jw v);
+    # and there the derivatives of the angle and its rate against central differences (h = 1e-7)
     scenario, inputs = with_inputs(configured("ancf-joint"), tmp_path)
     system = api.build_system(scenario)
     x, v, F = turned_state(system)
@@ -173,9 +175,16 @@ def test_the_base_rotations_rate_is_the_inverse_of_its_tangent_map_on_omega(tmp_
     rows = [inputs.index(f"rot_{c}_rate") for c in "xyz"]
     angle_rows = [inputs.index(f"rot_{c}") for c in "xyz"]
     e = system.layout.base_x.start + 3
-    for half in (1.15, 5e-6):
+    for half in (1.15, 5e-6, np.arctan(0.29), np.arctan(0.31)):
         x[e:e + 4] = 0.8 * np.array([np.cos(half), *(np.sin(half) * np.array([0.6, -0.48, 0.64]))])
-        u = compute(x, v)[0]
+        u, cols, dx, dv, count = compute(x, v)
+        for i in rows + angle_rows:
+            assert list(cols[i, :count[i]]) == list(range(e, e + 4))
+            for k in range(4):
+                d = np.zeros(x.size)
+                d[e + k] = 1e-7
+                assert abs(dx[i, k] - (compute(x + d, v)[0][i] - compute(x - d, v)[0][i]) / 2e-7) < 1e-7
+                assert abs(dv[i, k] - (compute(x, v + d)[0][i] - compute(x, v - d)[0][i]) / 2e-7) < 1e-7
         phi, rate = u[angle_rows], u[rows]
         a = np.linalg.norm(phi)
         assert abs(a - 2 * half) < 1e-12
