@@ -3,7 +3,7 @@ derivatives, and the generalized-force directions of its outputs.
 
 **Inputs** (:class:`ControllerInput`, one sensor column or its ``_rate``), each a function
 u(x, v) evaluated with du/dx and du/dv in compiled code (:func:`input_values`) at the
-instant and Newton iterate of the step. Three forms cover them:
+instant and Newton iterate of the step. Five forms cover them:
 
 - ``POLYNOMIAL``: u = c . x_S + x_S^T Q x_S / 2 over a few columns S of x, and its rate
   u = (c + Q x_S) . v_S (du/dx_S = Q v_S, du/dv_S = c + Q x_S): the hub angle theta
@@ -23,7 +23,8 @@ instant and Newton iterate of the step. Three forms cover them:
   and J = dX/dq; its rate u = g . J q' has du/dq' = J^T g and du/dq = J^T H J q' (H the
   strain's Hessian in X);
 - ``TIP_DEFLECTION``: component j (radial, vertical, tangential) of a beam's tip deflection
-  (ANCF, FFR nodal or modal; on a hub, a moving base or a joint, as the sensor measures it)
+  (ANCF, FFR nodal or modal; on a hub, a moving base, a joint or a parent beam's tip, as the
+  sensor measures it)
   and its rate, through the root and reference frames' chains
   (:func:`~hubbeam.system.pose_inputs.tip_deflection_input`);
 - ``BASE_ROTATION``: component a of a moving base's rotation vector (global axes), a
@@ -100,9 +101,10 @@ BASE_TORQUES = ("base_torque_x", "base_torque_y", "base_torque_z")
 @dataclass(frozen=True)
 class ControllerInput:
     """One input: a sensor ``kind`` (a key of :data:`SENSOR_INPUTS`), or its ``rate``; the
-    ``beam`` it measures (index; a joint, a strain gauge, a tip), ``part`` (a vector component 0, 1,
-    2: x, y, z, or a tip deflection's radial, vertical, tangential; a joint's axis) and a strain gauge's ``station`` (m) and section point: ``surface``
-    ("upper" z = +h/2, "lower") or (``y``, ``z``) (m, section axes)."""
+    ``beam`` it measures (index; a joint, a strain gauge, a tip), ``part`` (a vector component
+    0, 1, 2: x, y, z, or a tip deflection's radial, vertical, tangential; a joint's axis) and a
+    strain gauge's ``station`` (m) and section point: ``surface`` ("upper" z = +h/2, "lower")
+    or (``y``, ``z``) (m, section axes)."""
 
     kind: str
     rate: bool = False
