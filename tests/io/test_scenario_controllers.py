@@ -110,3 +110,39 @@ def test_no_output_overwrites_a_controllers_file(tmp_path):
     code, out, err = cli("linearize", path, "-o", tmp_path / "k.npz")
     assert code == 2 and "matrices of controllers[0].file" in err and len(err.strip().splitlines()) == 1, err
     assert (tmp_path / "k.npz").read_bytes() == before
+
+
+def with_sensor(tmp_path, kind, column, beam=None):
+    """spacecraft.toml (fixed base) with one more sensor ``s`` of ``kind`` and a controller reading ``column``."""
+    path = write(tmp_path, {"file": gain(tmp_path), "inputs": [column], "outputs": ["hub_torque"]})
+    extra = f'\n[[sensors]]\nname = "s"\nkind = "{kind}"\n' + (f'beam = "{beam}"\n' if beam else "")
+    text = path.read_text()
+    at = text.index("\n[[controllers]]")
+    path.write_text(text[:at] + extra + text[at:])
+    return path
+
+
+@pytest.mark.parametrize("kind, column", [("base_position", "s_x"), ("base_rotation", "s_z_rate")])
+def test_a_base_input_on_a_fixed_base_is_exit_2(tmp_path, kind, column):
+    line = refused(with_sensor(tmp_path, kind, column))
+    assert line.startswith("hubbeam: error: controllers[0].inputs[0]: ") and "needs a base that moves" in line, line
+
+
+def test_an_unsupported_sensor_names_every_accepted_input(tmp_path):
+    # the refusal of a sensor that is not an input (the centre of mass: the whole system's mass
+    # distribution) lists exactly what the inputs accept
+    from hubbeam.system.controller_inputs import SENSOR_INPUTS
+
+    line = refused(with_sensor(tmp_path, "centre_of_mass", "s_x"))
+    assert "'s_x': a centre_of_mass sensor is not supported as a controller input" in line, line
+    listed = line.split("(supported: ")[1].rstrip(")").split(", ")
+    assert sorted(listed) == sorted(k + ("_rate" if r else "") for k, r in SENSOR_INPUTS)
+    assert {"tip_deflection", "tip_deflection_rate", "base_rotation_rate", "base_position"} <= set(listed)
+
+
+@pytest.mark.parametrize("column", ["s_tangential", "s_radial_rate"])
+def test_a_tip_deflection_and_its_rate_are_inputs(tmp_path, column):
+    from hubbeam.io.scenario import load_scenario
+
+    scenario = load_scenario(str(with_sensor(tmp_path, "tip_deflection", column, beam="panel_b")))
+    assert scenario.controllers[0].inputs == [column]

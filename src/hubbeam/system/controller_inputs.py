@@ -3,7 +3,7 @@ derivatives, and the generalized-force directions of its outputs.
 
 **Inputs** (:class:`ControllerInput`, one sensor column or its ``_rate``), each a function
 u(x, v) evaluated with du/dx and du/dv in compiled code (:func:`input_values`) at the
-instant and Newton iterate of the step. Three forms cover them:
+instant and Newton iterate of the step. Five forms cover them:
 
 - ``POLYNOMIAL``: u = c . x_S + x_S^T Q x_S / 2 over a few columns S of x, and its rate
   u = (c + Q x_S) . v_S (du/dx_S = Q v_S, du/dv_S = c + Q x_S): the hub angle theta
@@ -21,7 +21,18 @@ instant and Newton iterate of the step. Three forms cover them:
   variables X = T^T (w1, w2 weights of the element's 16 coordinates) (chart F fixed during a
   step): du/dq = J^T g with g the strain's gradient in X (:func:`~hubbeam.elements.ancf.strain.strain_jet`)
   and J = dX/dq; its rate u = g . J q' has du/dq' = J^T g and du/dq = J^T H J q' (H the
-  strain's Hessian in X).
+  strain's Hessian in X);
+- ``TIP_DEFLECTION``: component j (radial, vertical, tangential) of a beam's tip deflection
+  (ANCF, FFR nodal or modal; on a hub, a moving base, a joint or a parent beam's tip, as the
+  sensor measures it)
+  and its rate, through the root and reference frames' chains
+  (:func:`~hubbeam.system.pose_inputs.tip_deflection_input`);
+- ``BASE_ROTATION``: component a of a moving base's rotation vector (global axes), a
+  function of its 4 Euler parameters, and its rate T(phi)^-1 omega
+  (:func:`~hubbeam.system.pose_inputs.base_rotation_input`).
+
+A moving base's position (``base_position_x|y|z``) is its coordinate x_a, a ``POLYNOMIAL``
+input; its rate is the base's velocity.
 
 What is not an input: a sensor whose value (or rate) reads the accelerations or the
 multipliers (:data:`ACCELERATION_RATES`), and the sensors not listed above
@@ -50,6 +61,7 @@ from numba import njit
 from hubbeam.elements.ancf import kernels
 from hubbeam.elements.ancf.strain import strain_jet
 from hubbeam.system.frames import chain_state
+from hubbeam.system.pose_inputs import TIP_NF, base_rotation_input, tip_columns, tip_deflection_input
 
 
 class InputForm(enum.IntEnum):
@@ -58,6 +70,8 @@ class InputForm(enum.IntEnum):
     POLYNOMIAL = 0
     BASE_RATE = 1
     ANCF_STRAIN = 2
+    TIP_DEFLECTION = 3
+    BASE_ROTATION = 4
 
 
 class OutputKind(enum.IntEnum):
@@ -71,7 +85,11 @@ class OutputKind(enum.IntEnum):
 #: sensor kinds a controller input may read: (kind, is its ``_rate``) allowed
 SENSOR_INPUTS = frozenset({("hub_angle", False), ("hub_angle", True), ("hub_angular_velocity", False),
                            ("joint_angle", False), ("joint_angle", True), ("joint_rate", False),
-                           ("base_angular_velocity", False), ("surface_strain", False), ("surface_strain", True)})
+                           ("base_angular_velocity", False), ("surface_strain", False), ("surface_strain", True),
+                           ("tip_deflection", False), ("tip_deflection", True), ("base_position", False),
+                           ("base_position", True), ("base_rotation", False), ("base_rotation", True)})
+#: the sensor kinds of a moving base (refused as inputs on a fixed base: constants)
+BASE_INPUTS = ("base_angular_velocity", "base_position", "base_rotation")
 #: sensor kinds whose time derivative reads the accelerations (or the multipliers)
 ACCELERATION_RATES = frozenset({"hub_angular_velocity", "hub_torque", "applied_torque", "base_velocity",
                                 "base_angular_velocity", "linear_momentum", "system_angular_momentum",
@@ -83,9 +101,10 @@ BASE_TORQUES = ("base_torque_x", "base_torque_y", "base_torque_z")
 @dataclass(frozen=True)
 class ControllerInput:
     """One input: a sensor ``kind`` (a key of :data:`SENSOR_INPUTS`), or its ``rate``; the
-    ``beam`` it measures (index; a joint, a strain gauge), ``part`` (a vector component 0, 1,
-    2; a joint's axis) and a strain gauge's ``station`` (m) and section point: ``surface``
-    ("upper" z = +h/2, "lower") or (``y``, ``z``) (m, section axes)."""
+    ``beam`` it measures (index; a joint, a strain gauge, a tip), ``part`` (a vector component
+    0, 1, 2: x, y, z, or a tip deflection's radial, vertical, tangential; a joint's axis) and a
+    strain gauge's ``station`` (m) and section point: ``surface`` ("upper" z = +h/2, "lower")
+    or (``y``, ``z``) (m, section axes)."""
 
     kind: str
     rate: bool = False
@@ -144,6 +163,7 @@ class InputRows:
     coef: list
     quad: list
     gauges: list
+    tips: list
 
 
 def _resolve(system, spec: ControllerInput, rows: InputRows) -> None:
@@ -157,10 +177,18 @@ def _resolve(system, spec: ControllerInput, rows: InputRows) -> None:
         if joint is None or not 0 <= spec.part < joint.count:
             raise ValueError(f"beam {system.beams[spec.beam].name!r} has no joint axis {spec.part}")
         cols, coef = [layout.joint_x(spec.beam).start + spec.part], [1.0]
-    elif spec.kind == "base_angular_velocity":
+    elif spec.kind in BASE_INPUTS:
         if not layout.base_moves:
-            raise ValueError("base_angular_velocity: the base does not move")
-        form, axis = InputForm.BASE_RATE, spec.part
+            raise ValueError(f"{spec.kind}: the base does not move")
+        if spec.kind == "base_angular_velocity":
+            form, axis = InputForm.BASE_RATE, spec.part
+        elif spec.kind == "base_position":
+            cols, coef = [layout.base_x.start + spec.part], [1.0]
+        else:  # its rotation vector, from its Euler parameters
+            form, axis = InputForm.BASE_ROTATION, spec.part
+            cols = list(range(layout.base_x.start + 3, layout.base_x.start + 7))
+    elif spec.kind == "tip_deflection":
+        form, axis, cols = InputForm.TIP_DEFLECTION, len(rows.tips), _tip(system, spec, rows)
     else:  # surface_strain
         k = spec.beam
         part = system.beams[k]
@@ -179,6 +207,8 @@ def _resolve(system, spec: ControllerInput, rows: InputRows) -> None:
             gauge = (k, start, S, dS, d2S, section)
             axis = len(rows.gauges)
             rows.gauges.append(gauge)
+    if form in (InputForm.TIP_DEFLECTION, InputForm.BASE_ROTATION):
+        coef = [0.0] * len(cols)  # coef runs beside cols (read by the polynomial inputs only)
     rows.form.append(int(form))
     rows.rate.append(int(rate))
     rows.axis.append(int(axis))
@@ -187,13 +217,41 @@ def _resolve(system, spec: ControllerInput, rows: InputRows) -> None:
     rows.quad.append(np.asarray(quad, dtype=float).ravel())
 
 
+def _tip(system, spec: ControllerInput, rows: InputRows) -> list[int]:
+    """The tip table's row of a tip deflection input (appended to ``rows.tips``) and the columns it reads."""
+    k = spec.beam
+    part = system.beams[k]
+    frames = system.frames
+    start = system.layout.beam_x(k).start
+    node = part.tip_node()
+    if node is not None:  # ANCF: the tip node's position coordinates
+        first, nf, N = start + node.start, 0, np.zeros((3, 0))
+        own = [first, first + 1, first + 2]
+    else:  # FFR: the tip's displacement rows over the elastic coordinates
+        N = np.asarray(part.beam.displacement_row(part.length), dtype=float)
+        first, nf = start, N.shape[1]
+        own = list(range(start, start + nf))
+    root, reference = frames.root(k), frames.reference(k)
+    rows.tips.append(((root, reference, spec.part, first, nf), N, part.length))
+    return tip_columns(frames.table, root, reference, own)
+
+
+def hessian_chains(system, specs) -> set[int]:
+    """The chains whose derivatives Hr, Hw the inputs ``specs`` read besides the beams' roots
+    (:meth:`~hubbeam.system.multibody.Frames.needs_hessian`): a tip deflection's reference frame."""
+    return {system.frames.reference(s.beam) for s in specs if s.kind == "tip_deflection"}
+
+
 def pack_inputs(system, specs) -> tuple:
-    """(form, rate, axis, starts (m + 1, 2), cols, coef, quad, gauges, width) of the inputs
+    """(form, rate, axis, starts (m + 1, 2), cols, coef, quad, gauges, tips, width) of the inputs
     ``specs`` on ``system``: the arrays :func:`input_values` reads (``starts[i]``: where input
     i's columns and quadratic form start in ``cols``/``coef`` and ``quad``; ``gauges``: the
     ANCF gauges as :meth:`~hubbeam.system.multibody.MultibodySystem.gauge_table` packs them;
+    ``tips``: the tip deflections' table (ints (t, 5), :mod:`~hubbeam.system.pose_inputs`),
+    their FFR rows N_L (t, 3, nf) and lengths (t,) (m); a tip deflection's and a base
+    rotation's columns are in ``cols``;
     ``width``: the most columns an input reads)."""
-    rows = InputRows([], [], [], [], [], [], [])
+    rows = InputRows([], [], [], [], [], [], [], [])
     for spec in specs:
         _resolve(system, spec, rows)
     m = len(rows.form)
@@ -206,12 +264,18 @@ def pack_inputs(system, specs) -> tuple:
                            for i, w in ((2, 4), (3, 4), (4, 4), (5, 6)))
     width = 1
     for i in range(m):
-        width = max(width, {InputForm.POLYNOMIAL: rows.cols[i].size, InputForm.BASE_RATE: 7,
-                            InputForm.ANCF_STRAIN: kernels.ELEMENT_DOFS}[InputForm(rows.form[i])])
+        width = max(width, kernels.ELEMENT_DOFS if rows.form[i] == InputForm.ANCF_STRAIN else
+                    7 if rows.form[i] == InputForm.BASE_RATE else rows.cols[i].size)
     ints = lambda v: np.array(v, dtype=np.int64)  # noqa: E731
     cat = lambda parts, dtype: np.concatenate(parts).astype(dtype) if parts else np.zeros(0, dtype)  # noqa: E731
+    t = len(rows.tips)
+    widest = max([r[0][TIP_NF] for r in rows.tips], default=0)
+    tip_rows = np.zeros((t, 3, widest))
+    for i, (_, N, _) in enumerate(rows.tips):
+        tip_rows[i, :, :N.shape[1]] = N
+    tips = (ints([r[0] for r in rows.tips]).reshape(t, 5), tip_rows, np.array([r[2] for r in rows.tips], dtype=float))
     return (ints(rows.form), ints(rows.rate), ints(rows.axis), starts, cat(rows.cols, np.int64),
-            cat(rows.coef, float), cat(rows.quad, float), (where, S, dS, d2S, section), width)
+            cat(rows.coef, float), cat(rows.quad, float), (where, S, dS, d2S, section), tips, width)
 
 
 # ---------------------------------------------------------------------------- compiled
@@ -356,7 +420,24 @@ def input_values(pack, ctx, F, x, v):
                 dx[i, c] = s
             u[i] = value
             count[i] = nc
-        else:
+        elif form == InputForm.ANCF_STRAIN:
             u[i] = _ancf_strain(where, S, dS, d2S, section, pack.axis[i], F, x, v, rate, cols[i], dx[i], dv[i])
             count[i] = 16
+        else:  # the frames' poses: a tip deflection, a base's rotation vector
+            a, b = pack.starts[i, 0], pack.starts[i + 1, 0]
+            ucols = pack.cols[a:b]
+            k = b - a
+            if form == InputForm.TIP_DEFLECTION:
+                t = pack.axis[i]
+                ints, rows, lengths = pack.tips
+                u[i] = tip_deflection_input(ctx.chains, ints[t], rows[t], lengths[t], ucols, x, v, rate, dx[i], dv[i])
+            else:
+                e, ed = np.empty(4), np.empty(4)
+                for r in range(4):
+                    e[r] = x[ucols[r]]
+                    ed[r] = v[ucols[r]]
+                u[i] = base_rotation_input(e, ed, pack.axis[i], rate, dx[i], dv[i])
+            for r in range(k):
+                cols[i, r] = ucols[r]
+            count[i] = k
     return u, cols, dx, dv, count

@@ -144,6 +144,7 @@ class Controllers(NamedTuple):
     coef: np.ndarray  # their linear coefficients
     quad: np.ndarray  # their quadratic forms, row-major
     gauges: tuple  # the ANCF gauges (where, S, dS, d2S, section)
+    tips: tuple  # the tip deflections (ints (t, 5), FFR rows (t, 3, nf), lengths (t,))
     width: int  # the most columns an input reads
     base_chain: int  # the base frame's chain (-1: the base does not move)
     out_kind: np.ndarray  # int64 (p,): OutputKind
@@ -200,10 +201,10 @@ def linear_controllers(system) -> list:
 
 
 def _pack(system, layout, A, B, C, D, inputs, outputs) -> Controllers:
-    form, rate, axis, starts, cols, coef, quad, gauges, width = pack_inputs(system, inputs)
+    form, rate, axis, starts, cols, coef, quad, gauges, tips, width = pack_inputs(system, inputs)
     kinds, index = output_places(system, layout, outputs)
     return Controllers(layout.controllers_x.start, np.ascontiguousarray(A), B, C, D, form, rate, axis, starts, cols,
-                       coef, quad, gauges, width, system.frames.base if system.base.moves else -1, kinds, index)
+                       coef, quad, gauges, tips, width, system.frames.base if system.base.moves else -1, kinds, index)
 
 
 def pack_controllers(system, layout) -> Controllers | None:
@@ -406,7 +407,7 @@ def _coupling_width(pack, layout, J) -> int:
             if J[o, i] == 0.0:
                 continue
             a, b = pack.starts[i, 0], pack.starts[i + 1, 0]
-            if pack.form[i] == InputForm.POLYNOMIAL:
+            if pack.form[i] in (InputForm.POLYNOMIAL, InputForm.TIP_DEFLECTION, InputForm.BASE_ROTATION):
                 reads += [int(zx[c]) for c in pack.cols[a:b]]
             elif pack.form[i] == InputForm.ANCF_STRAIN:
                 reads += [int(zx[where[pack.axis[i], 1] + j]) for j in range(16)]

@@ -26,6 +26,7 @@ from hubbeam.system import kinds, terms  # noqa: F401  (kinds: the registration 
 from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.assembly import BorderedBandMatrix
 from hubbeam.system.base import Base, HubPlacement
+from hubbeam.system.controller_inputs import hessian_chains
 from hubbeam.system.equations import CHART_SINGULAR, Compiled, SystemModel, compiled, context
 from hubbeam.system.frames import Chain, ChainTable, chain_pose, revolute
 from hubbeam.system.laws import DriveProfile, TorqueLaw
@@ -177,6 +178,9 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         self.frames = Frames(base, placement, self.beams, self.layout)
         if base.moves and self.controllers:  # their base torques and rates read the base frame's Hessians
             self.frames.needs_hessian(self.frames.base)
+        for controller in self.controllers:  # and a tip deflection's rate its reference frame's
+            for chain in hessian_chains(self, controller.inputs):
+                self.frames.needs_hessian(chain)
         self.rigid_bodies = self._rigid_bodies()
         self._models: dict[tuple[bool, bool], SystemModel] = {}
         self._function_loads: dict[tuple[bool, bool], object] = {}

@@ -21,6 +21,7 @@ from hubbeam.errors import ScenarioError
 from hubbeam.io.scenario.common import Identifier, StrictTable, _absolute
 from hubbeam.system.controller_inputs import (
     ACCELERATION_RATES,
+    BASE_INPUTS,
     BASE_TORQUES,
     SENSOR_INPUTS,
     ControllerInput,
@@ -102,9 +103,8 @@ def _input_of(scenario, column: str, key: str) -> ControllerInput:
     part = 0
     if sensor.parts and name != sensor.name:
         part = sensor.parts.index(name[len(sensor.name) + 1:])
-    if kind == "base_angular_velocity" and scenario.base.motion == "fixed":
-        raise ScenarioError(f"{key}: {column!r}: base_angular_velocity needs a base that moves (base.motion = "
-                            "'fixed')")
+    if kind in BASE_INPUTS and scenario.base.motion == "fixed":
+        raise ScenarioError(f"{key}: {column!r}: {kind} needs a base that moves (base.motion = 'fixed')")
     return ControllerInput(kind, rate, beam, part, float(sensor.x or 0.0), sensor.surface, float(sensor.y or 0.0),
                            float(sensor.z or 0.0))
 
