@@ -462,6 +462,42 @@ def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, for
     return power
 
 
+@njit(cache=True, inline="always")
+def _beam_scratch(pack, ctx, k, want_matrix):
+    """(force, H, M_v, C_v, K_el) of FFR beam k in the pack's scratch (:func:`ffr_beam_terms`;
+    C_v empty without the matrix)."""
+    nf = pack.places[k, NF]
+    n = 6 + nf
+    m = ctx.chains.column_start[pack.chains[k, 0] + 1] - ctx.chains.column_start[pack.chains[k, 0]] + nf
+    sq = pack.squares_work
+    Cv = sq[2, :n, :n] if want_matrix else sq[2, :0, :0]
+    return pack.vectors_work[7, :m], sq[0, :n, :m], sq[1, :n, :n], Cv, sq[3, :nf, :nf]
+
+
+@njit(cache=True, _nrt=False)
+def _beam_residual(pack, ctx, k, x, v, acc, load_factor, want_matrix, coef_k, res):
+    """FFR beam k's rows of the residual, coef_k H^T (M_v vdot - Q) (:func:`ffr_beam_terms`, the
+    pieces of its matrix left in the scratch of :func:`_beam_scratch`), its z rows into the
+    pack's rows_work[0]. Returns its dissipated power (W). Without numba's reference counting,
+    as :func:`ffr_beam_terms` (the views it builds cost nothing then)."""
+    zx = ctx.z_of_x
+    nf = pack.places[k, NF]
+    x0 = pack.places[k, X0]
+    force, H, Mv, Cv, K_el = _beam_scratch(pack, ctx, k, want_matrix)
+    frame = chain_state(ctx.chains, pack.chains[k, 0])
+    cols = frame[0]
+    nc = cols.shape[0]
+    power = ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el)
+    rows = pack.rows_work[0]
+    for j in range(nc):
+        rows[j] = zx[cols[j]]
+    for f in range(nf):
+        rows[nc + f] = zx[x0 + f]
+    for j in range(nc + nf):
+        res[rows[j]] += coef_k * force[j]
+    return power
+
+
 def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
                   want_matrix, res, ab, brow, bcol, bb):
     """Every FFR beam's rows (:mod:`hubbeam.system.terms`): H^T (M_v vdot - Q) on its frame's
@@ -472,27 +508,18 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
     power = 0.0
     places = pack.places
     for k in range(places.shape[0]):
+        power += _beam_residual(pack, ctx, k, x, v, acc, load_factor, want_matrix, coef_k, res)
+        if not want_matrix:
+            continue
         nf = places[k, NF]
         x0 = places[k, X0]
         n = 6 + nf
-        nc = ctx.chains.column_start[pack.chains[k, 0] + 1] - ctx.chains.column_start[pack.chains[k, 0]]
+        cols = chain_columns(ctx.chains, pack.chains[k, 0])
+        nc = cols.shape[0]
         m = nc + nf
         sq = pack.squares_work
-        force = pack.vectors_work[7, :m]
-        H, Mv, K_el = sq[0, :n, :m], sq[1, :n, :n], sq[3, :nf, :nf]
-        Cv = sq[2, :n, :n] if want_matrix else sq[2, :0, :0]
-        frame = chain_state(ctx.chains, pack.chains[k, 0])
-        cols = frame[0]
-        power += ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el)
+        _, H, Mv, Cv, K_el = _beam_scratch(pack, ctx, k, want_matrix)
         rows = pack.rows_work[0, :m]
-        for j in range(nc):
-            rows[j] = zx[cols[j]]
-        for f in range(nf):
-            rows[nc + f] = zx[x0 + f]
-        for j in range(m):
-            res[rows[j]] += coef_k * force[j]
-        if not want_matrix:
-            continue
         # coef_m H^T M_v H + coef_c H^T C_v H: B = (coef_m M_v + coef_c C_v) H, then H^T B
         B = sq[4, :n, :m]
         for i in range(n):
