@@ -504,7 +504,7 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
     coordinates and its own; the matrix coef_m H^T M_v H + coef_c (H^T C_v H + C_struct) +
     coef_k K_el, or with ``exact_stiffness`` the stiffness by central differences of the force
     (statics and modes)."""
-    zx, ku = ctx.z_of_x, ctx.ku
+    ku = ctx.ku
     power = 0.0
     places = pack.places
     for k in range(places.shape[0]):
