@@ -58,10 +58,10 @@ def main() -> None:
     arrays = fk.pack(p)
     n = 6 + nf
     fv, Mv, Cv, K_el = np.empty(n), np.empty((n, n)), np.empty((n, n)), np.empty((nf, nf))
-    inv, tip, drag = arrays.inv, arrays.tip, arrays.drag(damping)
+    inv, tip, drag, work = arrays.inv, arrays.tip, arrays.drag(damping), arrays.work()
 
     def kernel():
-        fk.ffr_vspace_terms(inv, A, q, vb, vdot, GRAVITY, tip, drag, 1.0, True, fv, Mv, Cv, K_el)
+        fk.ffr_vspace_terms(inv, A, q, vb, vdot, GRAVITY, tip, drag, 1.0, True, fv, Mv, Cv, K_el, work)
 
     kernel()  # compiled (or loaded from the cache) before timing
     t_kernel = best(kernel, 200)

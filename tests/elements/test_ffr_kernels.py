@@ -51,7 +51,7 @@ def kernel(arrays, A, p, vb, vdot, gravity, damping=(0.0, 0.0), factor=1.0, want
     fv, Mv = np.empty(n), np.empty((n, n))
     Cv, K_el = (np.empty((n, n)), np.empty((nf, nf))) if want_matrix else (np.empty((0, 0)), np.empty((nf, nf)))
     power = fk.ffr_vspace_terms(arrays.inv, A, p, vb, vdot, np.asarray(gravity, dtype=float), arrays.tip,
-                                arrays.drag(damping), float(factor), want_matrix, fv, Mv, Cv, K_el)
+                                arrays.drag(damping), float(factor), want_matrix, fv, Mv, Cv, K_el, arrays.work())
     return fv, Mv, Cv, K_el, power
 
 

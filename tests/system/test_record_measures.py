@@ -119,7 +119,7 @@ def test_ffr_energies_are_the_potentials_of_its_forces(modes):
     def terms(gravity, factor):
         fv, Mv = np.empty(n), np.empty((n, n))
         ffr_vspace_terms(inv, A, p, zero, zero, gravity, tip, drag, factor, False, fv, Mv, np.empty((0, 0)),
-                         np.empty((nf, nf)))
+                         np.empty((nf, nf)), arrays.work())
         return fv, Mv
 
     def energies(AA=A, rr=r_C, pp=p, vv=vb):

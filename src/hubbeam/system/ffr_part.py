@@ -39,8 +39,8 @@ import numpy as np
 from numba import njit
 
 from hubbeam.elements.ffr.body import FfrBeam
-from hubbeam.elements.ffr.kernels import (ffr_dissipated_power, ffr_energies, ffr_momentum, ffr_vspace_terms, tip_lever,
-                                          tip_load_power)
+from hubbeam.elements.ffr.kernels import (ffr_dissipated_power, ffr_energies, ffr_momentum, ffr_vspace_terms,
+                                          kernel_work, tip_lever, tip_load_power)
 from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
@@ -306,9 +306,11 @@ class FfrBeams(NamedTuple):
     mean_stretch: np.ndarray
     mean_slope2: np.ndarray
     N_pts: np.ndarray
-    vectors_work: np.ndarray  # (8, L) scratch vectors (L = 6 + the largest nf + the widest frame's columns)
-    squares_work: np.ndarray  # (6, L, L) scratch matrices
-    rows_work: np.ndarray  # int64 (L,) scratch z rows
+    vectors_work: np.ndarray  # (15, W) scratch vectors (W >= L = 6 + the largest nf + the widest frame's columns;
+    #                           rows 8: the kernel's, :func:`_kernel_work`)
+    squares_work: np.ndarray  # (8, L + 1, L + 1) scratch matrices (6: the kernel's)
+    rows_work: np.ndarray  # int64 (3, L) scratch z rows (row 0) and the kernel's (rows 1:)
+    moments_work: np.ndarray  # (2, 3, 3, the largest nf): the kernel's (:func:`~hubbeam.elements.ffr.kernels.kernel_work`)
 
 
 def _stacked(values) -> np.ndarray:
@@ -336,8 +338,12 @@ def pack_ffr_beams(system, layout) -> FfrBeams | None:
                       dtype=np.int64).reshape(len(ffr), 2)
     widest = max(len(system.frames.chain(c).coordinates) for c in chains[:, 0])
     size = 6 + max(b.beam.ndof for _, b in ffr) + widest
-    return FfrBeams(places, chains, **fields, vectors_work=np.zeros((8, size)), squares_work=np.zeros((6, size, size)),
-                    rows_work=np.zeros(size, dtype=np.int64))
+    nf = max(b.beam.ndof for _, b in ffr)
+    vectors, squares = np.zeros((15, size + 3 + 3 * fields["points"].shape[2])), np.zeros((8, size + 1, size + 1))
+    rows = np.zeros((3, size), dtype=np.int64)
+    _, moments, _, _ = kernel_work(nf, fields["points"].shape[2], vectors[8:], squares[6:], rows[1:])
+    return FfrBeams(places, chains, **fields, vectors_work=vectors, squares_work=squares, rows_work=rows,
+                    moments_work=moments)
 
 
 def ffr_bandwidth(system, layout) -> int:
@@ -375,6 +381,15 @@ def ffr_arguments(pack, k, drag_c):
     return inv, tip, ffr_drag_arguments(pack, k, drag_c)
 
 
+@njit(cache=True, inline="always")
+def _kernel_work(pack):
+    """The scratch of :func:`~hubbeam.elements.ffr.kernels.ffr_vspace_terms` in the pack's
+    (:func:`~hubbeam.elements.ffr.kernels.kernel_work`): views of its scratch arrays, so that the
+    pack holds one array more, not four (each array of the pack costs its reference count
+    wherever compiled code passes the model)."""
+    return pack.vectors_work[8:], pack.moments_work, pack.squares_work[6:], pack.rows_work[1:]
+
+
 @njit(cache=True)
 def _fresh_frame(ctx, F, chain, x):
     """(columns, r, R, Jr, Jw, Hr, Hw) of a chain evaluated at x (not the cached state: the
@@ -388,7 +403,7 @@ def _fresh_frame(ctx, F, chain, x):
     return cols, r, R, Jr, Jw, Hr, Hw
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, motion, vb, vdot):
     """vb = H [c', p'] and vdot = H [c'', p''] + [h_r, A0^T h_w, 0] (module docstring);
     ``motion`` (4, 3) scratch."""
@@ -403,21 +418,22 @@ def _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, motion, vb, vdot):
         vdot[6 + f] = acc[x0 + f]
 
 
-@njit(cache=True)
-def ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el, elastic=True,
-                   fresh=False):
+@njit(cache=True, _nrt=False)
+def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el, elastic=True):
     """FFR beam k's generalized force on its columns [c (the frame's nc), p (nf)] into ``force``
     (nc + nf; module docstring), its projection H ((6 + nf) x (nc + nf)) and, when
     ``want_matrix``, M_v, C_v and K_el (:func:`ffr_vspace_terms`; ``elastic`` False leaves the
-    elastic force out). The frame as the system evaluated it at x, or ``fresh`` at this x.
-    Returns (the frame's columns (x indices), the dissipated power (W))."""
+    elastic force out). ``frame`` = (columns, r, R, Jr, Jw, Hr, Hw): its frame at x, as the
+    system evaluated it (:func:`~hubbeam.system.frames.chain_state`) or afresh
+    (:func:`_fresh_frame`). Returns the dissipated power (W).
+
+    Compiled without numba's reference counting (it allocates nothing and returns no array):
+    a call that counts the references of the pack's and the context's arrays costs about
+    0.5 us per FFR beam and residual."""
     nf = pack.places[k, NF]
     x0 = pack.places[k, X0]
     n = 6 + nf
-    if fresh:
-        cols, r, R, Jr, Jw, Hr, Hw = _fresh_frame(ctx, F, pack.chains[k, 0], x)
-    else:
-        cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
+    cols, r, R, Jr, Jw, Hr, Hw = frame
     nc = cols.shape[0]
     p = x[x0:x0 + nf]
     vecs = pack.vectors_work
@@ -425,7 +441,7 @@ def ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, 
     _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, vecs[3:7, :3], vb, vdot)
     inv, tip, drag = ffr_arguments(pack, k, ctx.drag)
     power = ffr_vspace_terms(inv, R, p, vb, vdot, ctx.gravity, tip, drag, load_factor, want_matrix, fv, Mv, Cv, K_el,
-                             elastic)
+                             _kernel_work(pack), elastic)
     m = nc + nf
     for i in range(n):
         for j in range(m):
@@ -443,7 +459,43 @@ def ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, 
         force[j] = s
     for f in range(nf):
         force[nc + f] = fv[6 + f]
-    return cols, power
+    return power
+
+
+@njit(cache=True, inline="always")
+def _beam_scratch(pack, ctx, k, want_matrix):
+    """(force, H, M_v, C_v, K_el) of FFR beam k in the pack's scratch (:func:`ffr_beam_terms`;
+    C_v empty without the matrix)."""
+    nf = pack.places[k, NF]
+    n = 6 + nf
+    m = ctx.chains.column_start[pack.chains[k, 0] + 1] - ctx.chains.column_start[pack.chains[k, 0]] + nf
+    sq = pack.squares_work
+    Cv = sq[2, :n, :n] if want_matrix else sq[2, :0, :0]
+    return pack.vectors_work[7, :m], sq[0, :n, :m], sq[1, :n, :n], Cv, sq[3, :nf, :nf]
+
+
+@njit(cache=True, _nrt=False)
+def _beam_residual(pack, ctx, k, x, v, acc, load_factor, want_matrix, coef_k, res):
+    """FFR beam k's rows of the residual, coef_k H^T (M_v vdot - Q) (:func:`ffr_beam_terms`, the
+    pieces of its matrix left in the scratch of :func:`_beam_scratch`), its z rows into the
+    pack's rows_work[0]. Returns its dissipated power (W). Without numba's reference counting,
+    as :func:`ffr_beam_terms` (the views it builds cost nothing then)."""
+    zx = ctx.z_of_x
+    nf = pack.places[k, NF]
+    x0 = pack.places[k, X0]
+    force, H, Mv, Cv, K_el = _beam_scratch(pack, ctx, k, want_matrix)
+    frame = chain_state(ctx.chains, pack.chains[k, 0])
+    cols = frame[0]
+    nc = cols.shape[0]
+    power = ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el)
+    rows = pack.rows_work[0]
+    for j in range(nc):
+        rows[j] = zx[cols[j]]
+    for f in range(nf):
+        rows[nc + f] = zx[x0 + f]
+    for j in range(nc + nf):
+        res[rows[j]] += coef_k * force[j]
+    return power
 
 
 def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
@@ -452,30 +504,22 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
     coordinates and its own; the matrix coef_m H^T M_v H + coef_c (H^T C_v H + C_struct) +
     coef_k K_el, or with ``exact_stiffness`` the stiffness by central differences of the force
     (statics and modes)."""
-    zx, ku = ctx.z_of_x, ctx.ku
+    ku = ctx.ku
     power = 0.0
     places = pack.places
     for k in range(places.shape[0]):
+        power += _beam_residual(pack, ctx, k, x, v, acc, load_factor, want_matrix, coef_k, res)
+        if not want_matrix:
+            continue
         nf = places[k, NF]
         x0 = places[k, X0]
         n = 6 + nf
-        nc = ctx.chains.column_start[pack.chains[k, 0] + 1] - ctx.chains.column_start[pack.chains[k, 0]]
+        cols = chain_columns(ctx.chains, pack.chains[k, 0])
+        nc = cols.shape[0]
         m = nc + nf
         sq = pack.squares_work
-        force = pack.vectors_work[7, :m]
-        H, Mv, K_el = sq[0, :n, :m], sq[1, :n, :n], sq[3, :nf, :nf]
-        Cv = sq[2, :n, :n] if want_matrix else sq[2, :0, :0]
-        cols, pk = ffr_beam_terms(pack, ctx, F, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el)
-        power += pk
-        rows = pack.rows_work[:m]
-        for j in range(nc):
-            rows[j] = zx[cols[j]]
-        for f in range(nf):
-            rows[nc + f] = zx[x0 + f]
-        for j in range(m):
-            res[rows[j]] += coef_k * force[j]
-        if not want_matrix:
-            continue
+        _, H, Mv, Cv, K_el = _beam_scratch(pack, ctx, k, want_matrix)
+        rows = pack.rows_work[0, :m]
         # coef_m H^T M_v H + coef_c H^T C_v H: B = (coef_m M_v + coef_c C_v) H, then H^T B
         B = sq[4, :n, :m]
         for i in range(n):
@@ -507,9 +551,11 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
                 c = cols[j] if j < nc else x0 + j - nc
                 h = 1e-6 * max(1.0, abs(x[c]))
                 xp[c] = x[c] + h
-                ffr_beam_terms(pack, ctx, F, k, xp, v, acc, load_factor, False, fp, H2, M2, C2, K2, False, True)
+                ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp), k, xp, v, acc, load_factor,
+                               False, fp, H2, M2, C2, K2, False)
                 xp[c] = x[c] - h
-                ffr_beam_terms(pack, ctx, F, k, xp, v, acc, load_factor, False, fm, H2, M2, C2, K2, False, True)
+                ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp), k, xp, v, acc, load_factor,
+                               False, fm, H2, M2, C2, K2, False)
                 xp[c] = x[c]
                 for i in range(m):
                     block[i, j] += coef_k * (fp[i] - fm[i]) / (2.0 * h)
@@ -556,20 +602,31 @@ def ffr_momenta(pack, ctx, F, x, v, out):
         ffr_momentum(inv, R, r, x[x0:x0 + nf], vb, out)
 
 
-def ffr_power(pack, ctx, F, x, v):
-    """Power of the drag of Eq. 37 and of the structural damping on every FFR beam (W)."""
+@njit(cache=True, _nrt=False)
+def _dissipated_power(pack, ctx, v, x):
+    """Power of the drag of Eq. 37 and of the structural damping on every FFR beam (W), at the
+    frames as the system evaluated them. Compiled without numba's reference counting (as
+    :func:`ffr_beam_terms`)."""
     power = 0.0
     places = pack.places
     still = ctx.drag[0] == 0.0 and ctx.drag[1] == 0.0
+    vecs = pack.vectors_work
     for k in range(places.shape[0]):
-        if still and pack.scalars[k, 2] == 0.0:  # neither drag nor structural damping: no views to build
+        if still and pack.scalars[k, 2] == 0.0:  # neither drag nor structural damping
             continue
         nf = places[k, NF]
         x0 = places[k, X0]
-        r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
+        cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
+        vb = vecs[0, :6 + nf]
+        _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, v, x0, nf, vecs[3:7, :3], vb, vecs[1, :6 + nf])
         power += ffr_dissipated_power(R, x[x0:x0 + nf], vb, pack.squares[k, 2], pack.scalars[k, 2],
                                       ffr_drag_arguments(pack, k, ctx.drag))
     return power
+
+
+def ffr_power(pack, ctx, F, x, v):
+    """Power of the drag of Eq. 37 and of the structural damping on every FFR beam (W)."""
+    return _dissipated_power(pack, ctx, v, x)
 
 
 def ffr_drive_power(pack, ctx, F, t, x, v, lam):

@@ -46,10 +46,11 @@ from numba import njit
 
 
 # ---------------------------------------------------------------------------- shared pieces
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
     """St = c0 + Sbar p; Q2[k, l, g] = sum_f p_f II[k, l, f, g] (and, when ``with_rate``,
-    Q2d the same with p'); R2 = I0 + J p + (J p)^T + p II p (the second moment, body frame).
+    Q2d the same with p'); R2 = I0 + J p + (J p)^T + p II p (the second moment, body frame; 9
+    entries, row-major).
     II is symmetric as built, II[k, l, f, g] = II[l, k, g, f], so Q2 also gives the
     contractions on the last index: sum_g II[k, l, f, g] p_g = Q2[l, k, f]. (c0, Sbar, I0, J,
     II: the invariants of the module docstring.)"""
@@ -84,14 +85,15 @@ def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
                 jkl += J[k, l, f] * p[f]
                 jlk += J[l, k, f] * p[f]
                 acc += Q2[k, l, f] * p[f]
-            R2[k, l] = I0[k, l] + jkl + jlk + acc
+            R2[3 * k + l] = I0[k, l] + jkl + jlk + acc
 
 
-@njit(cache=True, error_model="numpy")
-def _elastic(K, EAl, a, G, stiff, p, nf, want_tangent, f_el, K_el):
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _elastic(K, EAl, a, G, stiff, p, nf, want_tangent, f_el, K_el, deps, act):
     """Internal force f_el (nf) and (when ``want_tangent``) tangent K_el (nf, nf) of
     :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>` (K, EAl, a =
-    mean_stretch, G = mean_slope2, stiff = stiffening: see the module docstring)."""
+    mean_stretch, G = mean_slope2, stiff = stiffening: see the module docstring); deps (float)
+    and act (int) scratch of nf entries."""
     for i in range(nf):
         acc = 0.0
         for j in range(nf):
@@ -105,8 +107,6 @@ def _elastic(K, EAl, a, G, stiff, p, nf, want_tangent, f_el, K_el):
         return
     # element e only touches its own coordinates: those with a_e != 0 or (G_e)_ff != 0
     # (G_e is a sum of outer products, so a zero diagonal entry means a zero row)
-    deps = np.empty(nf)
-    act = np.empty(nf, dtype=np.int64)
     for e in range(a.shape[0]):
         na = 0
         for f in range(nf):
@@ -135,7 +135,7 @@ def _elastic(K, EAl, a, G, stiff, p, nf, want_tangent, f_el, K_el):
                     K_el[f, g] += EAl[e] * (deps[f] * deps[g] + eps * G[e, f, g])
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def tip_lever(T, length, p):
     """The tip point in the body frame, (L, 0, 0) + T p (m, a 3-tuple; T the tip's displacement
     rows over p, 3 x nf): the lever arm of the tip force, and the tip centroid's place on the body."""
@@ -150,7 +150,7 @@ def tip_lever(T, length, p):
     return r0, r1, r2
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _applied_loads(m, Sbar, F, Mo, T, R, length, nf, A, St, p, gravity, factor, out):
     """out += factor (Q_g + Q_tip) (6 + nf, on v; Eq. 67 and FfrPart._tip_load): m, Sbar the
     invariants, F, Mo, T, R, length the ``tip`` group of the module docstring. The tip force
@@ -199,7 +199,7 @@ def tip_load_power(tip, A, p, vb):
     return power
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _mass_matrix(m, Sbar, J, Mff, nf, A, St, Q2, R2, Mv):
     """M_v of Eq. 66 (6 + nf square) on v."""
     n = 6 + nf
@@ -221,10 +221,10 @@ def _mass_matrix(m, Sbar, J, Mff, nf, A, St, Q2, R2, Mv):
             val = A[a, 0] * Sbar[0, f] + A[a, 1] * Sbar[1, f] + A[a, 2] * Sbar[2, f]
             Mv[a, 6 + f] = val
             Mv[6 + f, a] = val
-    tr = R2[0, 0] + R2[1, 1] + R2[2, 2]
+    tr = R2[0] + R2[4] + R2[8]
     for i in range(3):
         for j in range(3):
-            Mv[3 + i, 3 + j] = -R2[i, j]
+            Mv[3 + i, 3 + j] = -R2[3 * i + j]
         Mv[3 + i, 3 + i] += tr
     # P = J + Q2; rows (P[1,2] - P[2,1], P[2,0] - P[0,2], P[0,1] - P[1,0])
     for f in range(nf):
@@ -244,7 +244,7 @@ def _mass_matrix(m, Sbar, J, Mff, nf, A, St, Q2, R2, Mv):
 
 
 # ---------------------------------------------------------------------------- the equations
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
     """Drag point k of the centre line: its body-frame position r_b = [x_k, 0, 0] + N_k p (m, into
     ``rb``), u_b = omega x r_b + N_k p' (``ub``) and its absolute velocity rdot = r_C' + A0 u_b
@@ -266,7 +266,7 @@ def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
         rd[i] = vb[i] + A[i, 0] * ub[0] + A[i, 1] * ub[1] + A[i, 2] * ub[2]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
     """The drag of Eq. 64 summed over the centre-line points: returns its dissipated power
     sum_k b_k w_k (c1 + c2 |rdot_k|) |rdot_k|^2 (W) and, when ``want_force``, writes Q_d (on v,
@@ -347,7 +347,7 @@ def _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
     return power
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def ffr_dissipated_power(A, p, vb, Cs, damped, drag):
     """The power dissipated by the drag (Eq. 64) and the structural damping at the body frame
     A (3 x 3), the elastic coordinates p and the v-space rates vb = [r_C', omega^b, p']:
@@ -367,25 +367,22 @@ def ffr_dissipated_power(A, p, vb, Cs, damped, drag):
     Npts, xpts, wpts, width, dc1, dc2 = drag
     if dc1 == 0.0 and dc2 == 0.0:
         return power
-    return power + _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, np.empty(0), False)
+    return power + _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, vb, False)  # no force: vb unwritten
 
 
-@njit(cache=True, error_model="numpy")
-def _drag_matrix(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, coef_c, block):
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _drag_matrix(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, coef_c, block, points, Sb, Sr, Cv, cols):
     """block += coef_c C_v, C_v = -dQ_d/dv of the drag (Eq. 64) on the centre line (v-space, on the
     leading 6 + nf square): body-frame S_b = A0^T S = [A0^T, -skew(r), N], C_v = sum_k b_k w_k
     S_b^T G_b S_b with G_b = alpha I + beta r_b' r_b'^T, r_b' = A0^T rdot (alpha = c1 + c2 |rdot|,
-    beta = c2 / |rdot|)."""
+    beta = c2 / |rdot|). Scratch: ``points`` (4, 3), Sb (3, n), Sr (n), Cv (n, n), ``cols`` (int, n),
+    n = 6 + nf (or larger)."""
     nf = p.shape[0]
     n = 6 + nf
-    rb = np.empty(3)
-    ub = np.empty(3)
-    rd = np.empty(3)
-    yb = np.empty(3)
-    Sb = np.empty((3, n))
-    Sr = np.empty(n)
-    Cv = np.zeros((n, n))  # upper triangle of coef_c C_v
-    cols = np.empty(n, dtype=np.int64)
+    rb, ub, rd, yb = points[0], points[1], points[2], points[3]
+    for i in range(n):
+        for j in range(n):
+            Cv[i, j] = 0.0  # upper triangle of coef_c C_v
     for i in range(6):
         cols[i] = i
     for k in range(Npts.shape[0]):
@@ -451,7 +448,7 @@ def ffr_energies(inv, A, r_C, p, vb, gravity):
     n = 6 + nf
     St = np.empty(3)
     Q2 = np.empty((3, 3, nf))
-    R2 = np.empty((3, 3))
+    R2 = np.empty(9)
     _moments(inv[1], inv[2], inv[3], inv[4], inv[5], p, p, False, nf, St, Q2, Q2, R2)
     Mv = np.empty((n, n))
     _mass_matrix(inv[0], inv[2], inv[4], inv[6], nf, A, St, Q2, R2, Mv)
@@ -483,7 +480,7 @@ def ffr_momentum(inv, A, r_C, p, vb, out):
     n = 6 + nf
     St = np.empty(3)
     Q2 = np.empty((3, 3, nf))
-    R2 = np.empty((3, 3))
+    R2 = np.empty(9)
     _moments(inv[1], inv[2], inv[3], inv[4], inv[5], p, p, False, nf, St, Q2, Q2, R2)
     Mv = np.empty((n, n))
     _mass_matrix(inv[0], inv[2], inv[4], inv[6], nf, A, St, Q2, R2, Mv)
@@ -506,8 +503,8 @@ def ffr_momentum(inv, A, r_C, p, vb, out):
     out[9] += h[2] + r_C[0] * mv[1] - r_C[1] * mv[0]
 
 
-@njit(cache=True, error_model="numpy")
-def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_matrix, fv, Mv, Cv, K_el,
+@njit(cache=True, error_model="numpy", _nrt=False)
+def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_matrix, fv, Mv, Cv, K_el, work,
                      elastic=True):
     """The FFR body's equations in v-space (v = [r_C', omega^b, p']): writes ``fv`` (6 + nf) =
     M_v vdot - Q, Q = Q_v + load_factor (Q_g + Q_tip) + Q_d - [0, 0, f_elastic + C_struct p']
@@ -516,10 +513,16 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
     geometric stiffening. A (3 x 3) is the body frame (its axes the undeformed root section's),
     p the elastic coordinates, vb and vdot the v-space rates and accelerations; inv, tip, drag:
     the module docstring. The frame's own motion enters through vb and vdot alone: the caller
-    projects on its coordinates (:mod:`hubbeam.system.ffr_part`). ``elastic`` False leaves the
-    elastic force out of fv (the exact stiffness then takes it from K_el, and differences only
-    the rest). Returns the power dissipated by the drag and the structural damping,
-    -Q_d . vb + p'^T C_struct p' (W)."""
+    projects on its coordinates (:mod:`hubbeam.system.ffr_part`). ``work``: scratch of
+    :func:`kernel_work` for at least nf coordinates and the drag's points. ``elastic`` False
+    leaves the elastic force out of fv (the exact stiffness then takes it from K_el, and
+    differences only the rest). Returns the power dissipated by the drag and the structural
+    damping, -Q_d . vb + p'^T C_struct p' (W).
+
+    Compiled without numba's reference counting, as the kernels it calls on every residual
+    (:func:`_moments`, :func:`_mass_matrix`, :func:`_applied_loads`, :func:`_drag_loop`): they
+    allocate nothing and return no array (a residual's allocations and reference counts were
+    about a fifth of an FFR step's time on exp1 with 4 modes)."""
     Sbar, J = inv[2], inv[4]
     Npts, xpts, wpts, width, dc1, dc2 = drag
     Cs, damped = inv[12], inv[13]
@@ -529,16 +532,14 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
     w0, w1, w2 = vb[3], vb[4], vb[5]
 
     # body moments and the mass matrix
-    St = np.empty(3)
-    Q2 = np.empty((3, 3, nf))
-    Q2d = np.empty((3, 3, nf))
-    R2 = np.empty((3, 3))
+    vectors, Q2s, squares, ints = work
+    Q, f_el, St, Qd, R2 = vectors[0], vectors[1], vectors[2], vectors[3], vectors[6]
+    Q2, Q2d = Q2s[0], Q2s[1]
     _moments(inv[1], Sbar, inv[3], J, inv[5], p, pd, True, nf, St, Q2, Q2d, R2)
     _mass_matrix(inv[0], inv[2], inv[4], inv[6], nf, A, St, Q2, R2, Mv)
 
     # Q_v (Eq. 67), with W = [omega^b]x and WW = W W as scalars (the same products as the
     # matrix forms, without their zero terms)
-    Q = np.empty(n)
     ud0 = 0.0
     ud1 = 0.0
     ud2 = 0.0
@@ -556,11 +557,11 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
     t2 = WW20 * St[0] + WW21 * St[1] + WW22 * St[2] + 2.0 * (-w1 * ud0 + w0 * ud1)
     for i in range(3):
         Q[i] = -(A[i, 0] * t0 + A[i, 1] * t1 + A[i, 2] * t2)
-    tr = R2[0, 0] + R2[1, 1] + R2[2, 2]
+    tr = R2[0] + R2[4] + R2[8]
     # I omega = tr(R2) omega - R2 omega
-    Iw0 = tr * w0 - (R2[0, 0] * w0 + R2[0, 1] * w1 + R2[0, 2] * w2)
-    Iw1 = tr * w1 - (R2[1, 0] * w0 + R2[1, 1] * w1 + R2[1, 2] * w2)
-    Iw2 = tr * w2 - (R2[2, 0] * w0 + R2[2, 1] * w1 + R2[2, 2] * w2)
+    Iw0 = tr * w0 - (R2[0] * w0 + R2[1] * w1 + R2[2] * w2)
+    Iw1 = tr * w1 - (R2[3] * w0 + R2[4] * w1 + R2[5] * w2)
+    Iw2 = tr * w2 - (R2[6] * w0 + R2[7] * w1 + R2[8] * w2)
     # G[j, k] = int rho r_j udot_k = sum_f (J[j, k, f] + Q2[j, k, f]) p'_f; needed: tr G and G^T omega
     trG = 0.0
     GTw0 = 0.0
@@ -602,8 +603,7 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
     # applied loads, elastic force
     F, Mo, T, R, length = tip
     _applied_loads(inv[0], Sbar, F, Mo, T, R, length, nf, A, St, p, gravity, load_factor, Q)
-    f_el = np.empty(nf)
-    _elastic(inv[7], inv[8], inv[9], inv[10], inv[11], p, nf, want_matrix, f_el, K_el)
+    _elastic(inv[7], inv[8], inv[9], inv[10], inv[11], p, nf, want_matrix, f_el, K_el, vectors[4], ints[0, :nf])
     if elastic:
         for f in range(nf):
             Q[6 + f] -= f_el[f]
@@ -624,12 +624,12 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
 
     # drag (Eq. 64) on the centre line
     if dc1 != 0.0 or dc2 != 0.0:
-        Qd = np.empty(6 + 3 * Npts.shape[0] + nf)  # Q_d (leading n), and scratch
         power += _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, True)
         for i in range(n):
             Q[i] += Qd[i]
         if want_matrix:
-            _drag_matrix(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, 1.0, Cv)
+            _drag_matrix(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, 1.0, Cv, squares[0, 0:4, 0:3],
+                         squares[0, 4:7, :n], vectors[5], squares[1, :n, :n], ints[1, :n])
 
     for i in range(n):
         s = 0.0
@@ -637,6 +637,20 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
             s += Mv[i, j] * vdot[j]
         fv[i] = s - Q[i]
     return power
+
+
+def kernel_work(nf: int, npts: int, vectors=None, squares=None, ints=None) -> tuple:
+    """Scratch of :func:`ffr_vspace_terms` for up to nf elastic coordinates and npts drag points,
+    so that it allocates nothing: (vectors (7, >= 9 + 3 npts + nf): Q, the elastic force, S_t,
+    Q_d with the drag's points, the elastic force's and the drag matrix's scratch, the second
+    moment (9); (2, 3, 3, nf): the contractions of II with p and p'; squares (2, >= n + 1, >= n):
+    the drag matrix's point vectors and S_b, and its C_v; int (2, >= n)), n = 6 + nf. ``vectors``,
+    ``squares``, ``ints``: arrays of those shapes to use (views of a pack's scratch), else new."""
+    n = 6 + nf
+    vectors = np.zeros((7, n + 3 + 3 * npts)) if vectors is None else vectors
+    squares = np.zeros((2, n + 1, n)) if squares is None else squares
+    ints = np.zeros((2, n), dtype=np.int64) if ints is None else ints
+    return vectors, np.zeros((2, 3, 3, nf)), squares, ints
 
 
 # ---------------------------------------------------------------------------- packing
@@ -678,6 +692,10 @@ class FfrArrays(NamedTuple):
 
     def drag(self, damping=(0.0, 0.0)) -> tuple:
         return (self.N_pts, self.x_pts, self.w_pts, self.width, float(damping[0]), float(damping[1]))
+
+    def work(self) -> tuple:
+        """Scratch of :func:`ffr_vspace_terms` for this part (:func:`kernel_work`)."""
+        return kernel_work(self.Mff.shape[0], self.x_pts.shape[0])
 
 
 def _f64(a) -> np.ndarray:
