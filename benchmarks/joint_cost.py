@@ -3,14 +3,21 @@
     python benchmarks/joint_cost.py hinge [REPS]   # exp1 (6 elements, 10 s at 1 ms) clamped / on the stiff flap hinge
     python benchmarks/joint_cost.py chain [REPS]   # case J's chain of 1, 2, 4, 8 links (1 s at 1 ms), both starts
     python benchmarks/joint_cost.py newton [REPS]  # why the FFR beam on the hinge refactorises (about 2 minutes)
+    python benchmarks/joint_cost.py columns [REPS] # exp1 clamped / on the hinge, joint columns updated or not
 
 For each model: the time loop alone (:class:`hubbeam.simulation.CompiledSteps`, process time per
 step, median and range of REPS runs that alternate with the other models in this one process: on a
 loaded machine process time varies less than wall time), Newton iterations and LU factorisations
-per step, and the cost of one call of each part of a step (process time, best of 3): the residual,
-the residual with the Newton matrix, the band LU, a band solve and the step's powers; "parts"
-adds them as a step spends them: (1 + N) residuals, LU x (matrix - residual + factor), N solves
-and the powers. numba's cache must be warm (run case J once first).
+per step, column updates of the kept matrix per step ("patches",
+:mod:`hubbeam.solvers.column_update`), and the cost of one call of each part of a step (process
+time, best of 3): the residual, the residual with the Newton matrix, the band LU, a band solve
+and the step's powers; "parts" adds them as a step spends them: (1 + N) residuals, LU x (matrix -
+residual + factor), N solves, the powers, and patches x joint angles x (residual + solve). numba's cache must be warm (run case J once first).
+
+``columns``: as ``hinge``, the hinged models run twice, alternating: with the column update of a
+stale kept matrix (:mod:`hubbeam.solvers.column_update`, the default) and without
+(``NewtonOptions(update_columns=False)``: refactorise it), and the tip deflection and root
+strain of the two runs compared (10 s, every 10th step).
 
 ``newton``: exp1 with the nodal FFR beam, clamped and on the hinge. (1) The spectral radius of
 I - A^-1 D at step 300 (t = 0.3 s), A the code's Newton matrix at step 300 - lag, D central
@@ -113,33 +120,36 @@ def call_costs(system, state) -> dict:
     return out
 
 
-def compare(models: dict, steps: int, reps: int, dt: float = 1e-3) -> dict:
+def compare(models: dict, steps: int, reps: int, dt: float = 1e-3, options: dict | None = None) -> dict:
     """{label: (us per step of each rep, Newton per step, LU per step, steps)} of the compiled loop
-    alone, the models alternating within each repetition."""
+    alone, the models alternating within each repetition; ``options``: {label: NewtonOptions}
+    where not the default."""
     p = ga.AlphaParameters.from_spectral_radius(0.8)
     built = {label: (s, initial_state(s)) for label, s in ((k, api.build_system(sc)) for k, sc in models.items())}
     out = {label: [] for label in models}
+    options = options or {}
     for _ in range(reps):
         for label, (system, state) in built.items():
-            loop = CompiledSteps(system, p, ga.NewtonOptions(), dt, state)
+            loop = CompiledSteps(system, p, options.get(label, ga.NewtonOptions()), dt, state)
             t = time.process_time()
             _, n, its, _, err, _ = loop.advance(state, steps, 0, 10, steps)
             if err is not None:
                 raise err
-            out[label].append((1e6 * (time.process_time() - t) / n, its / n, loop.factorisations / n, n))
-    return {label: ([r[0] for r in rows], rows[0][1], rows[0][2], rows[0][3], built[label])
+            out[label].append((1e6 * (time.process_time() - t) / n, its / n, loop.factorisations / n, n,
+                               loop.patches / n))
+    return {label: ([r[0] for r in rows], rows[0][1], rows[0][2], rows[0][3], built[label], rows[0][4])
             for label, rows in out.items()}
 
 
 def report(results: dict) -> dict:
     per = {}
-    for label, (times, newton, lu, steps, (system, state)) in results.items():
+    for label, (times, newton, lu, steps, (system, state), patches) in results.items():
         c = call_costs(system, state)
         parts = (1 + newton) * c["residual"] + lu * (c["matrix"] - c["residual"] + c["factor"]) + newton * c["solve"] \
-            + c["powers"]
+            + c["powers"] + patches * sum(system.layout.joint_dofs) * (c["residual"] + c["solve"])
         per[label] = statistics.median(times)
         print(f"{label:22s} {per[label]:7.1f} us/step ({min(times):.1f}-{max(times):.1f}; {steps} steps)  "
-              f"Newton {newton:.3f}  LU {lu:.4f}  | nz {system.layout.nz}, half-bandwidth {system.bandwidth}: "
+              f"Newton {newton:.3f}  LU {lu:.4f}  patches {patches:.4f}  | nz {system.layout.nz}, half-bandwidth {system.bandwidth}: "
               f"residual {c['residual']:.1f}, matrix {c['matrix']:.1f}, factor {c['factor']:.1f}, solve "
               f"{c['solve']:.2f}, powers {c['powers']:.2f} us; parts {parts:.1f} us/step", flush=True)
     return per
@@ -236,6 +246,35 @@ def newton(reps: int) -> None:
               f"({min(times):.1f}-{max(times):.1f}), Newton {rows[0][1]:.3f}, LU {rows[0][2]:.4f}")
 
 
+def columns(reps: int) -> None:
+    """The ``columns`` comparison (module docstring)."""
+    forms = {"ANCF": [], "FFR nodal": ['beam.formulation="ffr"'],
+             "FFR 4 modes": ['beam.formulation="ffr"', "beam.modes=4"]}
+    models, options = {}, {}
+    for name, extra in forms.items():
+        models[f"{name}, clamped"] = load_example("exp1", extra)
+        for update in (True, False):
+            label = f"{name}, hinge, {'update' if update else 'refactorise'}"
+            models[label] = load_example("exp1", extra + [HINGE])
+            options[label] = ga.NewtonOptions(update_columns=update)
+    per = report(compare(models, 10000, reps, options=options))
+    for name, extra in forms.items():
+        clamped = per[f"{name}, clamped"]
+        print(f"{name}: hinge / clamped {per[f'{name}, hinge, update'] / clamped:.3f} with the column update, "
+              f"{per[f'{name}, hinge, refactorise'] / clamped:.3f} refactorising")
+        system = api.build_system(load_example("exp1", extra + [HINGE]))
+        state, p = initial_state(system), ga.AlphaParameters.from_spectral_radius(0.8)
+        x = []
+        for update in (True, False):
+            loop = CompiledSteps(system, p, ga.NewtonOptions(update_columns=update), 1e-3, state)
+            *_, err, chunk = loop.advance(state, 10000, 0, 10, 10000)
+            if err is not None:
+                raise err
+            x.append(chunk.states.x)
+        print(f"  states every 10 ms over 10 s: largest |x_update - x_refactorise| {np.max(np.abs(x[0] - x[1])):.1e} "
+              f"(largest |x| {np.max(np.abs(x[1])):.2f}; Newton tolerance 1e-9 x length)")
+
+
 def main() -> None:
     what = sys.argv[1] if len(sys.argv) > 1 else "hinge"
     reps = int(sys.argv[2]) if len(sys.argv) > 2 else 3
@@ -243,6 +282,8 @@ def main() -> None:
           f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     if what == "newton":
         newton(reps)
+    elif what == "columns":
+        columns(reps)
     elif what == "hinge":
         forms = {"ANCF": [], "FFR nodal": ['beam.formulation="ffr"'],
                  "FFR 4 modes": ['beam.formulation="ffr"', "beam.modes=4"]}

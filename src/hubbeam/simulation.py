@@ -11,6 +11,7 @@ import numpy as np
 from hubbeam import interrupt
 from hubbeam.sensors import prepare_chunk, record_needs
 from hubbeam.solvers import compiled_alpha
+from hubbeam.solvers.column_update import joint_columns
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.errors import ChartSingularityError, ComputationError, ConvergenceError
 from hubbeam.solvers.static import solve_static
@@ -240,7 +241,13 @@ class CompiledSteps(PythonSteps):
         self.matrix = (storage.ab, np.zeros(m, dtype=np.int32), storage.brow, storage.bcol, storage.bb,
                        np.zeros((layout.border, m)), np.zeros((layout.border, layout.border)))
         self.reuse = ga.reuse_state()
+        columns = joint_columns(layout, newton.update_columns)
+        k = columns.shape[0]
+        rows = (np.zeros((k, layout.nz)) for _ in range(4))  # the kept columns, G, H, Ut
+        self.patch = (columns, layout.z_of_x[columns].astype(np.int64), *rows, np.zeros((2 * k, 2 * k)),
+                      np.zeros((2 * k, 2 * k)), np.zeros(2 * k), np.zeros(2 * k), np.zeros(layout.nz))
         self.factorisations = 0
+        self.patches = 0  # column updates of the kept matrix (hubbeam.solvers.column_update)
         self.work_done = np.array([self.work["dissipated"], self.work["drive"]], dtype=float)
         self.alpha = (params.alpha_m, params.alpha_f, params.beta, params.gamma)
         tol = newton.tolerance * max(system.length_scale, 1.0)
@@ -256,16 +263,17 @@ class CompiledSteps(PythonSteps):
         records = (np.empty(rows), np.empty((rows, x.size)), np.empty((rows, x.size)), np.empty((rows, x.size)),
                    np.empty((rows, x.size)), np.empty((rows, lam.size)), np.empty((rows, 2)))
         power = np.array(self.power, dtype=float)
-        counters = np.zeros(4, dtype=np.int64)
+        counters = np.zeros(5, dtype=np.int64)
         chart = np.ascontiguousarray(state.chart)
         with interrupt.deferred():  # a signal handler must not raise inside compiled code; see simulate
             status, size, t = self.loop(
                 self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
-                self.system.mass_scale, CHART_LIMIT, self.matrix, self.reuse, self.work_done, power,
+                self.system.mass_scale, CHART_LIMIT, self.matrix, self.reuse, self.patch, self.work_done, power,
                 counters, (step0, every, total), records)
-        steps, its, factorisations, n_rec = (int(c) for c in counters)
+        steps, its, factorisations, n_rec, patches = (int(c) for c in counters)
         self.power = (power[0], power[1])
         self.factorisations += factorisations
+        self.patches += patches
         self.work = {"dissipated": self.work_done[0], "drive": self.work_done[1]}
         rt, rx, rv, rxdd, ra, rlam, rwork = records
         chunk = None

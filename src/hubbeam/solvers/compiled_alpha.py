@@ -19,8 +19,11 @@ from functools import cache
 import numpy as np
 from numba import njit
 
-from hubbeam.solvers.generalized_alpha import (REUSE_VALID, NewtonAction, Outcome, algorithmic_acceleration,
-                                               apply_increment, newton_decide, newton_start, predict)
+from hubbeam.solvers.column_update import (capacitance, column_change, difference_step, matrix_column, patch_solve,
+                                           unit_rows)
+from hubbeam.solvers.generalized_alpha import (REUSE_PATCH, REUSE_PATCHED, REUSE_VALID, NewtonAction, Outcome,
+                                               algorithmic_acceleration, apply_increment, factorised, newton_decide,
+                                               newton_start, predict)
 from hubbeam.system.assembly import bordered_factor, bordered_solve
 from hubbeam.system.equations import CHART_SINGULAR, step_powers, system_equations, system_events
 
@@ -39,7 +42,7 @@ def cache_is_cold(function=None) -> bool:
 
 @njit(cache=True)
 def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scale, chart_limit,
-            matrix, reuse, work, power, counters, schedule, records):
+            matrix, reuse, patch, work, power, counters, schedule, records):
     """Take up to ``n_steps`` steps of length h from (t, x, v, xdd, a, lam) in the charts F.
 
     The state arrays are updated in place after every converged step, so on any failure
@@ -51,9 +54,13 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     brow, bcol, bb, Y, schur): the bordered storage and its factors (:func:`hubbeam.system.assembly.bordered_factor`), and ``reuse``
     (the reuse state of :func:`hubbeam.solvers.generalized_alpha.reuse_state`; valid means
     the factors are for this h and these charts) carry the factorisation between calls.
+    ``patch`` = (columns (x indices of the joint angles, int), their z indices, the kept
+    matrix's columns, G, H, Ut, K^-1, S, w, s, residual): the storage of a column update of the
+    kept factors (:mod:`hubbeam.solvers.column_update`: four k x n, two 2k x 2k, two 2k, one
+    n), carried between calls with ``reuse``.
     ``work`` (2) accumulates the dissipated and the drive work (J) by the trapezoidal rule
-    from the powers in ``power`` (2, at the current state; updated). ``counters`` (int, 4)
-    accumulates steps, Newton iterations, LU factorisations and records. ``schedule`` =
+    from the powers in ``power`` (2, at the current state; updated). ``counters`` (int, 5)
+    accumulates steps, Newton iterations, LU factorisations, records and column updates. ``schedule`` =
     (steps before this call, record every so many steps, total steps of the run): the state
     after global step k is copied into row counters[3] of ``records`` = (t, x, v, xdd, a,
     lambda, work) when k is a multiple of the interval or the last step.
@@ -67,6 +74,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     am, af, beta, gamma = alpha
     tol, max_iterations, update, refresh_rate, refresh_iterations, mu_weight, kappa = newton
     ab, ipiv, brow, bcol, bb, Y, schur = matrix
+    columns, z_columns, kept, G, H, Ut, K_inverse, S, w_patch, s_patch, res_patch = patch
+    n_columns = columns.shape[0]
     step0, every, total = schedule
     zx, zl = model.context.z_of_x, model.context.z_of_lambda
     n = zx.shape[0] + zl.shape[0]
@@ -91,6 +100,37 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         fresh = not stale
         margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
                                      fresh, res, ab, brow, bcol, bb)
+        patched = False
+        if stale and reuse[REUSE_PATCH] == 1:
+            # the joint angles' columns by forward differences of the residual, then G = A^-1 C
+            # (hubbeam.solvers.column_update; generalized_alpha._patched is the same in Python)
+            reuse[REUSE_PATCH] = 0
+            for c in range(n_columns):
+                j = columns[c]
+                xj, vj, aj = x1[j], v1[j], xdd1[j]
+                d = difference_step(xj)
+                x1[j] = xj + d
+                v1[j] = vj + gprime * d
+                xdd1[j] = aj + bprime * d
+                system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact, False,
+                                 res_patch, ab, brow, bcol, bb)
+                x1[j], v1[j], xdd1[j] = xj, vj, aj
+                for i in range(n):
+                    G[c, i] = (res_patch[i] - res[i]) / d
+            column_change(G, kept, z_columns, Ut)
+            unit_rows(H, z_columns)
+            for c in range(n_columns):
+                bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, G[c])
+                bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, H[c])
+            if capacitance(G, H, Ut, z_columns, S, K_inverse) == 0:
+                reuse[REUSE_PATCHED] = 1
+                patched = True
+                counters[4] += 1
+            else:  # the patched matrix is singular: refactorise
+                stale = False
+                fresh = True
+                margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
+                                             exact, True, res, ab, brow, bcol, bb)
         previous = np.inf
         converged = False
         for it in range(1, max_iterations + 1):
@@ -99,19 +139,23 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             if fresh:
                 reuse[REUSE_VALID] = 0
                 counters[2] += 1
+                for c in range(n_columns):
+                    matrix_column(ab, brow, bcol, bb, model.bandwidth, z_columns[c], kept[c])
                 if bordered_factor(ab, model.bandwidth, ipiv, brow, bcol, bb, Y, schur) != 0:
                     return Outcome.SINGULAR_MATRIX, size, t
-                reuse[REUSE_VALID] = 1
+                factorised(reuse)
             for i in range(n):
                 res[i] = -res[i]
             bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, res)
+            if reuse[REUSE_PATCHED] == 1:
+                patch_solve(G, H, Ut, K_inverse, z_columns, res, w_patch, s_patch)
             counters[1] += 1
             if not _all_finite(res):
                 reuse[REUSE_VALID] = 0
                 return Outcome.NOT_FINITE, size, t
             size = apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, mu_weight, x1, v1, xdd1, lam1)
             action = newton_decide(size, previous, it, stale, update, refresh_rate, refresh_iterations, tol, reuse,
-                                   kappa)
+                                   kappa, n_columns, patched)
             if action == NewtonAction.CONVERGED:
                 converged = True
                 break
@@ -125,6 +169,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             fresh = action != NewtonAction.KEEP
             if fresh:
                 stale = False
+                patched = False
             margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
                                          exact, fresh, res, ab, brow, bcol, bb)
             previous = np.inf if fresh else size

@@ -27,6 +27,7 @@ from numba import njit
 import enum
 
 from hubbeam.errors import ConvergenceError
+from hubbeam.solvers.column_update import PatchedMatrix, difference_step, joint_columns, matrix_column
 from hubbeam.system.assembly import Factorisation
 from hubbeam.system.multibody import MultibodySystem
 
@@ -104,6 +105,10 @@ class NewtonOptions:
     sensor reads: theta' = 0 exactly, so that torque does no work, and it is then an internal
     reaction tested as a length like the clamps' (case M's tumbling bus with modal panels took
     1.97 Newton iterations per step with the torque test, 1.00 without: benchmarks/run.py).
+    ``update_columns``: with update "adaptive", a kept matrix that went stale is first
+    patched in its joint angles' columns (:mod:`.column_update`: one residual per joint angle
+    instead of a new matrix and its LU) and refactorised only when that does not help (False:
+    always refactorised, as before the update existed; for comparisons).
     """
 
     tolerance: float = 1e-9
@@ -114,6 +119,7 @@ class NewtonOptions:
     refresh_rate: float = 0.25
     refresh_iterations: int = 2
     hold_torque: bool | None = None
+    update_columns: bool = True
 
     def __post_init__(self) -> None:
         if self.update not in UPDATES:
@@ -133,11 +139,14 @@ class NewtonOptions:
 
 @dataclass(frozen=True)
 class IterationMatrix:
-    """A factorised iteration matrix and what it was built for (step size, chart)."""
+    """A factorised iteration matrix and what it was built for (step size, chart); ``columns``
+    (k x n): its joint angles' columns before the factorisation, for a column update
+    (:mod:`.column_update`)."""
 
     lu: Factorisation
     h: float
     chart: np.ndarray
+    columns: np.ndarray | None = None
 
     def valid_for(self, h: float, chart: np.ndarray) -> bool:
         return self.h == h and self.chart is chart
@@ -146,10 +155,14 @@ class IterationMatrix:
         return self.lu.solve(rhs)
 
 
-def factorise(matrix, h: float, chart: np.ndarray) -> IterationMatrix:
-    """LU of a system matrix (a BorderedBandMatrix) for step size h in ``chart``."""
+def factorise(matrix, h: float, chart: np.ndarray, z_columns: np.ndarray | None = None) -> IterationMatrix:
+    """LU of a system matrix (a BorderedBandMatrix) for step size h in ``chart``, keeping its
+    columns ``z_columns`` (default none)."""
+    columns = np.zeros((0 if z_columns is None else z_columns.shape[0], matrix.ab.shape[1] + matrix.border))
+    for a in range(columns.shape[0]):
+        matrix_column(matrix.ab, matrix.brow, matrix.bcol, matrix.bb, matrix.bandwidth, z_columns[a], columns[a])
     try:
-        return IterationMatrix(matrix.factorise(), h, chart)
+        return IterationMatrix(matrix.factorise(), h, chart, columns)
     except np.linalg.LinAlgError as exc:
         raise ConvergenceError(f"singular iteration matrix (a constraint lost rank or a mass vanished): {exc}") from exc
 
@@ -285,15 +298,18 @@ def newton_error(size, previous, reused, kappa):
 
 
 #: the reuse state of a kept iteration matrix, an int array shared with compiled code:
-#: [matrix valid, back-off (steps to wait after the next failure), steps still to wait]
-REUSE_VALID, REUSE_BACKOFF, REUSE_WAIT = 0, 1, 2
-#: longest wait (steps) before a kept matrix is tried again after failures
+#: [matrix valid, back-off (steps to wait after the next failure), steps still to wait,
+#: the next step patches the kept matrix's joint columns (:mod:`.column_update`), the kept
+#: factors carry a patch, the patches' back-off (stale matrices to refactorise after the next
+#: failed patch), stale matrices still to refactorise before the next patch]
+REUSE_VALID, REUSE_BACKOFF, REUSE_WAIT, REUSE_PATCH, REUSE_PATCHED, REUSE_PATCH_BACKOFF, REUSE_PATCH_WAIT = range(7)
+#: longest wait (steps, or for patches stale matrices) before a kept matrix or a patch is tried again after failures
 MAX_BACKOFF = 64
 
 
 def reuse_state() -> np.ndarray:
-    """A fresh reuse state: no matrix kept, back-off 1."""
-    return np.array([0, 1, 0], dtype=np.int64)
+    """A fresh reuse state: no matrix kept, back-offs 1."""
+    return np.array([0, 1, 0, 0, 0, 1, 0], dtype=np.int64)
 
 
 @njit(cache=True)
@@ -320,6 +336,36 @@ def kept_matrix_failed(reuse):
 @njit(cache=True)
 def kept_matrix_worked(reuse):
     reuse[REUSE_BACKOFF] = 1
+
+
+@njit(cache=True)
+def factorised(reuse):
+    """The reuse state after a factorisation: the matrix is valid and carries no patch."""
+    reuse[REUSE_VALID] = 1
+    reuse[REUSE_PATCH] = 0
+    reuse[REUSE_PATCHED] = 0
+
+
+@njit(cache=True)
+def patch_failed(reuse):
+    """A patched matrix did not bring its step back to ``refresh_iterations``: refactorise
+    the next stale matrices instead of patching them (exponential back-off, as
+    :func:`use_kept_matrix`), so that a system whose matrix goes stale in other directions
+    than its joint angles (an ANCF beam's own nonlinearity) pays little for trying."""
+    reuse[REUSE_PATCH_WAIT] = reuse[REUSE_PATCH_BACKOFF]
+    reuse[REUSE_PATCH_BACKOFF] = min(2 * reuse[REUSE_PATCH_BACKOFF], MAX_BACKOFF)
+
+
+@njit(cache=True)
+def patch_next(reuse, columns):
+    """Whether a kept matrix that went stale is patched (its ``columns`` joint columns
+    refreshed, :mod:`.column_update`) rather than refactorised."""
+    if columns == 0:
+        return False
+    if reuse[REUSE_PATCH_WAIT] > 0:
+        reuse[REUSE_PATCH_WAIT] -= 1
+        return False
+    return True
 
 
 class Outcome(enum.IntEnum):
@@ -360,23 +406,40 @@ def newton_start(update, reuse):
 
 
 @njit(cache=True)
-def newton_decide(size, previous, it, stale, update, refresh_rate, refresh_iterations, tol, reuse, kappa):
+def newton_decide(size, previous, it, stale, update, refresh_rate, refresh_iterations, tol, reuse, kappa, columns,
+                  patched):
     """The Newton controller, shared by every integration path: after an increment of max
     size ``size`` (``previous``: the last one since the matrix was refreshed, inf right after
-    a refresh; ``stale``: the matrix is from earlier steps) decide what comes next
+    a refresh; ``stale``: the matrix is from earlier steps; ``patched``: and its joint
+    columns were refreshed at this step's start) decide what comes next
     (:class:`NewtonAction`) and update the reuse state (see :class:`NewtonOptions`); ``kappa``
-    the factor of the rate-based error estimate (:data:`KAPPA`)."""
+    the factor of the rate-based error estimate (:data:`KAPPA`); ``columns`` the number of
+    joint angles whose columns a patch refreshes (:mod:`.column_update`; 0: never patch).
+
+    A kept matrix that needed more than ``refresh_iterations`` is patched at the next step
+    (:func:`patch_next`), or refactorised there if this step's matrix was patched already
+    (:func:`patch_failed`) or patches are backing off."""
     reused = update != MatrixUpdate.ITERATION
     error, rate = newton_error(size, previous, reused, kappa)
     if error <= tol:
         if stale:
             kept_matrix_worked(reuse)
         if update != MatrixUpdate.ADAPTIVE or it > refresh_iterations:
-            reuse[REUSE_VALID] = 0
+            if patched:
+                patch_failed(reuse)
+                reuse[REUSE_VALID] = 0
+            elif stale and update == MatrixUpdate.ADAPTIVE and patch_next(reuse, columns):
+                reuse[REUSE_PATCH] = 1
+            else:
+                reuse[REUSE_VALID] = 0
+        elif patched:
+            reuse[REUSE_PATCH_BACKOFF] = 1
         return NewtonAction.CONVERGED
     fresh = not reused or rate > refresh_rate
     if stale and fresh:
         kept_matrix_failed(reuse)
+        if patched:
+            patch_failed(reuse)
     if reused and fresh and rate >= 1.0:
         return NewtonAction.RESTART if stale else NewtonAction.TAKE_BACK
     return NewtonAction.REFRESH if fresh else NewtonAction.KEEP
@@ -422,11 +485,22 @@ def step(system: MultibodySystem, state: AlphaState, h: float, p: AlphaParameter
         if not fresh:
             return system.dynamic_residual(x, v, xdd, lam, state.chart, t1, ck, s), matrix
         res, new = system.dynamic_equations(x, v, xdd, lam, state.chart, t1, *coefs)
-        reuse[REUSE_VALID] = 1
-        return res, factorise(new, h, state.chart)
+        factorised(reuse)
+        return res, factorise(new, h, state.chart, z_columns)
 
+    columns = joint_columns(system.layout, options.update_columns)
+    z_columns = system.layout.z_of_x[columns]
     stale = bool(newton_start(update, reuse))
     res, matrix = evaluate(not stale, kept.matrix)
+    patched = False
+    if stale and reuse[REUSE_PATCH]:
+        reuse[REUSE_PATCH] = 0
+        try:
+            matrix = _patched(system, matrix, columns, res, x, v, xdd, lam, t1, gprime, bprime, ck, s)
+            reuse[REUSE_PATCHED] = patched = True
+        except np.linalg.LinAlgError:
+            stale = False
+            res, matrix = evaluate(True, None)
     previous = np.inf
     size = np.inf
     for it in range(1, options.max_iterations + 1):
@@ -436,7 +510,7 @@ def step(system: MultibodySystem, state: AlphaState, h: float, p: AlphaParameter
             raise ConvergenceError(OUTCOME_MESSAGES[Outcome.NOT_FINITE])
         size = apply_increment(dz, zx, zl, gprime, bprime, s / ck, weight, x, v, xdd, lam)
         action = newton_decide(size, previous, it, stale, update, options.refresh_rate, options.refresh_iterations,
-                               tol, reuse, KAPPA)
+                               tol, reuse, KAPPA, columns.shape[0], patched)
         if action == NewtonAction.CONVERGED:
             a_new = algorithmic_acceleration(xdd, state.xdd, state.a, am, af)
             return AlphaState(t1, x, v, xdd, a_new, lam, state.chart), it, KeptMatrix(matrix, reuse)
@@ -447,8 +521,26 @@ def step(system: MultibodySystem, state: AlphaState, h: float, p: AlphaParameter
             apply_increment(-dz, zx, zl, gprime, bprime, s / ck, weight, x, v, xdd, lam)
         fresh = action != NewtonAction.KEEP
         if fresh:
-            stale = False
+            stale = patched = False
         res, matrix = evaluate(fresh, matrix)
         previous = np.inf if fresh else size
     reuse[REUSE_VALID] = 0
     raise ConvergenceError(OUTCOME_MESSAGES[Outcome.NOT_CONVERGED].format(its=options.max_iterations, size=size))
+
+
+def _patched(system, matrix, columns, res, x, v, xdd, lam, t, gprime, bprime, ck, s) -> PatchedMatrix:
+    """The kept matrix (or the matrix under its patch) with the joint angles' ``columns`` (x
+    indices) replaced by the residual's forward differences at (x, v, xdd, lam), ``res`` the
+    residual there, and their rows changed by the transpose (:mod:`.column_update`; the
+    compiled loop does the same)."""
+    base = matrix.base if isinstance(matrix, PatchedMatrix) else matrix
+    z_columns = system.layout.z_of_x[columns]
+    C = np.empty((res.shape[0], columns.shape[0]))
+    for a, j in enumerate(columns):
+        d = difference_step(x[j])
+        xp, vp, ap = x.copy(), v.copy(), xdd.copy()
+        xp[j] += d
+        vp[j] += gprime * d
+        ap[j] += bprime * d
+        C[:, a] = (system.dynamic_residual(xp, vp, ap, lam, base.chart, t, ck, s) - res) / d
+    return PatchedMatrix(base, C, z_columns)

@@ -123,7 +123,7 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0, r
         mu = mu + dmu
         step = np.max(np.abs(dx[layout.beams_x])) / scale_x
         action = newton_decide(step, np.inf, it, False, int(MatrixUpdate.ITERATION), 1.0, max_iter, tol_step, reuse,
-                               KAPPA)
+                               KAPPA, 0, False)
         if norm <= tol_force or action == NewtonAction.CONVERGED:
             return x, mu, it, norm
     raise ConvergenceError(f"residual {norm:.3e} N after {max_iter} iterations")

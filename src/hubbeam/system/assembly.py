@@ -155,14 +155,15 @@ def bordered_factor(ab, bw, ipiv, brow, bcol, bb, Y, schur):
         schur[1, 0] = -S[1, 0] / det
         schur[1, 1] = S[0, 0] / det
         return 0
-    return _invert(S, schur)
+    return dense_inverse(S, schur)
 
 
 @njit(cache=True)
-def _invert(S, out):
+def dense_inverse(S, out):
     """out = S^-1 by Gauss-Jordan elimination with partial pivoting (S is overwritten); -1 when
     S is singular (a zero or non-finite pivot), else 0. For the border's Schur complement
-    (a moving base's coordinates and constraints with the hub's: up to about 17 unknowns)."""
+    (a moving base's coordinates and constraints with the hub's: up to about 17 unknowns) and
+    the capacitance matrix of a column update (:mod:`hubbeam.solvers.column_update`)."""
     n = S.shape[0]
     for i in range(n):
         for j in range(n):

@@ -1,0 +1,128 @@
+"""The column update of a kept Newton matrix (solvers/column_update.py): the patched factors
+solve the patched matrix, the controller asks for patches and backs off from them, and a beam
+on a hinge integrated with patches takes the Python step's steps and ends where the run that
+refactorises ends, to the Newton tolerance."""
+
+import numpy as np
+import pytest
+
+from hubbeam import api
+from hubbeam.io.scenario import load_example
+from hubbeam.simulation import CompiledSteps, initial_state
+from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers.column_update import PatchedMatrix, joint_columns
+from hubbeam.system.assembly import BorderedBandMatrix
+from tests.conftest import assert_compiled_steps_are_python_steps
+
+
+def _random_bordered(n=14, border=2, bandwidth=3, seed=1):
+    """A random bordered band matrix (diagonally dominant) and its dense copy."""
+    rng = np.random.default_rng(seed)
+    m = BorderedBandMatrix.empty(n, border, bandwidth)
+    for i in range(n):
+        for j in range(n):
+            if i < border or j < border or abs(i - j) <= bandwidth:
+                m.add(i, j, rng.normal() + (4.0 if i == j else 0.0))
+    return m, m.to_dense()
+
+
+def _patched_dense(A, C, columns):
+    """A with its columns J replaced by C and its rows J changed by the transpose of the columns'
+    change (the J x J block once), written out densely."""
+    E = np.eye(A.shape[0])[:, columns]
+    U = C - A[:, columns]
+    Ut = U.copy()
+    Ut[columns, :] = 0.0
+    return A + U @ E.T + E @ Ut.T
+
+
+@pytest.mark.parametrize("columns", [[5], [1, 6, 11]])
+def test_the_patched_factors_solve_the_patched_matrix_to_rounding(columns):
+    """Columns (one in the border, one in the band's last columns) replaced by random ones: the
+    Woodbury solve on the old factors equals numpy's dense solve of the patched matrix."""
+    m, A = _random_bordered()
+    rng = np.random.default_rng(2)
+    C = rng.normal(size=(A.shape[0], len(columns))) + 3.0 * np.eye(A.shape[0])[:, columns]
+    z = np.array(columns, dtype=np.int64)
+    base = ga.factorise(m, 1e-3, None, z)
+    assert np.array_equal(base.columns, A[:, columns].T)  # the kept columns, read from the band storage
+    patched = PatchedMatrix(base, C, z)
+    new = _patched_dense(A, C, columns)
+    assert np.max(np.abs(new[:, columns] - C)) < 1e-14 * np.max(np.abs(C))
+    b = rng.normal(size=A.shape[0])
+    exact = np.linalg.solve(new, b)
+    assert np.max(np.abs(patched.solve(b) - exact)) < 1e-12 * np.max(np.abs(exact))
+    # a second patch changes the factorised matrix, not the first patch: back to A itself
+    again = PatchedMatrix(patched.base, A[:, columns], z)
+    assert np.max(np.abs(again.solve(b) - np.linalg.solve(A, b))) < 1e-12 * np.max(np.abs(np.linalg.solve(A, b)))
+
+
+def test_a_singular_patched_matrix_is_refused():
+    m, A = _random_bordered()
+    z = np.array([4], dtype=np.int64)
+    with pytest.raises(np.linalg.LinAlgError):
+        PatchedMatrix(ga.factorise(m, 1e-3, None, z), np.zeros((A.shape[0], 1)), z)
+
+
+def _decide(reuse, it, stale, columns, patched):
+    """newton_decide after a converging increment (size 0) at iteration ``it``."""
+    return ga.newton_decide(0.0, np.inf, it, stale, int(ga.MatrixUpdate.ADAPTIVE), 0.25, 2, 1e-9, reuse, ga.KAPPA,
+                            columns, patched)
+
+
+def test_the_controller_patches_a_stale_matrix_and_backs_off_when_patches_fail():
+    reuse = ga.reuse_state()
+    reuse[ga.REUSE_VALID] = 1
+    _decide(reuse, 3, True, 0, False)  # no joint columns: refactorise, as always
+    assert reuse[ga.REUSE_VALID] == 0 and reuse[ga.REUSE_PATCH] == 0
+    reuse[ga.REUSE_VALID] = 1
+    _decide(reuse, 3, True, 1, False)  # a kept matrix went stale: patch it at the next step
+    assert reuse[ga.REUSE_VALID] == 1 and reuse[ga.REUSE_PATCH] == 1
+    reuse[ga.REUSE_PATCH] = 0
+    _decide(reuse, 3, True, 1, True)  # the patch did not help: refactorise, then the next stale one too
+    assert reuse[ga.REUSE_VALID] == 0 and reuse[ga.REUSE_PATCH_WAIT] == 1 and reuse[ga.REUSE_PATCH_BACKOFF] == 2
+    reuse[ga.REUSE_VALID] = 1
+    _decide(reuse, 3, True, 1, False)
+    assert reuse[ga.REUSE_VALID] == 0 and reuse[ga.REUSE_PATCH_WAIT] == 0
+    reuse[ga.REUSE_VALID] = 1
+    _decide(reuse, 3, True, 1, False)  # the wait is over
+    assert reuse[ga.REUSE_VALID] == 1 and reuse[ga.REUSE_PATCH] == 1
+    _decide(reuse, 2, True, 1, True)  # a patch that worked resets the back-off
+    assert reuse[ga.REUSE_VALID] == 1 and reuse[ga.REUSE_PATCH_BACKOFF] == 1
+    _decide(reuse, 3, False, 1, False)  # a matrix made in this step is not patched
+    assert reuse[ga.REUSE_VALID] == 0
+
+
+def _exp1_on_a_hinge(modes):
+    """exp1 (the FFR plate, free hub, released under gravity) on the stiff flap hinge of case J."""
+    extra = ['beam.formulation="ffr"', 'beam.joint={kind="revolute", axis="flap", stiffness=1.0e4}']
+    return api.build_system(load_example("exp1", extra + ([f"beam.modes={modes}"] if modes else [])))
+
+
+def test_the_compiled_loop_patches_as_the_python_step_does():
+    """The same steps, iterations and states (conftest's check) over a run in which the kept
+    matrix is patched, and the patches happened."""
+    _, _, fast, _ = assert_compiled_steps_are_python_steps(_exp1_on_a_hinge(4), "adaptive", dt=1e-3, steps=200,
+                                                           every=50)
+    assert fast.patches >= 3
+
+
+@pytest.mark.parametrize("modes", [0, 4])
+def test_patches_end_where_refactorising_ends(modes):
+    """2 s with and without the column update: the patched run factorises far less and its
+    states stay within 1e-7 m (rad) of the other's (both converge each step to 1e-9 L with
+    kappa = 0.01; their difference, the two runs' different Newton errors carried by the lightly
+    damped beam, measured 3e-8 to 1e-7 over 10 s: benchmarks/joint_cost.py columns)."""
+    system = _exp1_on_a_hinge(modes)
+    assert joint_columns(system.layout).tolist() == [1]  # theta, then the hinge's psi
+    state, p = initial_state(system), ga.AlphaParameters.from_spectral_radius(0.8)
+    runs = []
+    for update in (True, False):
+        loop = CompiledSteps(system, p, ga.NewtonOptions(update_columns=update), 1e-3, state)
+        *_, err, chunk = loop.advance(state, 2000, 0, 20, 2000)
+        assert err is None
+        runs.append((loop, chunk.states.x))
+    (patched, x1), (refactorised, x0) = runs
+    assert patched.patches > 0 and refactorised.patches == 0
+    assert patched.factorisations < 0.2 * refactorised.factorisations
+    assert np.max(np.abs(x1 - x0)) < 1e-7
