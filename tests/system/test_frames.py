@@ -167,9 +167,11 @@ def test_the_pruned_kinematics_equal_the_whole_code(which):
 
 
 def test_exp1_compiles_its_chains_without_the_other_kinds():
-    """exp1 (a fixed base, a hub, one ANCF beam on it: constants and revolutes) compiles its
-    chains' kinematics once, for an int64 order, with every other kind's flag None."""
-    from numba import types
+    """exp1 (a fixed base, a hub, one ANCF beam on it: constants and revolutes) has its chains'
+    kinematics for an int64 order with every other kind's flag None: one signature for the
+    Python front end, the equations and the tips (on a cold cache all three compile it; on a
+    warm one the first loads it)."""
+    from numba import typeof, types
 
     from hubbeam import api
     from hubbeam.io.scenario import load_example
@@ -187,7 +189,7 @@ def test_exp1_compiles_its_chains_without_the_other_kinds():
     system_equations(model, F, x, state.v, state.xdd, state.lam, 0.0, 1.0, 0.5, 0.25, 1.0, 1.0, False, True, res,
                      mat.ab, mat.brow, mat.bcol, mat.bb)
     tip_displacements(model, F, x, np.empty((1, 3)))
-    table_type = types.typeof(model.context.chains)
+    table_type = typeof(model.context.chains)
     signatures = [s for s in fr._evaluate_chains.signatures if s[0] == table_type]
     assert len(signatures) == 1
     assert signatures[0][3] == types.int64 and all(t == types.none for t in signatures[0][4:])

@@ -717,12 +717,15 @@ def evaluate_chains(table, x, F, order):
 
 @njit(cache=True, _nrt=False)
 def _evaluate_chains(table, x, F, order, free_links, ancf_tips, ffr_tips):
-    """:func:`evaluate_chains` for a table holding the link kinds whose flags are not None.
+    """:func:`evaluate_chains` for a table holding the link kinds whose flags are not None; a
+    chain whose table.orders is 0 is left as it was (:func:`chain_pose` evaluates one chain).
     Compiled without numba's reference counting (it allocates nothing): one call per
     evaluation, no count of the table's arrays per chain."""
     for k in range(table.start.shape[0] - 1):
-        chain_kinematics_into(table, k, x, F, min(order, table.orders[k]), table.pose[k], table.jac[k],
-                              table.hess[k], table.work, free_links, ancf_tips, ffr_tips)
+        chain_order = min(order, table.orders[k])
+        if chain_order > 0:
+            chain_kinematics_into(table, k, x, F, chain_order, table.pose[k], table.jac[k], table.hess[k],
+                                  table.work, free_links, ancf_tips, ffr_tips)
 
 
 @njit(cache=True, inline="always")
@@ -740,13 +743,15 @@ def chain_state(table, k):
 
 def chain_pose(table: ChainTable, k: int, x, F=None, order: int = 1):
     """(r, R, Jr, Jw, Hr, Hw) of chain k at x (Python front end; Hr, Hw zero unless ``order`` is
-    2). ``F``: the charts (n, 3, 3) of ANCF tips (default none). Every chain is evaluated into a
-    copy of the table's state arrays by the equations' own compiled :func:`_evaluate_chains`
-    (the same types as theirs), so that a run compiles no second copy of the kinematics for
-    its Python front ends."""
+    2). ``F``: the charts (n, 3, 3) of ANCF tips (default none). The chain is evaluated into a
+    copy of the table's state arrays (the other chains' orders 0: left out) by the equations'
+    own compiled :func:`_evaluate_chains` (the same types as theirs), so that a run compiles no
+    second copy of the kinematics for its Python front ends."""
     nc = table.width(k)
+    orders = np.zeros_like(table.orders)
+    orders[k] = 2
     own = table._replace(pose=np.zeros_like(table.pose), jac=np.zeros_like(table.jac), hess=np.zeros_like(table.hess),
-                         work=np.zeros_like(table.work), orders=np.full_like(table.orders, 2))
+                         work=np.zeros_like(table.work), orders=orders)
     F = np.zeros((1, 3, 3)) if F is None else np.ascontiguousarray(F, dtype=float)
     _evaluate_chains(own, np.ascontiguousarray(x, dtype=float), F, min(int(order), 2), table.free_links,
                      table.ancf_tips, table.ffr_tips)
