@@ -133,3 +133,63 @@ def test_an_ffr_tip_turns_by_its_rotation_vector_to_first_order():
         assert gap < 0.2 * eps**2
     with pytest.raises(ValueError, match="cannot be the first"):
         fr.Chain((fr.ffr_tip(0, 2.0, rows[:3], rows[3:]),))
+
+
+def test_a_table_flags_the_link_kinds_it_holds():
+    """ChainTable.of sets free_links, ancf_tips and ffr_tips to True exactly for the kinds some chain
+    holds (None otherwise): the compiled kinematics leave out the code of a kind flagged None."""
+    chains = _chains(np.random.default_rng(3))
+    for name, chain, _, _ in chains + [("all", None, None, None)]:
+        held = {link.kind for c in ([chain] if chain else [c for _, c, _, _ in chains]) for link in c.links}
+        table = fr.ChainTable.of([chain] if chain else [c for _, c, _, _ in chains])
+        expected = tuple(True if kind in held else None
+                         for kind in (fr.LinkKind.FREE, fr.LinkKind.ANCF_TIP, fr.LinkKind.FFR_TIP))
+        assert (table.free_links, table.ancf_tips, table.ffr_tips) == expected, name
+    assert fr.ChainTable.of([chains[0][1]])[-3:] == (None, None, None)  # the hub: constants and revolutes
+
+
+@pytest.mark.parametrize("which", [0, 1])
+def test_the_pruned_kinematics_equal_the_whole_code(which):
+    """A table evaluated by the kinematics compiled for the kinds it holds (the hub's chain:
+    constants and revolutes; the base's: a free link too) gives the same pose, Jacobians and
+    derivatives as the code compiled with every kind of link."""
+    name, chain, x, F = _chains(np.random.default_rng(11 + which))[which]
+    table = fr.ChainTable.of([chain])
+    assert None in table[-3:], name
+    out = []
+    for flags in (table[-3:], (True, True, True)):
+        own = table._replace(pose=np.zeros_like(table.pose), jac=np.zeros_like(table.jac),
+                             hess=np.zeros_like(table.hess), work=np.zeros_like(table.work))
+        fr._evaluate_chains(own, x, F, 2, *flags)
+        out.append((own.pose.copy(), own.jac.copy(), own.hess.copy()))
+    for a, b in zip(*out):
+        assert np.array_equal(a, b), name
+
+
+def test_exp1_compiles_its_chains_without_the_other_kinds():
+    """exp1 (a fixed base, a hub, one ANCF beam on it: constants and revolutes) has its chains'
+    kinematics for an int64 order with every other kind's flag None, for the Python front end,
+    the equations and the tips alike (on a cold cache all three compile it; on a warm one the
+    first loads it), and no signature for a literal order (one copy per literal 1 and 2)."""
+    from numba import typeof, types
+
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+    from hubbeam.system.assembly import BorderedBandMatrix
+    from hubbeam.system.equations import system_equations, tip_displacements
+
+    from hubbeam.simulation import initial_state
+
+    system = api.build_system(load_example("exp1"))
+    model, layout = system.model(), system.layout
+    state = initial_state(system)
+    x, F = state.x, np.ascontiguousarray(state.chart)
+    res = np.empty(layout.nz)
+    mat = BorderedBandMatrix.empty(layout.nz, layout.border, model.bandwidth)
+    system_equations(model, F, x, state.v, state.xdd, state.lam, 0.0, 1.0, 0.5, 0.25, 1.0, 1.0, False, True, res,
+                     mat.ab, mat.brow, mat.bcol, mat.bb)
+    tip_displacements(model, F, x, np.empty((1, 3)))
+    table_type = typeof(model.context.chains)
+    signatures = [s for s in fr._evaluate_chains.signatures if s[0] == table_type]
+    assert any(s[3] == types.int64 and all(t == types.none for t in s[4:]) for s in signatures)
+    assert all(s[3] == types.int64 for s in signatures)

@@ -213,6 +213,11 @@ class ChainTable(NamedTuple):
     work: np.ndarray  # (w, W_WIDTH): scratch of :func:`chain_kinematics_into` for the widest chain
     maps: np.ndarray  # (n,): the FFR tips' rows M (6 x nf, row-major), each from its link's params[1]
     orders: np.ndarray  # int64 (n_chains,): 2 for a chain whose hess the equations read, else 1 (:func:`evaluate_chains`)
+    # the link kinds beyond constants and revolutes that some chain holds: True, or None when none
+    # does, so that numba compiles the kinematics without that kind's code (:func:`evaluate_chains`)
+    free_links: bool | None
+    ancf_tips: bool | None
+    ffr_tips: bool | None
 
     @classmethod
     def of(cls, chains, second=None) -> "ChainTable":
@@ -232,12 +237,15 @@ class ChainTable(NamedTuple):
             cstart.append(len(columns))
         ints = lambda v, shape: np.array(v, dtype=np.int64).reshape(shape)  # noqa: E731
         n = len(start) - 1
+        held = {row[KIND] for row in links}
+        present = lambda kind: True if int(kind) in held else None  # noqa: E731
         w = max((cstart[k + 1] - cstart[k] for k in range(n)), default=0)
         return cls(ints(links, (len(links), 3)), np.array(params, dtype=float).reshape(len(params), 13),
                    ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)),
                    np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((w, W_WIDTH)),
                    np.array(maps, dtype=float),
-                   np.array([2 if second is None or k in second else 1 for k in range(n)], dtype=np.int64))
+                   np.array([2 if second is None or k in second else 1 for k in range(n)], dtype=np.int64),
+                   present(LinkKind.FREE), present(LinkKind.ANCF_TIP), present(LinkKind.FFR_TIP))
 
     def width(self, k: int) -> int:
         """Number of coordinate columns of chain k."""
@@ -382,7 +390,8 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
     (its arrays allocated here: for tests, front ends and differences, not for every step)."""
     nc = table.column_start[k + 1] - table.column_start[k]
     P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
-    chain_kinematics_called(table, k, x, F, order, P, J, H, np.empty((nc, W_WIDTH)))
+    chain_kinematics_called(table, k, x, F, order, P, J, H, np.empty((nc, W_WIDTH)), table.free_links,
+                            table.ancf_tips, table.ffr_tips)
     for i in range(3):
         r[i] = P[i, 0]
         for j in range(3):
@@ -423,7 +432,7 @@ def _cross_columns(J, sa, ja, sb, jb, H, s, i, l, add):
 
 
 @njit(cache=True, inline="always")
-def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
+def chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips):
     """The pose of chain k at the coordinates x (charts F for ANCF tips): P (3 x 4), its
     origin r (column 0, m) and axes R (columns 1-3, global); for each of its nc coordinate
     columns (the chain's order: :attr:`ChainTable.columns`) J[0, :, i] = Jr[:, i] (m or m/rad
@@ -433,7 +442,10 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
     are overwritten on their first nc columns; ``work`` (>= nc, W_WIDTH): scratch (a column's
     type, a translation's axis, the point a rotation turns about, an FFR tip's axes). Scalars only: no allocation (a
     step evaluates every chain), inlined into :func:`evaluate_chains` (the others call
-    :func:`chain_kinematics_called`)."""
+    :func:`chain_kinematics_called`). ``free_links``, ``ancf_tips``, ``ffr_tips``: the table's
+    (:class:`ChainTable`), arguments of the function this is inlined into, so that numba prunes
+    the code of a kind of link whose flag is None before it types and compiles it (exp1's
+    chains, constants and revolutes only, compile in a fraction of the time)."""
     l0, l1 = table.start[k], table.start[k + 1]
     nc = table.column_start[k + 1] - table.column_start[k]
     par = table.params
@@ -466,7 +478,7 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
             work[col, W_TYPE] = SCREW
             _rotate_about(P, a0, a1, a2, sign * x[c0])
             col += 1
-        elif kind == LinkKind.FFR_TIP:
+        elif ffr_tips is not None and kind == LinkKind.FFR_TIP:
             length, off, nf = par[pr, 0], int(par[pr, 1]), int(par[pr, 2])
             v0 = v1 = v2 = v3 = v4 = v5 = 0.0  # the virtual coordinates M p
             for j in range(nf):
@@ -499,7 +511,7 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
                 _rotate_about(P, 1.0 if a == 0 else 0.0, 1.0 if a == 1 else 0.0, 1.0 if a == 2 else 0.0,
                               v3 if a == 0 else (v4 if a == 1 else v5))
             col += nf
-        elif kind == LinkKind.FREE:
+        elif free_links is not None and kind == LinkKind.FREE:
             root_kind = kind
             root_columns = 7
             for i in range(3):
@@ -518,7 +530,7 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
                     work[col + 3 + a, W_ORIGIN + i] = P[i, 0]
                 work[col + 3 + a, W_TYPE] = ROOT_ROTATION
             col += 7
-        else:  # ANCF_TIP
+        elif ancf_tips is not None:  # ANCF_TIP
             root_kind = kind
             root_columns = 7
             Fc = F[int(par[pr, 0])]
@@ -579,8 +591,11 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
                 for a in range(3):
                     H[1, a, i, l] = 0.0
                 _cross_columns(J, 1, i, 0, l, H, 0, i, l, False)
-    if has_tip:
-        _tip_blocks(table, P, work, nc, H)
+    if ffr_tips is not None:
+        if has_tip:
+            _tip_blocks(table, P, work, nc, H)
+    if free_links is None and ancf_tips is None:
+        return
     if root_columns == 0:
         return
     # the first link's own columns among each other
@@ -591,7 +606,7 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
                 H[0, a, i, l] = 0.0
     c0 = table.links[l0, COORD]
     dr0, dr1, dr2 = P[0, 0] - x[c0], P[1, 0] - x[c0 + 1], P[2, 0] - x[c0 + 2]
-    if root_kind == LinkKind.FREE:
+    if free_links is not None and root_kind == LinkKind.FREE:
         e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
         s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
         for l in range(4):
@@ -601,7 +616,7 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work):
                 for a in range(3):
                     H[1, a, 3 + i, 3 + l] = (2.0 * _euler_rate_entry(u0, u1, u2, u3, a, i) / s
                                              - 4.0 * el * _euler_rate_entry(e0, e1, e2, e3, a, i) / (s * s))
-    else:  # ANCF_TIP: rotation columns r0' (3) and theta_1 (1)
+    elif ancf_tips is not None:  # ANCF_TIP: rotation columns r0' (3) and theta_1 (1)
         Fc = F[int(par[table.links[l0, PARAM], 0])]
         for i in range(3):  # d(A e_i)/du_b
             for b in range(3):
@@ -673,15 +688,16 @@ def _tip_blocks(table, P, work, nc, H):
 
 
 @njit(cache=True)
-def chain_kinematics_called(table, k, x, F, order, P, J, H, work):
+def chain_kinematics_called(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips):
     """:func:`chain_kinematics_into` as a function of its own, for the callers off the step's
     hot path (:func:`chain_kinematics`, :func:`chain_motions`): each function that inlines
     :func:`chain_kinematics_into` compiles a copy of it, so only :func:`evaluate_chains` (every
-    evaluation of the equations) does, and these two call this one copy."""
-    chain_kinematics_into(table, k, x, F, order, P, J, H, work)
+    evaluation of the equations) does, and these two call this one copy. The link kinds'
+    flags are arguments (the table's), for numba to prune the kinds the table does not hold."""
+    chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def evaluate_chains(table, x, F, order):
     """Every chain's kinematics at the coordinates x (charts F) into the table's pose, jac and
     hess: once per evaluation of the system's functions, before its parts read them
@@ -691,11 +707,25 @@ def evaluate_chains(table, x, F, order):
     :meth:`hubbeam.system.multibody.Frames.table`); 1 for the functions of the state alone
     (powers, energies, momenta, tips). The Hessians cost most (case M's 10 frames: 3.0 us
     to order 2, 0.7 us to order 1, measured); a chain evaluated to order 1 leaves its hess
-    as it was. Compiled without numba's reference counting (it allocates nothing): one call
-    per evaluation, no count of the table's arrays per chain."""
+    as it was. Inlined into its callers, which call :func:`_evaluate_chains` with the table's
+    flags of the link kinds it holds (:class:`ChainTable`) as arguments: numba compiles the
+    kinematics of those kinds only; ``order`` as an int64, min(order, 2), not the literal that the
+    callers write: numba compiles a function once per literal argument (the equations pass 2,
+    the powers and measures 1)."""
+    _evaluate_chains(table, x, F, min(order, 2), table.free_links, table.ancf_tips, table.ffr_tips)
+
+
+@njit(cache=True, _nrt=False)
+def _evaluate_chains(table, x, F, order, free_links, ancf_tips, ffr_tips):
+    """:func:`evaluate_chains` for a table holding the link kinds whose flags are not None; a
+    chain whose table.orders is 0 is left as it was (:func:`chain_pose` evaluates one chain).
+    Compiled without numba's reference counting (it allocates nothing): one call per
+    evaluation, no count of the table's arrays per chain."""
     for k in range(table.start.shape[0] - 1):
-        chain_kinematics_into(table, k, x, F, min(order, table.orders[k]), table.pose[k], table.jac[k],
-                              table.hess[k], table.work)
+        chain_order = min(order, table.orders[k])
+        if chain_order > 0:
+            chain_kinematics_into(table, k, x, F, chain_order, table.pose[k], table.jac[k], table.hess[k],
+                                  table.work, free_links, ancf_tips, ffr_tips)
 
 
 @njit(cache=True, inline="always")
@@ -712,15 +742,22 @@ def chain_state(table, k):
 
 
 def chain_pose(table: ChainTable, k: int, x, F=None, order: int = 1):
-    """(r, R, Jr, Jw, Hr, Hw) of chain k at x (Python front end of :func:`chain_kinematics`;
-    Hr, Hw zero unless ``order`` is 2). ``F``: the charts (n, 3, 3) of ANCF tips (default none)."""
+    """(r, R, Jr, Jw, Hr, Hw) of chain k at x (Python front end; Hr, Hw zero unless ``order`` is
+    2). ``F``: the charts (n, 3, 3) of ANCF tips (default none). The chain is evaluated into a
+    copy of the table's state arrays (the other chains' orders 0: left out) by the equations'
+    own compiled :func:`_evaluate_chains` (the same types as theirs), so that a run compiles no
+    second copy of the kinematics for its Python front ends."""
     nc = table.width(k)
-    r, R = np.empty(3), np.empty((3, 3))
-    Jr, Jw = np.zeros((3, nc)), np.zeros((3, nc))
-    Hr, Hw = np.zeros((3, nc, nc)), np.zeros((3, nc, nc))
+    orders = np.zeros_like(table.orders)
+    orders[k] = 2
+    own = table._replace(pose=np.zeros_like(table.pose), jac=np.zeros_like(table.jac), hess=np.zeros_like(table.hess),
+                         work=np.zeros_like(table.work), orders=orders)
     F = np.zeros((1, 3, 3)) if F is None else np.ascontiguousarray(F, dtype=float)
-    chain_kinematics(table, k, np.ascontiguousarray(x, dtype=float), F, order, r, R, Jr, Jw, Hr, Hw)
-    return r, R, Jr, Jw, Hr, Hw
+    _evaluate_chains(own, np.ascontiguousarray(x, dtype=float), F, min(int(order), 2), table.free_links,
+                     table.ancf_tips, table.ffr_tips)
+    P, J, H = own.pose[k], own.jac[k], own.hess[k]
+    return (P[:, 0].copy(), P[:, 1:4].copy(), J[0, :, :nc].copy(), J[1, :, :nc].copy(), H[0, :, :nc, :nc].copy(),
+            H[1, :, :nc, :nc].copy())
 
 
 # ---------------------------------------------------------------------------- rotations
@@ -823,7 +860,8 @@ def chain_motions(table, k, X, V, F, r, R, vel, w):
     P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
     work = np.empty((nc, W_WIDTH))
     for s in range(X.shape[0]):
-        chain_kinematics_called(table, k, X[s], F, 1, P, J, H, work)
+        chain_kinematics_called(table, k, X[s], F, 1, P, J, H, work, table.free_links, table.ancf_tips,
+                                table.ffr_tips)
         for i in range(3):
             r[s, i] = P[i, 0]
             for j in range(3):

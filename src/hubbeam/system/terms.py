@@ -162,12 +162,15 @@ def _no_events(pack, ctx, x):
     return False
 
 
-def _dispatch(stub, pack_class, impl) -> None:
+def _dispatch(stub, pack_class, impl, inline: str = "always") -> None:
     """Let numba resolve ``stub`` to ``impl`` for packs of ``pack_class`` (``impl``: a plain
     Python function with the stub's parameter names, which numba compiles where it is called).
-    Inlined into the caller: a compiled call pays the reference counts of every array of its
-    tuple arguments (the pack and the context), twice per step and beam kind in the time loop.
-    Only hubbeam's own kinds go to numba's on-disk cache: a cache index records the classes of
+    ``inline`` "always" for the terms of the time step (the equations, the powers, the events):
+    a compiled call pays the reference counts of every array of its tuple arguments (the pack
+    and the context), twice per step and beam kind in the time loop. "never" for the rest (the
+    energies, tips and momenta of the records): numba compiles an inlined overload twice, once
+    on its own to type it and once more in its caller, so that a called one costs half the
+    compile. Only hubbeam's own kinds go to numba's on-disk cache: a cache index records the classes of
     every signature compiled, and a class of a script or a test module in it (a default term
     such as ``_no_power`` is compiled for every kind) would make the index unreadable in every
     other process (see :func:`native`)."""
@@ -178,7 +181,7 @@ def _dispatch(stub, pack_class, impl) -> None:
         return None
 
     cache = native_class(pack_class)
-    overload(stub, jit_options={"cache": cache}, strict=False, inline="always")(resolve)
+    overload(stub, jit_options={"cache": cache}, strict=False, inline=inline)(resolve)
 
 
 def register(pack: type, packer: Callable, equations, energies=None, power=None, tips=None,
@@ -196,11 +199,11 @@ def register(pack: type, packer: Callable, equations, energies=None, power=None,
     if any(kind.pack is pack for kind in KINDS):
         raise ValueError(f"{pack.__name__} is registered already")
     _dispatch(part_equations, pack, equations)
-    _dispatch(part_energies, pack, energies if energies is not None else _no_energies)
+    _dispatch(part_energies, pack, energies if energies is not None else _no_energies, "never")
     _dispatch(part_power, pack, power if power is not None else _no_power)
-    _dispatch(part_tips, pack, tips if tips is not None else _no_tips)
+    _dispatch(part_tips, pack, tips if tips is not None else _no_tips, "never")
     _dispatch(part_drive_power, pack, drive_power if drive_power is not None else _no_drive_power)
-    _dispatch(part_momenta, pack, momenta if momenta is not None else _no_momenta)
+    _dispatch(part_momenta, pack, momenta if momenta is not None else _no_momenta, "never")
     _dispatch(part_events, pack, events if events is not None else _no_events)
     kind = PartKind(pack, packer, bandwidth, events is not None, events_possible)
     KINDS.append(kind)
