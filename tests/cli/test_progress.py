@@ -61,7 +61,7 @@ def test_the_compile_note_comes_once_when_the_cache_is_cold(monkeypatch, tmp_pat
     assert_contract(code, out, err)
     assert code == 2
     notes = [ln for ln in err.splitlines() if ln.startswith("hubbeam: note:")]
-    assert notes == ["hubbeam: note: compiling the solver for this machine (first run only, about half a minute)"]
+    assert notes == ["hubbeam: note: compiling the solver for this machine (first run only, about a minute)"]
     monkeypatch.setattr(compiled_alpha, "cache_is_cold", lambda function=None: False)
     code, out, err = cli("run", EXAMPLES / "exp1.toml", "--plot", tmp_path / "a.png", "--plot-vars", "nothing")
     assert code == 2 and "compiling" not in err

@@ -164,7 +164,7 @@ def compile_note() -> None:
     from hubbeam.solvers.compiled_alpha import cache_is_cold
 
     if cache_is_cold():
-        say("hubbeam: note: compiling the solver for this machine (first run only, about half a minute)")
+        say("hubbeam: note: compiling the solver for this machine (first run only, about a minute)")
 
 
 def progress_bar(t_end: float | None, label: str = "run", unit: str = "s"):
