@@ -46,7 +46,7 @@ def best(fun, reps: int) -> float:
 
 
 def main() -> None:
-    from hubbeam.system.frames import rotation_vector_matrix
+    from hubbeam.system.rotations import rotation_vector_matrix
 
     p = part()
     rng = np.random.default_rng(3)

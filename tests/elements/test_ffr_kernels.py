@@ -9,7 +9,7 @@ import pytest
 
 from hubbeam.elements.ffr import kernels as fk
 from hubbeam.elements.ffr.body import FfrBeam
-from hubbeam.system.frames import rotation_vector_matrix
+from hubbeam.system.rotations import rotation_vector_matrix
 from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.mount import Mount
 from hubbeam.system.tip_body import TipBody

@@ -8,16 +8,18 @@ import pytest
 
 from hubbeam.elements.ancf.chart import frame_from_director
 from hubbeam.system import frames as fr
+from hubbeam.system import rotations as rot
+from hubbeam.system import chains as ch
 from hubbeam.system.clamp import frame_clamp_equations
 
 
 def _setup(seed):
     rng = np.random.default_rng(seed)
     x = rng.normal(size=30)
-    const = lambda: fr.constant(rng.normal(size=3), fr.rotation_vector_matrix(rng.normal(size=3)))  # noqa: E731
-    chain = fr.Chain((fr.free(0), const(), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), const(),
-                      fr.revolute(11, rng.normal(size=3)), const()))
-    table = fr.ChainTable.of([chain])
+    const = lambda: ch.constant(rng.normal(size=3), rot.rotation_vector_matrix(rng.normal(size=3)))  # noqa: E731
+    chain = ch.Chain((ch.free(0), const(), ch.revolute(10, (0.0, 1.0, 0.0), -1.0), const(),
+                      ch.revolute(11, rng.normal(size=3)), const()))
+    table = ch.ChainTable.of([chain])
     F = frame_from_director(rng.normal(size=3))
     r, R, *_ = fr.chain_pose(table, 0, x)
     # a root near its clamped state (the tangent along R's axis, the twist near the chart angle)

@@ -240,7 +240,7 @@ def test_tip_force_does_the_virtual_work_of_a_force_at_the_deformed_tip(modes):
     on the body rotation is the deformed one: with the undeformed (L, 0, 0) the omega rows miss
     (T p) x F. The compiled residual is held to the Python rows by
     tests/elements/test_ffr_kernels.py."""
-    from hubbeam.system.frames import rotation_vector_matrix
+    from hubbeam.system.rotations import rotation_vector_matrix
 
     force = np.array([3.0, -20.0, 12.0])
     beam = FfrBeam(L, 4, plate(), modes=modes)

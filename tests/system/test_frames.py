@@ -9,6 +9,8 @@ import pytest
 from hubbeam.elements.ancf.chart import frame_from_director
 from hubbeam.elements.ancf.frame import frame_global
 from hubbeam.system import frames as fr
+from hubbeam.system import rotations as rot
+from hubbeam.system import chains as ch
 
 
 def _skew_axial(A):
@@ -17,7 +19,7 @@ def _skew_axial(A):
 
 
 def _random_rotation(rng):
-    return fr.rotation_vector_matrix(rng.normal(size=3))
+    return rot.rotation_vector_matrix(rng.normal(size=3))
 
 
 def _chains(rng):
@@ -28,24 +30,24 @@ def _chains(rng):
     # an ANCF node: position, slope away from the chart's singular direction, twist
     x[20:23] = rng.normal(size=3)
     x[23:26] = F[1][:, 0] * 1.1 + 0.3 * rng.normal(size=3)
-    const = lambda: fr.constant(rng.normal(size=3), _random_rotation(rng))  # noqa: E731
-    hub = fr.Chain((const(), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), const()))
-    base = fr.Chain((fr.free(0), const(), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), const(),
-                     fr.revolute(11, rng.normal(size=3)), fr.revolute(12, rng.normal(size=3)), const()))
-    tip = fr.Chain((fr.ancf_tip(20, 1), const(), fr.revolute(13, (1.0, 0.0, 0.0)), const()))
+    const = lambda: ch.constant(rng.normal(size=3), _random_rotation(rng))  # noqa: E731
+    hub = ch.Chain((const(), ch.revolute(10, (0.0, 1.0, 0.0), -1.0), const()))
+    base = ch.Chain((ch.free(0), const(), ch.revolute(10, (0.0, 1.0, 0.0), -1.0), const(),
+                     ch.revolute(11, rng.normal(size=3)), ch.revolute(12, rng.normal(size=3)), const()))
+    tip = ch.Chain((ch.ancf_tip(20, 1), const(), ch.revolute(13, (1.0, 0.0, 0.0)), const()))
     # FFR tips: an elastic beam's tip moved by its coordinates (5 at x[30:35], 4 at x[35:39])
     x[30:39] *= 0.3
-    ffr = lambda c, nf: fr.ffr_tip(c, 1.7, rng.normal(size=(3, nf)), rng.normal(size=(3, nf)))  # noqa: E731
-    on_hub = fr.Chain((const(), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), const(), fr.revolute(11, (0.0, 0.0, 1.0)),
-                       ffr(30, 5), const(), fr.revolute(12, (0.0, 1.0, 0.0)), ffr(35, 4), const()))
-    on_ancf = fr.Chain((fr.ancf_tip(20, 1), ffr(30, 5), fr.revolute(13, rng.normal(size=3)), const()))
-    on_base = fr.Chain((fr.free(0), fr.revolute(10, (0.0, 1.0, 0.0), -1.0), ffr(30, 5), ffr(35, 4)))
+    ffr = lambda c, nf: ch.ffr_tip(c, 1.7, rng.normal(size=(3, nf)), rng.normal(size=(3, nf)))  # noqa: E731
+    on_hub = ch.Chain((const(), ch.revolute(10, (0.0, 1.0, 0.0), -1.0), const(), ch.revolute(11, (0.0, 0.0, 1.0)),
+                       ffr(30, 5), const(), ch.revolute(12, (0.0, 1.0, 0.0)), ffr(35, 4), const()))
+    on_ancf = ch.Chain((ch.ancf_tip(20, 1), ffr(30, 5), ch.revolute(13, rng.normal(size=3)), const()))
+    on_base = ch.Chain((ch.free(0), ch.revolute(10, (0.0, 1.0, 0.0), -1.0), ffr(30, 5), ffr(35, 4)))
     return [("hub", hub, x, F), ("base", base, x, F), ("ancf tip", tip, x, F), ("ffr tips on a hub", on_hub, x, F),
             ("ffr tip on an ancf tip", on_ancf, x, F), ("ffr tips on a free base", on_base, x, F)]
 
 
 def _pose(chain, x, F):
-    r, R, *_ = fr.chain_pose(fr.ChainTable.of([chain]), 0, x, F)
+    r, R, *_ = fr.chain_pose(ch.ChainTable.of([chain]), 0, x, F)
     return r, R
 
 
@@ -53,25 +55,25 @@ def _reference_pose(chain, x, F):
     """The pose by plain matrix products (no code shared with chain_kinematics's derivatives)."""
     r, R = np.zeros(3), np.eye(3)
     for link in chain.links:
-        if link.kind == fr.LinkKind.CONSTANT:
+        if link.kind == ch.LinkKind.CONSTANT:
             r = r + R @ np.array(link.offset)
             R = R @ np.array(link.rotation)
-        elif link.kind == fr.LinkKind.REVOLUTE:
+        elif link.kind == ch.LinkKind.REVOLUTE:
             axis = np.array(link.axis) / np.linalg.norm(link.axis)
-            R = R @ fr.rotation_vector_matrix(link.sign * x[link.coordinate] * axis)
-        elif link.kind == fr.LinkKind.FREE:
+            R = R @ rot.rotation_vector_matrix(link.sign * x[link.coordinate] * axis)
+        elif link.kind == ch.LinkKind.FREE:
             e = x[link.coordinate + 3 : link.coordinate + 7]
             e = e / np.linalg.norm(e)
             e0, v = e[0], e[1:]
             V = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
             r = x[link.coordinate : link.coordinate + 3].copy()
             R = (e0 * e0 - v @ v) * np.eye(3) + 2 * np.outer(v, v) + 2 * e0 * V
-        elif link.kind == fr.LinkKind.FFR_TIP:
+        elif link.kind == ch.LinkKind.FFR_TIP:
             M = np.array(link.rows)
             v = M @ x[link.coordinate : link.coordinate + M.shape[1]]
             r = r + R @ (np.array([link.length, 0.0, 0.0]) + v[0:3])
             for a in range(3):  # x, then y', then z''
-                R = R @ fr.rotation_vector_matrix(v[3 + a] * np.eye(3)[a])
+                R = R @ rot.rotation_vector_matrix(v[3 + a] * np.eye(3)[a])
         else:
             c = link.coordinate
             r = x[c : c + 3].copy()
@@ -83,7 +85,7 @@ def _reference_pose(chain, x, F):
 def test_pose_jacobians_and_derivatives_against_differences(which):
     rng = np.random.default_rng(7 + which)
     name, chain, x, F = _chains(rng)[which]
-    table = fr.ChainTable.of([chain])
+    table = ch.ChainTable.of([chain])
     r, R, Jr, Jw, Hr, Hw = fr.chain_pose(table, 0, x, F, order=2)
     r_ref, R_ref = _reference_pose(chain, x, F)
     assert np.allclose(r, r_ref, atol=1e-13) and np.allclose(R, R_ref, atol=1e-13), name
@@ -112,11 +114,11 @@ def test_euler_parameters_and_rotation_vectors_round_trip():
     for _ in range(20):
         phi = rng.normal(size=3)
         phi *= rng.uniform(0, np.pi) / np.linalg.norm(phi)
-        R = fr.rotation_vector_matrix(phi)
-        assert np.allclose(fr.rotation_vector(R), phi, atol=1e-12)
-        e = fr.euler_parameters(R)
+        R = rot.rotation_vector_matrix(phi)
+        assert np.allclose(rot.rotation_vector(R), phi, atol=1e-12)
+        e = rot.euler_parameters(R)
         R2 = np.empty((3, 3))
-        fr.euler_rotation(e, R2)
+        rot.euler_rotation(e, R2)
         assert np.allclose(R2, R, atol=1e-13)
 
 
@@ -124,15 +126,15 @@ def test_an_ffr_tip_turns_by_its_rotation_vector_to_first_order():
     """The tip link's x-y'-z'' rotation of phi = Phi p and the rotation vector phi (FFR's
     kinematics, Eq. 43) differ at second order in phi only; an FFR tip cannot start a chain."""
     rows = np.vstack([np.zeros((3, 3)), np.eye(3)])
-    chain = fr.Chain((fr.constant(), fr.ffr_tip(0, 2.0, rows[:3], rows[3:])))
+    chain = ch.Chain((ch.constant(), ch.ffr_tip(0, 2.0, rows[:3], rows[3:])))
     phi = np.array([0.3, -0.2, 0.5])
     for eps in (1e-2, 1e-3):
         r, R = _pose(chain, eps * phi, None)
         assert np.allclose(r, [2.0, 0.0, 0.0])
-        gap = np.max(np.abs(R - fr.rotation_vector_matrix(eps * phi)))
+        gap = np.max(np.abs(R - rot.rotation_vector_matrix(eps * phi)))
         assert gap < 0.2 * eps**2
     with pytest.raises(ValueError, match="cannot be the first"):
-        fr.Chain((fr.ffr_tip(0, 2.0, rows[:3], rows[3:]),))
+        ch.Chain((ch.ffr_tip(0, 2.0, rows[:3], rows[3:]),))
 
 
 def test_a_table_flags_the_link_kinds_it_holds():
@@ -141,11 +143,11 @@ def test_a_table_flags_the_link_kinds_it_holds():
     chains = _chains(np.random.default_rng(3))
     for name, chain, _, _ in chains + [("all", None, None, None)]:
         held = {link.kind for c in ([chain] if chain else [c for _, c, _, _ in chains]) for link in c.links}
-        table = fr.ChainTable.of([chain] if chain else [c for _, c, _, _ in chains])
+        table = ch.ChainTable.of([chain] if chain else [c for _, c, _, _ in chains])
         expected = tuple(True if kind in held else None
-                         for kind in (fr.LinkKind.FREE, fr.LinkKind.ANCF_TIP, fr.LinkKind.FFR_TIP))
+                         for kind in (ch.LinkKind.FREE, ch.LinkKind.ANCF_TIP, ch.LinkKind.FFR_TIP))
         assert (table.free_links, table.ancf_tips, table.ffr_tips) == expected, name
-    assert fr.ChainTable.of([chains[0][1]])[-3:] == (None, None, None)  # the hub: constants and revolutes
+    assert ch.ChainTable.of([chains[0][1]])[-3:] == (None, None, None)  # the hub: constants and revolutes
 
 
 @pytest.mark.parametrize("which", [0, 1])
@@ -154,7 +156,7 @@ def test_the_pruned_kinematics_equal_the_whole_code(which):
     constants and revolutes; the base's: a free link too) gives the same pose, Jacobians and
     derivatives as the code compiled with every kind of link."""
     name, chain, x, F = _chains(np.random.default_rng(11 + which))[which]
-    table = fr.ChainTable.of([chain])
+    table = ch.ChainTable.of([chain])
     assert None in table[-3:], name
     out = []
     for flags in (table[-3:], (True, True, True)):

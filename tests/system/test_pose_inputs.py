@@ -15,7 +15,8 @@ from hubbeam.io.scenario import load_example, validate
 from hubbeam.sensors import measure
 from hubbeam.system.controller_inputs import input_values
 from hubbeam.system.controllers import Controllers
-from hubbeam.system.frames import evaluate_chains, rotation_vector_matrix
+from hubbeam.system.frames import evaluate_chains
+from hubbeam.system.rotations import rotation_vector_matrix
 from tests.system.test_controller_inputs import residual_jacobians, save
 
 PARTS = ("radial", "vertical", "tangential")

@@ -18,7 +18,7 @@ import pytest
 
 from hubbeam import api
 from hubbeam.elements.ffr.kernels import ffr_energies, ffr_vspace_terms, pack
-from hubbeam.system.frames import rotation_vector_matrix
+from hubbeam.system.rotations import rotation_vector_matrix
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import initial_state
 from hubbeam.system.ffr_part import FfrPart

@@ -28,7 +28,9 @@ from hubbeam.system import terms
 from hubbeam.system.assembly import add_element_blocks_banded
 from hubbeam.system.beam import NODE_DOFS, AncfBeam
 from hubbeam.system.clamp import ROOT_COORDINATES, add_clamp_matrix, clamp_residual, frame_clamp
-from hubbeam.system.frames import Chain, LinkKind, ancf_tip, chain_state, constant, displacement_in_reference
+from hubbeam.system.chains import Chain, LinkKind, ancf_tip, constant
+from hubbeam.system.frame_motions import displacement_in_reference
+from hubbeam.system.frames import chain_state
 from hubbeam.system.loads import tip_moment_terms
 from hubbeam.system.mount import Mount, about_axis
 from hubbeam.system.parts import ChartedBeamPart

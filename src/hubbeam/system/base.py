@@ -24,7 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubbeam.system.frames import Chain, constant, euler_parameters, free, rotation_vector_matrix
+from hubbeam.system.chains import Chain, constant, free
+from hubbeam.system.rotations import euler_parameters, rotation_vector_matrix
 
 
 class BaseMotion(enum.Enum):

@@ -39,7 +39,8 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.frames import chain_state, euler_parameters, rotation_vector_matrix
+from hubbeam.system.frames import chain_state
+from hubbeam.system.rotations import euler_parameters, rotation_vector_matrix
 from hubbeam.system.laws import DriveProfile, _interval, _poly2, drive_values
 
 #: rows a pose table needs (a not-a-knot cubic spline through them)

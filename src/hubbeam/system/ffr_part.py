@@ -7,7 +7,7 @@ modal reduction, :mod:`hubbeam.elements.ffr.modal`). No reference coordinates of
 clamp multipliers: the body's inertia couples to the frame's coordinates c exactly.
 
 **Equations** (Eqs. 65-72). With the frame's origin r_C (the root A), axes A0, velocity
-Jacobians Jr, Jw and velocity products h_r, h_w (:func:`~hubbeam.system.frames.frame_motion`),
+Jacobians Jr, Jw and velocity products h_r, h_w (:func:`~hubbeam.system.frame_motions.frame_motion`),
 the body's v-space rates and accelerations are
 
     v    = [r_C', omega^b, p']              = H [c', p'],   H = [[Jr, 0], [A0^T Jw, 0], [0, I]]
@@ -44,8 +44,9 @@ from hubbeam.elements.ffr.kernels import (ffr_dissipated_power, ffr_energies, ff
 from hubbeam.elements.ffr.kernels import pack as ffr_constants
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.frames import (Chain, chain_columns, chain_kinematics, chain_state, constant,
-                                   displacement_in_reference, ffr_tip, frame_motion)
+from hubbeam.system.chains import Chain, constant, ffr_tip
+from hubbeam.system.frame_motions import chain_columns, displacement_in_reference, frame_motion
+from hubbeam.system.frames import chain_kinematics, chain_state
 from hubbeam.system.mount import Mount, about_axis
 from hubbeam.system.parts import BeamPart
 

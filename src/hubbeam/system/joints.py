@@ -36,7 +36,7 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.frames import Link, revolute
+from hubbeam.system.chains import Link, revolute
 from hubbeam.system.laws import TorqueLaw, torque_values
 
 #: the named axes in the joint frame (a, b, c)

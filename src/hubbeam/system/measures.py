@@ -248,7 +248,7 @@ class SystemMeasures:
     def base_motions(self, X, V):
         """:meth:`base_motion` at each row of X, V (states x nx) in one compiled call: (origins
         (n, 3), axes (n, 3, 3), origin velocities (n, 3), angular velocities (n, 3); global)."""
-        from hubbeam.system.frames import chain_motions
+        from hubbeam.system.frame_motions import chain_motions
 
         X = np.ascontiguousarray(X, dtype=float).reshape(-1, self.nx)
         V = np.ascontiguousarray(V, dtype=float).reshape(-1, self.nx)
@@ -259,7 +259,7 @@ class SystemMeasures:
 
     def base_rotation_vector(self, x) -> np.ndarray:
         """The rotation vector (rad, |phi| <= pi) of the base axes at x."""
-        from hubbeam.system.frames import rotation_vector
+        from hubbeam.system.rotations import rotation_vector
 
         return rotation_vector(self.frames.pose(self.frames.base, x)[1])
 

@@ -32,7 +32,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from hubbeam.system.frames import Chain, Link, constant, revolute
+from hubbeam.system.chains import Chain, ChainTable, Link, constant, revolute
+from hubbeam.system.frames import chain_pose
 
 if TYPE_CHECKING:
     from hubbeam.system.joints import Joint
@@ -97,7 +98,8 @@ class Mount:
 
     # ------------------------------------------------------------ on an upright hub (Python geometry)
     def _upright(self, theta: float, *links: Link) -> tuple[np.ndarray, np.ndarray]:
-        return Chain((revolute(0, (0.0, 1.0, 0.0), -1.0), *links)).pose(np.array([float(theta)]))
+        chain = Chain((revolute(0, (0.0, 1.0, 0.0), -1.0), *links))
+        return chain_pose(ChainTable.of([chain]), 0, np.array([float(theta)]))[:2]
 
     def frame(self, theta: float) -> np.ndarray:
         """Clamped root section frame [tau m n] (columns, global) at hub angle theta of an upright hub."""

@@ -28,7 +28,8 @@ from hubbeam.system.assembly import BorderedBandMatrix
 from hubbeam.system.base import Base, HubPlacement
 from hubbeam.system.controller_inputs import hessian_chains
 from hubbeam.system.equations import CHART_SINGULAR, Compiled, SystemModel, compiled, context
-from hubbeam.system.frames import Chain, ChainTable, chain_pose, revolute
+from hubbeam.system.chains import Chain, ChainTable, revolute
+from hubbeam.system.frames import chain_pose
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.layout import Layout
 from hubbeam.system.measures import SystemMeasures, energy_sums  # noqa: F401  (energy_sums: re-exported)
@@ -194,7 +195,7 @@ class MultibodySystem(SystemStatics, SystemMeasures):
             bodies.append(RigidBody("hub", self.frames.needs_hessian(self.frames.hub), 0.0,
                                     ((0.0, 0.0, 0.0), (0.0, J, 0.0), (0.0, 0.0, 0.0))))
         if self.base.moves and self.base.mass > 0.0:
-            from hubbeam.system.frames import constant
+            from hubbeam.system.chains import constant
 
             chain = self.frames.chain(self.frames.base).then(constant(self.base.centre_of_mass))
             bodies.append(RigidBody("base", self.frames.needs_hessian(self.frames.add(chain)), self.base.mass,
@@ -364,7 +365,7 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         v[self.layout.theta] = omega
         v_b, w_b = np.asarray(velocity, dtype=float), np.asarray(angular_velocity, dtype=float)
         if self.base.moves:
-            from hubbeam.system.frames import euler_rate_matrix
+            from hubbeam.system.rotations import euler_rate_matrix
 
             e = x[self.layout.base_x][3:7]
             E = np.empty((3, 4))
@@ -402,7 +403,7 @@ class MultibodySystem(SystemStatics, SystemMeasures):
             return np.zeros(self.nx)
         if self.base.table is not None:
             from hubbeam.system.base_laws import rotation_vector_quaternion, table_values
-            from hubbeam.system.frames import euler_rate_matrix
+            from hubbeam.system.rotations import euler_rate_matrix
 
             values = table_values(self.base.table.knots, self.base.table.coefs, 0.0)
             q, dq, ddq = np.empty(4), np.empty(4), np.empty(4)

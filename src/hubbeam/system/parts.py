@@ -23,7 +23,7 @@ import numpy as np
 
 from hubbeam.elements.hermite import gauss_legendre
 from hubbeam.elements.section import COLUMN, span_properties
-from hubbeam.system.frames import Chain
+from hubbeam.system.chains import Chain
 from hubbeam.system.mount import Mount
 
 #: the parts of a beam's kinetic energy (:meth:`BeamPart.kinetic_energy_split`), in the order

@@ -5,7 +5,7 @@ rotation vector of a moving base, each with its exact derivatives (compiled; the
 Both are functions u(x) of the positions alone; the ``_rate`` of one is u' = g . v (g = du/dx,
 v = dx/dt in the step's charts), with du'/dv = g and du'/dx_m = d(g . v)/dx_m at fixed v.
 
-**Tip deflection** (the ``tip_deflection`` sensor, :func:`hubbeam.system.frames.displacement_in_reference`):
+**Tip deflection** (the ``tip_deflection`` sensor, :func:`hubbeam.system.frame_motions.displacement_in_reference`):
 component j of the tip centroid's displacement from its undeformed place, along the axes Q of
 the beam's reference frame (its own hub frame; on a parent beam, the parent's tip frame),
 
@@ -28,7 +28,7 @@ Hra[:, l, m] v_l - L (Om_a,m x tau_a + w_a x (Jwa_m x tau_a)); for FFR, W_m = Jw
 chain) or R_a N_f (elastic column f), w' = w_a x w + R_a N p', dw'/dx_m = Om_a,m x w +
 w_a x (Jwa_m x w) + Jwa_m x R_a N p' (root chain) or w_a x R_a N_f (column f).
 
-**Base rotation** (the ``base_rotation`` sensor, :func:`hubbeam.system.frames.rotation_vector`):
+**Base rotation** (the ``base_rotation`` sensor, :func:`hubbeam.system.rotations.rotation_vector`):
 the rotation vector (rad, |phi| <= pi, global axes) of the base's Euler parameters e (4,
 not necessarily of unit norm): with s e = (a, b) (s = +-1 making a >= 0),
 

@@ -31,7 +31,8 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.frames import chain_state, frame_motion
+from hubbeam.system.frame_motions import frame_motion
+from hubbeam.system.frames import chain_state
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,8 @@ from hubbeam.elements.hermite import gauss_legendre, hermite
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
 from hubbeam.system.beam import NODE_DOFS
-from hubbeam.system.frames import chain_columns, chain_kinematics
+from hubbeam.system.frame_motions import chain_columns
+from hubbeam.system.frames import chain_kinematics
 from hubbeam.system.loads import tip_moment_terms
 
 #: quadrature points on each piece of the span (exact for a linear load on cubic shapes)

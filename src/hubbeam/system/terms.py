@@ -73,7 +73,7 @@ class Context(NamedTuple):
     gravity: tuple  # (g0, g1, g2) m/s^2: floats, not an array (a tuple of floats carries no
     #                 reference count, which every compiled call that passes the context pays)
     drag: tuple  # (c1, c2) of Eq. 37, floats
-    chains: tuple  # the system's frames (:class:`hubbeam.system.frames.ChainTable`)
+    chains: tuple  # the system's frames (:class:`hubbeam.system.chains.ChainTable`)
 
 
 @dataclass(frozen=True)
