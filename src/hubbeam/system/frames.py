@@ -56,24 +56,10 @@ import numpy as np
 from numba import njit
 
 from hubbeam.system.chains import COORD, KIND, PARAM, W_WIDTH, ChainTable, LinkKind
+from hubbeam.system.rotations import euler_rotation_into
 
 
 # ---------------------------------------------------------------------------- small pieces
-@njit(cache=True)
-def _euler_into(e0, e1, e2, e3, P):
-    """P[:, 1:4] = the rotation of the normalised Euler parameters (:func:`euler_rotation`, scalars)."""
-    s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
-    P[0, 1] = (e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3) / s
-    P[1, 2] = (e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3) / s
-    P[2, 3] = (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) / s
-    P[0, 2] = 2.0 * (e1 * e2 - e0 * e3) / s
-    P[1, 1] = 2.0 * (e1 * e2 + e0 * e3) / s
-    P[0, 3] = 2.0 * (e1 * e3 + e0 * e2) / s
-    P[2, 1] = 2.0 * (e1 * e3 - e0 * e2) / s
-    P[1, 3] = 2.0 * (e2 * e3 - e0 * e1) / s
-    P[2, 2] = 2.0 * (e2 * e3 + e0 * e1) / s
-
-
 @njit(cache=True)
 def _rotate_about(P, a0, a1, a2, angle):
     """P[:, 1:4] = R Rot(a, angle) in place (R = P[:, 1:4]; a a unit vector of the frame R)."""
@@ -301,7 +287,7 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf
                 work[col + j, W_TYPE] = TRANSLATION
                 work[col + j, W_DIRECTION] = j
             e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
-            _euler_into(e0, e1, e2, e3, P)
+            euler_rotation_into(e0, e1, e2, e3, P, 1)
             s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
             for a in range(4):
                 for i in range(3):

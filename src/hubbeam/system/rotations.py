@@ -12,19 +12,26 @@ from numba import njit
 
 
 @njit(cache=True)
+def euler_rotation_into(e0, e1, e2, e3, R, c):
+    """R[:, c:c + 3] = the rotation of the normalised Euler parameters (e0, e1, e2, e3) / |e|
+    (columns: the body axes, global); ``c`` the first column (0 for a 3 x 3 matrix, 1 for a
+    pose (3 x 4) whose column 0 is the origin)."""
+    s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
+    R[0, c] = (e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3) / s
+    R[1, c + 1] = (e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3) / s
+    R[2, c + 2] = (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) / s
+    R[0, c + 1] = 2.0 * (e1 * e2 - e0 * e3) / s
+    R[1, c] = 2.0 * (e1 * e2 + e0 * e3) / s
+    R[0, c + 2] = 2.0 * (e1 * e3 + e0 * e2) / s
+    R[2, c] = 2.0 * (e1 * e3 - e0 * e2) / s
+    R[1, c + 2] = 2.0 * (e2 * e3 - e0 * e1) / s
+    R[2, c + 1] = 2.0 * (e2 * e3 + e0 * e1) / s
+
+
+@njit(cache=True)
 def euler_rotation(e, R):
     """R = the rotation of the normalised Euler parameters e / |e| (columns: the body axes, global)."""
-    e0, e1, e2, e3 = e[0], e[1], e[2], e[3]
-    s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
-    R[0, 0] = (e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3) / s
-    R[1, 1] = (e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3) / s
-    R[2, 2] = (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) / s
-    R[0, 1] = 2.0 * (e1 * e2 - e0 * e3) / s
-    R[1, 0] = 2.0 * (e1 * e2 + e0 * e3) / s
-    R[0, 2] = 2.0 * (e1 * e3 + e0 * e2) / s
-    R[2, 0] = 2.0 * (e1 * e3 - e0 * e2) / s
-    R[1, 2] = 2.0 * (e2 * e3 - e0 * e1) / s
-    R[2, 1] = 2.0 * (e2 * e3 + e0 * e1) / s
+    euler_rotation_into(e[0], e[1], e[2], e[3], R, 0)
 
 
 @njit(cache=True)
