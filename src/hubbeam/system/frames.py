@@ -56,7 +56,7 @@ import numpy as np
 from numba import njit
 
 from hubbeam.system.chains import COORD, KIND, PARAM, W_WIDTH, ChainTable, LinkKind
-from hubbeam.system.rotations import euler_rotation_into
+from hubbeam.system.rotations import cross3, euler_rotation_into
 
 
 # ---------------------------------------------------------------------------- small pieces
@@ -402,12 +402,6 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf
 
 
 @njit(cache=True, inline="always")
-def _cross3(a0, a1, a2, b0, b1, b2):
-    """a x b of two vectors given by their components (a 3-tuple)."""
-    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
-
-
-@njit(cache=True, inline="always")
 def _tip_blocks(table, P, work, nc, H):
     """H among each FFR tip's own columns (j, m): with A_j = M[3:6, j] the weights of its rotations
     w_0, w_1, w_2 (x, y', z'') about its place o and u_a = w_a x (r - o),
@@ -425,18 +419,18 @@ def _tip_blocks(table, P, work, nc, H):
         a0, a1, a2 = work[i, W_AXES], work[i, W_AXES + 1], work[i, W_AXES + 2]
         b0, b1, b2 = work[i, W_AXES + 3], work[i, W_AXES + 4], work[i, W_AXES + 5]
         c0, c1, c2 = work[i, W_AXES + 6], work[i, W_AXES + 7], work[i, W_AXES + 8]
-        ua0, ua1, ua2 = _cross3(a0, a1, a2, d0, d1, d2)  # u = w x d
-        ub0, ub1, ub2 = _cross3(b0, b1, b2, d0, d1, d2)
-        uc0, uc1, uc2 = _cross3(c0, c1, c2, d0, d1, d2)
-        ab0, ab1, ab2 = _cross3(a0, a1, a2, b0, b1, b2)  # Hw's pairs w_a x w_b
-        ac0, ac1, ac2 = _cross3(a0, a1, a2, c0, c1, c2)
-        bc0, bc1, bc2 = _cross3(b0, b1, b2, c0, c1, c2)
-        qaa0, qaa1, qaa2 = _cross3(a0, a1, a2, ua0, ua1, ua2)  # Hr's pairs w_min x u_max
-        qbb0, qbb1, qbb2 = _cross3(b0, b1, b2, ub0, ub1, ub2)
-        qcc0, qcc1, qcc2 = _cross3(c0, c1, c2, uc0, uc1, uc2)
-        qab0, qab1, qab2 = _cross3(a0, a1, a2, ub0, ub1, ub2)
-        qac0, qac1, qac2 = _cross3(a0, a1, a2, uc0, uc1, uc2)
-        qbc0, qbc1, qbc2 = _cross3(b0, b1, b2, uc0, uc1, uc2)
+        ua0, ua1, ua2 = cross3(a0, a1, a2, d0, d1, d2)  # u = w x d
+        ub0, ub1, ub2 = cross3(b0, b1, b2, d0, d1, d2)
+        uc0, uc1, uc2 = cross3(c0, c1, c2, d0, d1, d2)
+        ab0, ab1, ab2 = cross3(a0, a1, a2, b0, b1, b2)  # Hw's pairs w_a x w_b
+        ac0, ac1, ac2 = cross3(a0, a1, a2, c0, c1, c2)
+        bc0, bc1, bc2 = cross3(b0, b1, b2, c0, c1, c2)
+        qaa0, qaa1, qaa2 = cross3(a0, a1, a2, ua0, ua1, ua2)  # Hr's pairs w_min x u_max
+        qbb0, qbb1, qbb2 = cross3(b0, b1, b2, ub0, ub1, ub2)
+        qcc0, qcc1, qcc2 = cross3(c0, c1, c2, uc0, uc1, uc2)
+        qab0, qab1, qab2 = cross3(a0, a1, a2, ub0, ub1, ub2)
+        qac0, qac1, qac2 = cross3(a0, a1, a2, uc0, uc1, uc2)
+        qbc0, qbc1, qbc2 = cross3(b0, b1, b2, uc0, uc1, uc2)
         for j in range(nf):
             ja, jb, jc = maps[off + 3 * nf + j], maps[off + 4 * nf + j], maps[off + 5 * nf + j]
             for m in range(nf):

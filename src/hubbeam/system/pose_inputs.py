@@ -47,6 +47,7 @@ import numpy as np
 from numba import njit
 
 from hubbeam.system.frames import chain_state
+from hubbeam.system.rotations import cross3
 
 #: columns of a row of the tip table: root chain, reference chain, component, where the tip's
 #: coordinates start in x, and nf (0: an ANCF beam, its tip's 3 position columns; else an FFR
@@ -67,11 +68,6 @@ def tip_columns(chains, root: int, reference: int, tip: list[int]) -> list[int]:
             if c not in out:
                 out.append(int(c))
     return out + [int(c) for c in tip if c not in out]
-
-
-@njit(cache=True, inline="always")
-def _cross(a0, a1, a2, b0, b1, b2):
-    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
 
 
 @njit(cache=True)
@@ -121,7 +117,7 @@ def tip_deflection_input(chains, tip, rows, length, ucols, x, v, rate, dx, dv):
     w, wd = np.zeros(3), np.zeros(3)
     if nf == 0:  # ANCF: w = p_tip - r_a - L tau_a
         t0, t1, t2 = Ra[0, 0], Ra[1, 0], Ra[2, 0]
-        c0, c1, c2 = _cross(wa[0], wa[1], wa[2], t0, t1, t2)
+        c0, c1, c2 = cross3(wa[0], wa[1], wa[2], t0, t1, t2)
         for a in range(3):
             w[a] = x[start + a] - ra[a] - length * Ra[a, 0]
             W[a, it + a] += 1.0
@@ -130,9 +126,9 @@ def tip_deflection_input(chains, tip, rows, length, ucols, x, v, rate, dx, dv):
                 s += Jra[a, l] * v[ca[l]]
             wd[a] = v[start + a] - s - length * (c0, c1, c2)[a]
         for m in range(na):
-            e0, e1, e2 = _cross(Jwa[0, m], Jwa[1, m], Jwa[2, m], t0, t1, t2)
-            f0, f1, f2 = _cross(Oa[0, m], Oa[1, m], Oa[2, m], t0, t1, t2)
-            g0, g1, g2 = _cross(wa[0], wa[1], wa[2], e0, e1, e2)
+            e0, e1, e2 = cross3(Jwa[0, m], Jwa[1, m], Jwa[2, m], t0, t1, t2)
+            f0, f1, f2 = cross3(Oa[0, m], Oa[1, m], Oa[2, m], t0, t1, t2)
+            g0, g1, g2 = cross3(wa[0], wa[1], wa[2], e0, e1, e2)
             col = ia[m]
             for a in range(3):
                 hr = 0.0
@@ -150,13 +146,13 @@ def tip_deflection_input(chains, tip, rows, length, ucols, x, v, rate, dx, dv):
         for a in range(3):
             w[a] = Ra[a, 0] * s[0] + Ra[a, 1] * s[1] + Ra[a, 2] * s[2]
             pd[a] = Ra[a, 0] * sd[0] + Ra[a, 1] * sd[1] + Ra[a, 2] * sd[2]
-        c0, c1, c2 = _cross(wa[0], wa[1], wa[2], w[0], w[1], w[2])
+        c0, c1, c2 = cross3(wa[0], wa[1], wa[2], w[0], w[1], w[2])
         wd[0], wd[1], wd[2] = c0 + pd[0], c1 + pd[1], c2 + pd[2]
         for m in range(na):
-            e0, e1, e2 = _cross(Jwa[0, m], Jwa[1, m], Jwa[2, m], w[0], w[1], w[2])
-            f0, f1, f2 = _cross(Oa[0, m], Oa[1, m], Oa[2, m], w[0], w[1], w[2])
-            g0, g1, g2 = _cross(wa[0], wa[1], wa[2], e0, e1, e2)
-            h0, h1, h2 = _cross(Jwa[0, m], Jwa[1, m], Jwa[2, m], pd[0], pd[1], pd[2])
+            e0, e1, e2 = cross3(Jwa[0, m], Jwa[1, m], Jwa[2, m], w[0], w[1], w[2])
+            f0, f1, f2 = cross3(Oa[0, m], Oa[1, m], Oa[2, m], w[0], w[1], w[2])
+            g0, g1, g2 = cross3(wa[0], wa[1], wa[2], e0, e1, e2)
+            h0, h1, h2 = cross3(Jwa[0, m], Jwa[1, m], Jwa[2, m], pd[0], pd[1], pd[2])
             col = ia[m]
             W[0, col] += e0
             W[1, col] += e1
@@ -168,7 +164,7 @@ def tip_deflection_input(chains, tip, rows, length, ucols, x, v, rate, dx, dv):
             n0 = Ra[0, 0] * rows[0, f] + Ra[0, 1] * rows[1, f] + Ra[0, 2] * rows[2, f]
             n1 = Ra[1, 0] * rows[0, f] + Ra[1, 1] * rows[1, f] + Ra[1, 2] * rows[2, f]
             n2 = Ra[2, 0] * rows[0, f] + Ra[2, 1] * rows[1, f] + Ra[2, 2] * rows[2, f]
-            g0, g1, g2 = _cross(wa[0], wa[1], wa[2], n0, n1, n2)
+            g0, g1, g2 = cross3(wa[0], wa[1], wa[2], n0, n1, n2)
             W[0, it + f] += n0
             W[1, it + f] += n1
             W[2, it + f] += n2
@@ -180,21 +176,21 @@ def tip_deflection_input(chains, tip, rows, length, ucols, x, v, rate, dx, dv):
         dx[k] = q0 * W[0, k] + q1 * W[1, k] + q2 * W[2, k]
         dv[k] = 0.0
     for m in range(nb):
-        e0, e1, e2 = _cross(Jwb[0, m], Jwb[1, m], Jwb[2, m], q0, q1, q2)
+        e0, e1, e2 = cross3(Jwb[0, m], Jwb[1, m], Jwb[2, m], q0, q1, q2)
         dx[ib[m]] += e0 * w[0] + e1 * w[1] + e2 * w[2]
     u = q0 * w[0] + q1 * w[1] + q2 * w[2]
     if not rate:
         return u
     wb, Ob = _frame_rates(cb, Jwb, Hwb, v)
-    r0, r1, r2 = _cross(wb[0], wb[1], wb[2], q0, q1, q2)  # q_j'
+    r0, r1, r2 = cross3(wb[0], wb[1], wb[2], q0, q1, q2)  # q_j'
     ud = r0 * w[0] + r1 * w[1] + r2 * w[2] + q0 * wd[0] + q1 * wd[1] + q2 * wd[2]
     for k in range(n):
         dv[k] = dx[k]  # du'/dv = du/dx
         dx[k] = r0 * W[0, k] + r1 * W[1, k] + r2 * W[2, k] + q0 * Wd[0, k] + q1 * Wd[1, k] + q2 * Wd[2, k]
     for m in range(nb):
-        e0, e1, e2 = _cross(Jwb[0, m], Jwb[1, m], Jwb[2, m], q0, q1, q2)  # dq/dx_m
-        f0, f1, f2 = _cross(Ob[0, m], Ob[1, m], Ob[2, m], q0, q1, q2)
-        g0, g1, g2 = _cross(wb[0], wb[1], wb[2], e0, e1, e2)
+        e0, e1, e2 = cross3(Jwb[0, m], Jwb[1, m], Jwb[2, m], q0, q1, q2)  # dq/dx_m
+        f0, f1, f2 = cross3(Ob[0, m], Ob[1, m], Ob[2, m], q0, q1, q2)
+        g0, g1, g2 = cross3(wb[0], wb[1], wb[2], e0, e1, e2)
         dx[ib[m]] += ((f0 + g0) * w[0] + (f1 + g1) * w[1] + (f2 + g2) * w[2]
                       + e0 * wd[0] + e1 * wd[1] + e2 * wd[2])
     return ud

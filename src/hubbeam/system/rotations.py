@@ -11,6 +11,12 @@ import numpy as np
 from numba import njit
 
 
+@njit(cache=True, inline="always")
+def cross3(a0, a1, a2, b0, b1, b2):
+    """a x b of two vectors given by their components (a 3-tuple)."""
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
 @njit(cache=True)
 def euler_rotation_into(e0, e1, e2, e3, R, c):
     """R[:, c:c + 3] = the rotation of the normalised Euler parameters (e0, e1, e2, e3) / |e|
