@@ -41,7 +41,8 @@ from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
 from hubbeam.system.frames import chain_state
 from hubbeam.system.rotations import euler_parameters, rotation_vector_matrix
-from hubbeam.system.laws import DriveProfile, _interval, _poly2, drive_values
+from hubbeam.system.law_kernels import drive_values, poly2, table_interval
+from hubbeam.system.laws import DriveProfile
 
 #: rows a pose table needs (a not-a-knot cubic spline through them)
 MIN_POSE_ROWS = 4
@@ -135,10 +136,10 @@ def table_values(knots, coefs, t):
     out = np.empty((6, 3))
     n = knots.shape[0]
     t_end = knots[n - 1]
-    i = n - 2 if t >= t_end else _interval(knots, t)
+    i = n - 2 if t >= t_end else table_interval(knots, t)
     h = t_end - knots[n - 2] if t >= t_end else t - knots[i]
     for c in range(6):
-        value, rate, accel = _poly2(coefs[c], i, h)
+        value, rate, accel = poly2(coefs[c], i, h)
         if t >= t_end:
             value += rate * (t - t_end)
             accel = 0.0

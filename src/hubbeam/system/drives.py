@@ -22,7 +22,8 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.laws import DriveProfile, TorqueLaw, drive_values, torque_values
+from hubbeam.system.law_kernels import drive_values, torque_values
+from hubbeam.system.laws import DriveProfile, TorqueLaw
 
 
 class HubLaws(NamedTuple):
