@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from hubbeam.system.frames import W_WIDTH, chain_kinematics_into
+from hubbeam.system.frames import W_WIDTH, chain_kinematics_called
 
 
 @njit(cache=True)
@@ -56,10 +56,9 @@ def chain_motions(table, k, X, V, F, r, R, vel, w):
     cols = table.columns[table.column_start[k]:table.column_start[k + 1]]
     P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
     work = np.empty((nc, W_WIDTH))
-    first_order = np.int64(1)  # not the literal 1: numba would compile the kinematics once more for it
     for s in range(X.shape[0]):
-        chain_kinematics_into(table, k, X[s], F, first_order, P, J, H, work, table.free_links, table.ancf_tips,
-                              table.ffr_tips)
+        chain_kinematics_called(table, k, X[s], F, 1, P, J, H, work, table.free_links, table.ancf_tips,
+                                table.ffr_tips)
         for i in range(3):
             r[s, i] = P[i, 0]
             for j in range(3):

@@ -155,8 +155,8 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
     (its arrays allocated here: for tests, front ends and differences, not for every step)."""
     nc = table.column_start[k + 1] - table.column_start[k]
     P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
-    chain_kinematics_into(table, k, x, F, min(order, 2), P, J, H, np.empty((nc, W_WIDTH)), table.free_links,
-                          table.ancf_tips, table.ffr_tips)
+    chain_kinematics_called(table, k, x, F, order, P, J, H, np.empty((nc, W_WIDTH)), table.free_links,
+                            table.ancf_tips, table.ffr_tips)
     for i in range(3):
         r[i] = P[i, 0]
         for j in range(3):
@@ -196,7 +196,7 @@ def _cross_columns(J, sa, ja, sb, jb, H, s, i, l, add):
         H[s, 2, i, l] = c2
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips):
     """The pose of chain k at the coordinates x (charts F for ANCF tips): P (3 x 4), its
     origin r (column 0, m) and axes R (columns 1-3, global); for each of its nc coordinate
@@ -206,14 +206,11 @@ def chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf
     Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). J (2, 3, >= nc) and H (2, 3, >= nc, >= nc)
     are overwritten on their first nc columns; ``work`` (>= nc, W_WIDTH): scratch (a column's
     type, a translation's axis, the point a rotation turns about, an FFR tip's axes). Scalars only: no allocation (a
-    step evaluates every chain), so compiled without numba's reference counting. Called, not
-    inlined (``inline="always"``): numba's inliner deep-copies the inlined function's IR block by
-    block, each block with all of its variables, and this function's copy into
-    :func:`_evaluate_chains` took ~7 s of a first run's compile for exp1 (~1 s called). ``order``
-    an int64, not a literal (numba compiles a function once per literal argument).
-    ``free_links``, ``ancf_tips``, ``ffr_tips``: the table's (:class:`ChainTable`), arguments, so
-    that numba prunes the code of a kind of link whose flag is None before it types and compiles
-    it."""
+    step evaluates every chain), inlined into :func:`evaluate_chains` (the others call
+    :func:`chain_kinematics_called`). ``free_links``, ``ancf_tips``, ``ffr_tips``: the table's
+    (:class:`ChainTable`), arguments of the function this is inlined into, so that numba prunes
+    the code of a kind of link whose flag is None before it types and compiles it (exp1's
+    chains, constants and revolutes only, compile in a fraction of the time)."""
     l0, l1 = table.start[k], table.start[k + 1]
     nc = table.column_start[k + 1] - table.column_start[k]
     par = table.params
@@ -447,6 +444,16 @@ def _tip_blocks(table, P, work, nc, H):
                 H[0, 0, i + j, i + m] = gaa * qaa0 + gbb * qbb0 + gcc * qcc0 + gab * qab0 + gac * qac0 + gbc * qbc0
                 H[0, 1, i + j, i + m] = gaa * qaa1 + gbb * qbb1 + gcc * qcc1 + gab * qab1 + gac * qac1 + gbc * qbc1
                 H[0, 2, i + j, i + m] = gaa * qaa2 + gbb * qbb2 + gcc * qcc2 + gab * qab2 + gac * qac2 + gbc * qbc2
+
+
+@njit(cache=True)
+def chain_kinematics_called(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips):
+    """:func:`chain_kinematics_into` as a function of its own, for the callers off the step's
+    hot path (:func:`chain_kinematics`, :func:`chain_motions`): each function that inlines
+    :func:`chain_kinematics_into` compiles a copy of it, so only :func:`evaluate_chains` (every
+    evaluation of the equations) does, and these two call this one copy. The link kinds'
+    flags are arguments (the table's), for numba to prune the kinds the table does not hold."""
+    chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips)
 
 
 @njit(cache=True, inline="always")
