@@ -89,9 +89,12 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     lam1 = np.empty_like(lam)
     res = np.empty(n)
     size = 0.0
-    # no exact load stiffness in a time step; a run-time False, not the literal: numba compiles a
-    # function once per literal argument, and system_equations is the largest compile of all
-    exact = n < 0
+    # run-time booleans, not the literals False and True: numba compiles a function once per
+    # literal argument, and system_equations is the largest compile of all (each literal passed
+    # to it below compiled it once more: ~8 s of CPU each on the first run)
+    exact = n < 0  # no exact load stiffness in a time step
+    no_matrix = n < 0  # the patch's difference quotients need the residual only
+    new_matrix = n >= 0
     for k in range(n_steps):
         t1 = t + h
         predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
@@ -112,8 +115,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 x1[j] = xj + d
                 v1[j] = vj + gprime * d
                 xdd1[j] = aj + bprime * d
-                system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact, False,
-                                 res_patch, ab, brow, bcol, bb)
+                system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
+                                 no_matrix, res_patch, ab, brow, bcol, bb)
                 x1[j], v1[j], xdd1[j] = xj, vj, aj
                 for i in range(n):
                     G[c, i] = (res_patch[i] - res[i]) / d
@@ -130,7 +133,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 stale = False
                 fresh = True
                 margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
-                                             exact, True, res, ab, brow, bcol, bb)
+                                             exact, new_matrix, res, ab, brow, bcol, bb)
         previous = np.inf
         converged = False
         for it in range(1, max_iterations + 1):

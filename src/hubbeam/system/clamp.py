@@ -172,9 +172,20 @@ def frame_clamp_equations(r, R, Jr, Jw, Hr, Hw, root, F, twist, lam=None, order:
     nc = Jr.shape[1]
     phi, jac, hess = np.empty(6), np.empty((6, nc + 7)), np.empty((nc + 7, nc + 7))
     lam = np.zeros(6) if lam is None else np.asarray(lam, dtype=float)
-    frame_clamp(*(np.ascontiguousarray(a, dtype=float) for a in (r, R, Jr, Jw, Hr, Hw, root, F)), float(twist),
-                lam, order, phi, jac, hess)
+    frame_clamp(*(_strided(a) for a in (r, R, Jr, Jw, Hr, Hw)), np.ascontiguousarray(root, dtype=float),
+                np.ascontiguousarray(F, dtype=float), float(twist), lam, order, phi, jac, hess)
     return phi, jac, hess
+
+
+def _strided(a):
+    """A copy of ``a`` (as floats) in a view with every stride doubled, which numba types as
+    not contiguous (layout "A"), as the views of the chains' state
+    (:func:`hubbeam.system.frames.chain_state`) that the compiled equations pass: so that a run
+    compiles :func:`frame_clamp` once, not once more for contiguous arrays (~1 s)."""
+    a = np.asarray(a, dtype=float)
+    buffer = np.zeros(a.shape + (2,))
+    buffer[..., 0] = a
+    return buffer[..., 0]
 
 
 @njit(cache=True)
