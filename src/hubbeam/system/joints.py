@@ -137,75 +137,72 @@ def beam_joints(system):
 
 # ================================================================ compiled terms: the kind "joint laws"
 class JointLaws(NamedTuple):
-    """Every joint axis of a system, one row each: its place, spring, damper, motor and latch."""
+    """Every joint axis of a system, one row each: its place, spring, damper, motor and latch.
+    Four arrays, not one per field: the compiled equations count the references of every array of
+    every pack at every residual and power (about 10 ns each; a pack of ten arrays cost a 4-mode
+    FFR beam on a hinge 0.15 to 0.25 us of its 3.9 us residual, ``benchmarks/joint_cost.py``)."""
 
-    places: np.ndarray  # int64 (n, 3): x index of psi, its beam (energy row), its lock in lambda (-1: none)
-    constants: np.ndarray  # (n, 7): stiffness, damping, neutral, initial angle, latch angle, latch side
-    #                        (+1 / -1 from below / above, 0 none), locked angle (nan: not locked)
-    motor_kind: np.ndarray  # int64 (n,): TorqueKind, -1 without a motor
-    motor_params: np.ndarray  # (n, 4)
-    ref_kind: np.ndarray  # int64 (n,)
-    ref_params: np.ndarray  # (n, 4)
-    starts: np.ndarray  # int64 (n + 1, 3): each motor's rows in the table knots, reference knots, reference pieces
-    knots: np.ndarray  # (2, m): torque tables' times and values, concatenated
-    ref_knots: np.ndarray  # (r,)
+    places: np.ndarray  # int64 (n, 11): x index of psi, its beam (energy row), its lock in lambda (-1: none),
+    #                     the motor's TorqueKind (-1: no motor) and its reference's kind, and where the motor's
+    #                     tables are: the torque table's knots (first index in ``tables``, count; its values follow
+    #                     them), the reference's knots (first, count) and pieces (first row of ``ref_coefs``, count)
+    constants: np.ndarray  # (n, 15): stiffness, damping, neutral, initial angle, latch angle, latch side
+    #                        (+1 / -1 from below / above, 0 none), locked angle (nan: not locked), the motor's
+    #                        params (4), the reference's params (4)
+    tables: np.ndarray  # (m,): the torque tables' times and values and the references' knots, concatenated
     ref_coefs: np.ndarray  # (p, COEFFICIENTS): the references' pieces, left-padded with zeros
 
 
 #: columns of :attr:`JointLaws.places` and :attr:`JointLaws.constants`
-COORD, BEAM, LOCK = 0, 1, 2
-STIFFNESS, DAMPING, NEUTRAL, INITIAL, LATCH, SIDE, LOCKED = 0, 1, 2, 3, 4, 5, 6
+COORD, BEAM, LOCK, MOTOR, REFERENCE, KNOTS, KNOT_COUNT, REF_KNOTS, REF_KNOT_COUNT, PIECES, PIECE_COUNT = range(11)
+STIFFNESS, DAMPING, NEUTRAL, INITIAL, LATCH, SIDE, LOCKED, MOTOR_PARAMS, REF_PARAMS = 0, 1, 2, 3, 4, 5, 6, 7, 11
 
 
 def pack_joint_laws(system, layout) -> JointLaws | None:
     """The :class:`JointLaws` of ``system`` placed by ``layout`` (None without joints)."""
-    rows, motors = [], []
+    places, constants, tables, rcoefs = [], [], [], []
     for k, joint, first in beam_joints(system):
         lock = layout.lock_lambda(k)
         for i in range(joint.count):
             latch = joint.latch if joint.latch is not None else math.nan
             side = 0.0 if joint.latch is None else math.copysign(1.0, joint.latch - joint.initial_angle[i])
             locked = joint.locked_at if joint.locked_at is not None else math.nan
-            rows.append(((first + i, k, lock.start if joint.locked_at is not None else -1),
-                         (joint.stiffness[i], joint.damping[i], joint.neutral[i], joint.initial_angle[i], latch, side,
-                          locked)))
-            motors.append(joint.torque)
-    if not rows:
+            law = joint.torque
+            c = (law if law is not None else TorqueLaw()).compiled()
+            knots = len(tables)
+            tables += list(c.knots) + list(c.values)
+            ref_knots = len(tables)
+            tables += list(c.ref_knots)
+            pieces = len(rcoefs)
+            for row in c.ref_coefs:
+                rcoefs.append([0.0] * (COEFFICIENTS - len(row)) + list(row))
+            places.append((first + i, k, lock.start if joint.locked_at is not None else -1,
+                           int(c.kind) if law is not None else -1, int(c.ref_kind), knots, len(c.knots), ref_knots,
+                           len(c.ref_knots), pieces, len(c.ref_coefs)))
+            constants.append([joint.stiffness[i], joint.damping[i], joint.neutral[i], joint.initial_angle[i], latch,
+                              side, locked] + list(c.params) + list(c.ref_params))
+    if not places:
         return None
-    n = len(rows)
-    kinds, params, rkinds, rparams = [], np.zeros((n, 4)), [], np.zeros((n, 4))
-    starts = np.zeros((n + 1, 3), dtype=np.int64)
-    knots, values, rknots, rcoefs = [], [], [], []
-    for j, law in enumerate(motors):
-        c = (law if law is not None else TorqueLaw()).compiled()
-        kinds.append(int(c.kind) if law is not None else -1)
-        params[j] = c.params
-        rkinds.append(int(c.ref_kind))
-        rparams[j] = c.ref_params
-        knots += list(c.knots)
-        values += list(c.values)
-        rknots += list(c.ref_knots)
-        for row in c.ref_coefs:
-            rcoefs.append([0.0] * (COEFFICIENTS - len(row)) + list(row))
-        starts[j + 1] = (len(knots), len(rknots), len(rcoefs))
-    ints = lambda v: np.array(v, dtype=np.int64)  # noqa: E731
-    return JointLaws(ints([r[0] for r in rows]).reshape(n, 3), np.array([r[1] for r in rows], dtype=float),
-                     ints(kinds), params, ints(rkinds), rparams, starts, np.array([knots, values], dtype=float),
-                     np.array(rknots, dtype=float), np.array(rcoefs, dtype=float).reshape(len(rcoefs), COEFFICIENTS))
+    return JointLaws(np.array(places, dtype=np.int64), np.array(constants, dtype=float),
+                     np.array(tables, dtype=float), np.array(rcoefs, dtype=float).reshape(len(rcoefs), COEFFICIENTS))
 
 
 @njit(cache=True)
 def motor_torque(pack, j, t, psi, rate):
     """(T_m, dT_m/dpsi, dT_m/dpsi') of axis j's motor (N m; zero without one): its torque law at
     (t, psi - initial angle, psi')."""
-    kind = pack.motor_kind[j]
+    place = pack.places[j]
+    kind = place[MOTOR]
     if kind < 0:
         return 0.0, 0.0, 0.0
-    s = pack.starts
-    return torque_values(kind, pack.motor_params[j], pack.knots[0, s[j, 0]:s[j + 1, 0]],
-                         pack.knots[1, s[j, 0]:s[j + 1, 0]], pack.ref_kind[j], pack.ref_params[j],
-                         pack.ref_knots[s[j, 1]:s[j + 1, 1]], pack.ref_coefs[s[j, 2]:s[j + 1, 2]], t,
-                         psi - pack.constants[j, INITIAL], rate)
+    const = pack.constants[j]
+    tables = pack.tables
+    a, n = place[KNOTS], place[KNOT_COUNT]
+    ra, rn = place[REF_KNOTS], place[REF_KNOT_COUNT]
+    pa, pn = place[PIECES], place[PIECE_COUNT]
+    return torque_values(kind, const[MOTOR_PARAMS:MOTOR_PARAMS + 4], tables[a:a + n], tables[a + n:a + 2 * n],
+                         place[REFERENCE], const[REF_PARAMS:REF_PARAMS + 4], tables[ra:ra + rn],
+                         pack.ref_coefs[pa:pa + pn], t, psi - const[INITIAL], rate)
 
 
 def joint_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
@@ -263,7 +260,7 @@ def joint_drive_power(pack, ctx, F, t, x, v, lam):
     """The motors' power T_m psi' (W) of the free axes."""
     power = 0.0
     for j in range(pack.places.shape[0]):
-        if pack.places[j, LOCK] < 0 and pack.motor_kind[j] >= 0:
+        if pack.places[j, LOCK] < 0 and pack.places[j, MOTOR] >= 0:
             c = pack.places[j, COORD]
             power += motor_torque(pack, j, t, x[c], v[c])[0] * v[c]
     return power
