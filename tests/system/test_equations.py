@@ -112,3 +112,48 @@ def test_the_equations_read_no_hessian_that_evaluate_chains_leaves_out(example, 
     assert np.all(np.isfinite(out[0][0]))
     np.testing.assert_array_equal(out[0][0], out[1][0])
     np.testing.assert_array_equal(out[0][1], out[1][1])
+
+
+LEAK_CHECK = """
+import gc, json, sys
+from numba.core.runtime import rtsys
+from hubbeam import api
+from hubbeam.io.scenario import load_example
+example, overrides = sys.argv[1], json.loads(sys.argv[2])
+def run(t_end):
+    traj, failure = api.run(load_example(example, overrides + [f"analysis.t_end={t_end}"]))
+    assert failure is None, failure
+run(0.002)  # loads the compiled code
+def unreleased(t_end):
+    gc.collect()
+    before = rtsys.get_allocation_stats()
+    run(t_end)
+    gc.collect()
+    after = rtsys.get_allocation_stats()
+    return (after.alloc - before.alloc) - (after.free - before.free), after.alloc - before.alloc
+print(json.dumps([unreleased(0.02), unreleased(0.08)]))
+"""
+
+
+@pytest.mark.parametrize("example, overrides", [
+    ("exp1", ['beam.formulation="ffr"', "beam.modes=4", "beam.elements=4"]),  # terms compiled into the step
+    ("blade", ["beam.elements=4"]),  # ANCF, tip body, damping: terms called as functions of their own
+])
+def test_a_run_releases_every_array_it_allocates(example, overrides):
+    """The time step's system functions count no references (system_equations, step_powers:
+    numba's _nrt=False): an array that a term takes from a call or allocates there would never
+    be released. With numba's allocation statistics (NUMBA_NRT_STATS, in a fresh process), a
+    run of 20 and one of 80 steps release every array they allocate, and the longer run
+    allocates more (the statistics count)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, NUMBA_NRT_STATS="1")
+    out = subprocess.run([sys.executable, "-c", LEAK_CHECK, example, json.dumps(overrides)], capture_output=True,
+                         text=True, env=env, timeout=600)
+    assert out.returncode == 0, out.stderr[-2000:]
+    (short_left, short_made), (long_left, long_made) = json.loads(out.stdout.strip().splitlines()[-1])
+    assert long_made > short_made > 0
+    assert short_left == 0 and long_left == 0

@@ -89,4 +89,5 @@ def hub_law_drive_power(pack, ctx, F, t, x, v, lam):
     return torque * v[ctx.theta]
 
 
-KIND = terms.register(HubLaws, pack_hub_laws, hub_law_equations, drive_power=hub_law_drive_power)
+KIND = terms.register(HubLaws, pack_hub_laws, hub_law_equations, drive_power=hub_law_drive_power,
+                      counts_references=False)

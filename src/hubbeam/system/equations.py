@@ -50,7 +50,7 @@ def context(layout, bandwidth: int, gravity, drag, chains) -> Context:
                    (c1, c2), chains)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
                      want_matrix, res, ab, brow, bcol, bb):
     """Scaled residual and (when ``want_matrix``) Newton matrix of the system.
@@ -69,6 +69,13 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     and the parts read them. Returns (chart margin min(1 + d.tau) over all Gauss points,
     dissipated power W). A margin at or below :data:`CHART_SINGULAR` means the residual is not
     valid.
+
+    Compiled without numba's reference counting, as :func:`step_powers` and
+    :func:`system_events` (the functions the time loop calls every step): they allocate
+    nothing, and the kinds whose terms do are called as functions of their own
+    (:func:`hubbeam.system.terms.register`'s ``counts_references``). Counting the references
+    of the model's arrays (43 on exp1 with 4 modes) and of the packs each term is given cost
+    0.7 us of the 1.6 us of a call of the step's powers there.
     """
     ctx = model.context
     evaluate_chains(ctx.chains, x, F, 2)
@@ -91,7 +98,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     return margin, power
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def step_powers(model, F, t, x, v, lam):
     """(dissipated, drive) power at the state (t, x, v, lambda) in the charts F (W): the power
     of the drag of Eq. 37 and of the structural damping of every part (>= 0), and the power of
@@ -99,7 +106,8 @@ def step_powers(model, F, t, x, v, lam):
     ...). One function for both, called after every step. Not inlined into the compiled
     loop (which would save the ~0.5 us of passing the model): inlined, its unrolled loop over
     the parts took stack that the loop's frame never gave back, ~1.3 kB a step, and a chunk of
-    ~6000 steps died of SIGSEGV (tests/solvers/test_compiled_alpha.py)."""
+    ~6000 steps died of SIGSEGV (tests/solvers/test_compiled_alpha.py). Without reference
+    counting (:func:`system_equations`)."""
     ctx = model.context
     evaluate_chains(ctx.chains, x, F, 1)
     dissipated = 0.0
@@ -110,7 +118,7 @@ def step_powers(model, F, t, x, v, lam):
     return dissipated, drive
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def system_events(model, x):
     """Whether any part's event (a joint reaching its latch angle) is reached at x
     (:func:`hubbeam.system.terms.part_events`), after every step of the time loop. Not inlined

@@ -499,12 +499,45 @@ def _beam_residual(pack, ctx, k, x, v, acc, load_factor, want_matrix, coef_k, re
     return power
 
 
+@njit(cache=True, _nrt=True)
+def _difference_stiffness(pack, ctx, F, k, x, v, acc, load_factor, coef_k, block):
+    """block += coef_k times the stiffness of everything in FFR beam k's force on [c, p] but the
+    elastic force (K_el, exact, is in the block already), by central differences of the force
+    over [c, p] at fixed rates and accelerations (statics and modes). A function of its own,
+    with numba's reference counting (``_nrt=True`` explicitly: a callee inherits its caller's
+    setting unless it sets its own): it allocates, and the system's equations count no
+    references (:func:`~hubbeam.system.equations.system_equations`)."""
+    nf = pack.places[k, NF]
+    x0 = pack.places[k, X0]
+    n = 6 + nf
+    cols = chain_columns(ctx.chains, pack.chains[k, 0])
+    nc = cols.shape[0]
+    m = nc + nf
+    xp = x.copy()
+    fp, fm = np.empty(m), np.empty(m)
+    H2 = np.empty((n, m))
+    M2, C2, K2 = np.empty((n, n)), np.empty((0, 0)), np.empty((nf, nf))
+    for j in range(m):
+        c = cols[j] if j < nc else x0 + j - nc
+        h = 1e-6 * max(1.0, abs(x[c]))
+        xp[c] = x[c] + h
+        ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp), k, xp, v, acc, load_factor,
+                       False, fp, H2, M2, C2, K2, False)
+        xp[c] = x[c] - h
+        ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp), k, xp, v, acc, load_factor,
+                       False, fm, H2, M2, C2, K2, False)
+        xp[c] = x[c]
+        for i in range(m):
+            block[i, j] += coef_k * (fp[i] - fm[i]) / (2.0 * h)
+
+
 def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
                   want_matrix, res, ab, brow, bcol, bb):
     """Every FFR beam's rows (:mod:`hubbeam.system.terms`): H^T (M_v vdot - Q) on its frame's
     coordinates and its own; the matrix coef_m H^T M_v H + coef_c (H^T C_v H + C_struct) +
     coef_k K_el, or with ``exact_stiffness`` the stiffness by central differences of the force
-    (statics and modes)."""
+    (statics and modes; :func:`_difference_stiffness`). Inlined into the system's equations,
+    which count no references: it allocates nothing and takes no array from a call."""
     ku = ctx.ku
     power = 0.0
     places = pack.places
@@ -515,7 +548,7 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
         nf = places[k, NF]
         x0 = places[k, X0]
         n = 6 + nf
-        cols = chain_columns(ctx.chains, pack.chains[k, 0])
+        cols = chain_state(ctx.chains, pack.chains[k, 0])[0]  # inlined: a view, no array from a call
         nc = cols.shape[0]
         m = nc + nf
         sq = pack.squares_work
@@ -542,24 +575,7 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
             for g in range(nf):
                 block[nc + f, nc + g] += coef_k * K_el[f, g] + (coef_c * Cs[f, g] if damped else 0.0)
         if exact_stiffness and coef_k != 0.0:
-            # the stiffness of everything but the elastic force (K_el, exact, is in already) by
-            # central differences of the force over [c, p]
-            xp = x.copy()
-            fp, fm = np.empty(m), np.empty(m)
-            H2 = np.empty((n, m))
-            M2, C2, K2 = np.empty((n, n)), np.empty((0, 0)), np.empty((nf, nf))
-            for j in range(m):
-                c = cols[j] if j < nc else x0 + j - nc
-                h = 1e-6 * max(1.0, abs(x[c]))
-                xp[c] = x[c] + h
-                ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp), k, xp, v, acc, load_factor,
-                               False, fp, H2, M2, C2, K2, False)
-                xp[c] = x[c] - h
-                ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp), k, xp, v, acc, load_factor,
-                               False, fm, H2, M2, C2, K2, False)
-                xp[c] = x[c]
-                for i in range(m):
-                    block[i, j] += coef_k * (fp[i] - fm[i]) / (2.0 * h)
+            _difference_stiffness(pack, ctx, F, k, x, v, acc, load_factor, coef_k, block)
         for i in range(m):
             for j in range(m):
                 if block[i, j] != 0.0:
@@ -642,14 +658,21 @@ def ffr_drive_power(pack, ctx, F, t, x, v, lam):
         for i in range(3):
             if vec[k, 1, i] != 0.0 or vec[k, 2, i] != 0.0:  # slots of FFR_GROUPS["vectors"]: tip_force, tip_moment
                 loaded = True
-        if not loaded:
-            continue
-        nf = places[k, NF]
-        x0 = places[k, X0]
-        r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
-        _, tip, _ = ffr_arguments(pack, k, ctx.drag)
-        power += tip_load_power(tip, R, x[x0:x0 + nf], vb)
+        if loaded:
+            power += _tip_loads_power(pack, ctx, k, x, v, F)
     return power
+
+
+@njit(cache=True, _nrt=True)
+def _tip_loads_power(pack, ctx, k, x, v, F):
+    """The power of FFR beam k's tip force and tip moment (W; :func:`ffr_drive_power`): a
+    function of its own with reference counting (as :func:`_difference_stiffness`), as it
+    takes arrays from its calls."""
+    nf = pack.places[k, NF]
+    x0 = pack.places[k, X0]
+    r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
+    _, tip, _ = ffr_arguments(pack, k, ctx.drag)
+    return tip_load_power(tip, R, x[x0:x0 + nf], vb)
 
 
 def ffr_tips(pack, ctx, F, x, out):
@@ -668,4 +691,5 @@ def ffr_tips(pack, ctx, F, x, out):
 
 
 KIND = terms.register(FfrBeams, pack_ffr_beams, ffr_equations, ffr_beam_energies, ffr_power, ffr_tips,
-                      bandwidth=ffr_bandwidth, drive_power=ffr_drive_power, momenta=ffr_momenta)
+                      bandwidth=ffr_bandwidth, drive_power=ffr_drive_power, momenta=ffr_momenta,
+                      counts_references=False)

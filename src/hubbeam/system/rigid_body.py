@@ -55,6 +55,7 @@ class RigidBodies(NamedTuple):
     chain: np.ndarray  # int64 (n,): the frame each body's centre of mass and axes are
     mass: np.ndarray  # (n,) kg
     inertia: np.ndarray  # (n, 3, 3) kg m^2, body axes about the centre of mass
+    work: np.ndarray  # (5, 3, 3) scratch of the equations (:func:`rigid_body_equations`: they allocate nothing)
 
 
 def pack_rigid_bodies(system, layout) -> RigidBodies | None:
@@ -67,7 +68,8 @@ def pack_rigid_bodies(system, layout) -> RigidBodies | None:
             raise ValueError(f"rigid body {b.name!r}: its frame {b.chain} was not marked by Frames.needs_hessian")
     return RigidBodies(np.array([b.chain for b in bodies], dtype=np.int64),
                        np.array([b.mass for b in bodies], dtype=float),
-                       np.array([b.inertia_matrix() for b in bodies], dtype=float).reshape(len(bodies), 3, 3))
+                       np.array([b.inertia_matrix() for b in bodies], dtype=float).reshape(len(bodies), 3, 3),
+                       np.zeros((5, 3, 3)))
 
 
 @njit(cache=True)
@@ -93,12 +95,15 @@ def _body_state(pack, ctx, b, x, F, Ig):
 
 def rigid_body_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
                          exact_stiffness, want_matrix, res, ab, brow, bcol, bb):
-    """Every rigid body's generalized force and Newton-matrix entries (module docstring)."""
+    """Every rigid body's generalized force and Newton-matrix entries (module docstring). Its
+    vectors and matrices are views of the pack's scratch: compiled into the system's equations,
+    which count no references (:func:`hubbeam.system.terms.register`), it allocates nothing."""
     zx, ku = ctx.z_of_x, ctx.ku
     g = ctx.gravity
-    vel, w, a, alpha = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-    f, tq, Iw = np.empty(3), np.empty(3), np.empty(3)
-    Ig = np.empty((3, 3))
+    work = pack.work
+    vel, w, a, alpha = work[0, 0], work[0, 1], work[0, 2], work[1, 0]
+    f, tq, Iw = work[1, 1], work[1, 2], work[2, 0]
+    Ig, G = work[3], work[4]
     for b in range(pack.chain.shape[0]):
         cols, r, R, Jr, Jw, Hr, Hw = _body_state(pack, ctx, b, x, F, Ig)
         nc = cols.shape[0]
@@ -118,7 +123,6 @@ def rigid_body_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
         if not want_matrix:
             continue
         # d(w x I w)/dw = [w]x I - [I w]x
-        G = np.empty((3, 3))
         for i in range(3):
             for j in range(3):
                 G[i, j] = 0.0
@@ -189,4 +193,4 @@ def rigid_body_bandwidth(system, layout) -> int:
 
 
 KIND = terms.register(RigidBodies, pack_rigid_bodies, rigid_body_equations, rigid_body_energies,
-                      bandwidth=rigid_body_bandwidth, momenta=rigid_body_momenta)
+                      bandwidth=rigid_body_bandwidth, momenta=rigid_body_momenta, counts_references=False)

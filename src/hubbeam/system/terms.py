@@ -162,7 +162,7 @@ def _no_events(pack, ctx, x):
     return False
 
 
-def _dispatch(stub, pack_class, impl, inline: str = "always") -> None:
+def _dispatch(stub, pack_class, impl, inline: str = "always", called: bool = False) -> None:
     """Let numba resolve ``stub`` to ``impl`` for packs of ``pack_class`` (``impl``: a plain
     Python function with the stub's parameter names, which numba compiles where it is called).
     ``inline`` "always" for the terms of the time step (the equations, the powers, the events):
@@ -170,23 +170,51 @@ def _dispatch(stub, pack_class, impl, inline: str = "always") -> None:
     and the context), twice per step and beam kind in the time loop. "never" for the rest (the
     energies, tips and momenta of the records): numba compiles an inlined overload twice, once
     on its own to type it and once more in its caller, so that a called one costs half the
-    compile. Only hubbeam's own kinds go to numba's on-disk cache: a cache index records the classes of
+    compile. ``called``: ``impl`` is compiled as a function of its own (with numba's reference
+    counting) and the stub inlines only the call of it: for the time step's terms of a kind that
+    allocates or takes arrays from its calls, since the system's functions of the time step
+    count no references (:func:`register`'s ``counts_references``). Only hubbeam's own kinds go
+    to numba's on-disk cache: a cache index records the classes of
     every signature compiled, and a class of a script or a test module in it (a default term
     such as ``_no_power`` is compiled for every kind) would make the index unreadable in every
     other process (see :func:`native`)."""
+    cache = native_class(pack_class)
+    if called:
+        impl = _calling(stub, njit(cache=cache, _nrt=True)(impl))  # explicit: callees inherit _nrt
 
     def resolve(pack, *args):
         if getattr(pack, "instance_class", None) is pack_class:
             return impl
         return None
 
-    cache = native_class(pack_class)
     overload(stub, jit_options={"cache": cache}, strict=False, inline=inline)(resolve)
+
+
+def _calling(stub, function):
+    """A term with the parameters of ``stub`` that calls the compiled ``function`` with them
+    (:func:`_dispatch`; numba's inliner takes no ``*args``)."""
+
+    def equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
+                  want_matrix, res, ab, brow, bcol, bb):
+        return function(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
+                        exact_stiffness, want_matrix, res, ab, brow, bcol, bb)
+
+    def power(pack, ctx, F, x, v):
+        return function(pack, ctx, F, x, v)
+
+    def drive_power(pack, ctx, F, t, x, v, lam):
+        return function(pack, ctx, F, t, x, v, lam)
+
+    def events(pack, ctx, x):
+        return function(pack, ctx, x)
+
+    return {part_equations: equations, part_power: power, part_drive_power: drive_power, part_events: events}[stub]
 
 
 def register(pack: type, packer: Callable, equations, energies=None, power=None, tips=None,
              bandwidth: Callable = lambda system, layout: 1, drive_power=None, momenta=None,
-             events=None, events_possible: Callable | None = None) -> PartKind:
+             events=None, events_possible: Callable | None = None,
+             counts_references: bool = True) -> PartKind:
     """Register a kind of part: its pack class, its ``packer(system, layout) -> pack | None``,
     ``bandwidth(system, layout)``, the half-bandwidth its band entries need (the distance from
     the diagonal of its farthest entry off the border), and its terms: plain Python functions
@@ -198,13 +226,15 @@ def register(pack: type, packer: Callable, equations, energies=None, power=None,
     that cannot happen. Returns the kind."""
     if any(kind.pack is pack for kind in KINDS):
         raise ValueError(f"{pack.__name__} is registered already")
-    _dispatch(part_equations, pack, equations)
+    called = counts_references
+    _dispatch(part_equations, pack, equations, called=called)
     _dispatch(part_energies, pack, energies if energies is not None else _no_energies, "never")
-    _dispatch(part_power, pack, power if power is not None else _no_power)
+    _dispatch(part_power, pack, power if power is not None else _no_power, called=called and power is not None)
     _dispatch(part_tips, pack, tips if tips is not None else _no_tips, "never")
-    _dispatch(part_drive_power, pack, drive_power if drive_power is not None else _no_drive_power)
+    _dispatch(part_drive_power, pack, drive_power if drive_power is not None else _no_drive_power,
+              called=called and drive_power is not None)
     _dispatch(part_momenta, pack, momenta if momenta is not None else _no_momenta, "never")
-    _dispatch(part_events, pack, events if events is not None else _no_events)
+    _dispatch(part_events, pack, events if events is not None else _no_events, called=called and events is not None)
     kind = PartKind(pack, packer, bandwidth, events is not None, events_possible)
     KINDS.append(kind)
     return kind
