@@ -546,7 +546,6 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
         if not want_matrix:
             continue
         nf = places[k, NF]
-        x0 = places[k, X0]
         n = 6 + nf
         cols = chain_state(ctx.chains, pack.chains[k, 0])[0]  # inlined: a view, no array from a call
         nc = cols.shape[0]
