@@ -10,7 +10,13 @@ from hubbeam.io.examples import DATA_FILES
 from hubbeam.io.scenario import EXAMPLES, load_example
 
 
-@pytest.mark.parametrize("name", EXAMPLES)
+#: examples whose models no other default test compiles (chains of joints with motors, a latch on
+#: a free bus: each about 3 minutes of compiling on a cold cache); they run with ``-m slow``
+SLOW_EXAMPLES = {"arm2", "deploy"}
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=[pytest.mark.slow] if n in SLOW_EXAMPLES else [])
+                                  for n in EXAMPLES])
 def test_each_bundled_example_runs(name, tmp_path, capsys, monkeypatch):
     import xarray as xr
 

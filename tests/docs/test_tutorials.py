@@ -28,8 +28,9 @@ import pytest
 TUTORIALS = Path(__file__).resolve().parents[2] / "docs" / "tutorials"
 _FENCE = re.compile(r"^```(\w*)([^\n]*)\n(.*?)^```\s*$", re.S | re.M)
 #: pages whose runs take more than a few seconds (once numba's cache is warm): a Python torque
-#: law, an identification's many simulations
-SLOW = {"identification.md", "controlled_slew.md"}
+#: law, an identification's many simulations; or whose models no other default test compiles
+#: (the closed loop's controller on the bus: about 4 minutes of compiling on a cold cache)
+SLOW = {"identification.md", "controlled_slew.md", "closed_loop.md"}
 
 
 def blocks(page: Path) -> list[tuple[str, str | None, str]]:
