@@ -146,6 +146,7 @@ def tumbling():
     return {dt: run(tumbler(dt)) for dt in (0.004, 0.002, 0.001)}
 
 
+@pytest.mark.slow  # a validation run that compiles its own models (minutes on a cold cache)
 def test_a_tumbling_flexible_system_conserves_its_momenta_and_energy_to_second_order(tumbling):
     """Over 2 s of tumbling at 1 to 1.5 rad/s (the panels bend by up to 16 mm and their damping
     takes 8.0e-3 J), the largest change of P (13.5 N s), of H about the centre of mass (61 N m s)
@@ -173,6 +174,7 @@ def test_a_tumbling_flexible_system_conserves_its_momenta_and_energy_to_second_o
         assert d[-1] < 1e-6, (name, d)
 
 
+@pytest.mark.slow  # a validation run that compiles its own models (minutes on a cold cache)
 def test_the_centre_of_mass_moves_on_a_straight_line_at_the_momentum_over_the_mass(tumbling):
     """The centre of mass stays on the least-squares line through its records (off it by
     3.8e-7, 9.6e-8, 2.4e-8 m at dt = 4, 2, 1 ms) and moves along it at P / m, m summed from the
@@ -187,6 +189,7 @@ def test_the_centre_of_mass_moves_on_a_straight_line_at_the_momentum_over_the_ma
     np.testing.assert_allclose(coef[1], P[0] / total_mass(), rtol=1e-6)
 
 
+@pytest.mark.slow  # a validation run that compiles its own models (minutes on a cold cache)
 def test_the_tumbling_state_converges_at_second_order(tumbling):
     """The tip deflections and the bus's angular velocity at 2 s: the differences between
     dt = 4, 2 and 1 ms fall by about 4 (Richardson)."""

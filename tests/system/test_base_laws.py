@@ -125,6 +125,7 @@ def strip_model(base: dict, gravity, hub: dict | None = None, t_end: float = 1.0
             "analysis": {"t_end": t_end, "dt": 0.002, "output_dt": 0.01, **TIGHT}, "sensors": SENSORS}
 
 
+@pytest.mark.slow  # a validation run that compiles its own models (minutes on a cold cache)
 def test_a_base_accelerating_without_gravity_moves_the_beams_as_gravity_does(tmp_path):
     """The equivalence principle: a table base accelerating at a = (3, 9.81, -2) m/s^2 from rest,
     without gravity, against a fixed base under g = -a, 1 s from straight: every tip deflection

@@ -136,6 +136,7 @@ def test_the_newton_matrix_entries_of_the_loop_are_the_residuals_derivatives(sys
     assert np.max(np.abs(ours_v - fd_v)) < 1e-6 * np.max(np.abs(fd_v))
 
 
+@pytest.mark.slow  # a validation run that compiles its own models (minutes on a cold cache)
 def test_the_energy_balance_closes_with_base_and_joint_torques(tmp_path):
     # a run with only the controller acting on the base and the joint (no attitude law), kicked by
     # the initial rates: E(t) - E(0) = the drive work (the controller's power) to the integrator's

@@ -70,6 +70,7 @@ def test_the_compiled_loop_takes_the_python_steps_on_a_chain_of_joints():
     assert_compiled_steps_are_python_steps(system, "adaptive")
 
 
+@pytest.mark.slow  # a validation run that compiles its own models (minutes on a cold cache)
 def test_hinged_panels_on_a_free_base_keep_the_momenta():
     """A free base (the hub fixed to it) with an ANCF panel on a lag hinge and an FFR panel (2
     modes) on a flap-lag joint hanging on its tip, hinges started turning: no external force,

@@ -210,6 +210,7 @@ def states_of_a_run(scenario):
     return system, np.asarray(traj.times), traj.records, traj.snapshots
 
 
+@pytest.mark.slow  # a validation run that compiles its own models (minutes on a cold cache)
 @pytest.mark.parametrize("config", ["ancf-joint", "arm-ffr-parent"])
 def test_the_rates_are_the_recorded_sensors_time_derivatives_along_a_run(tmp_path, config):
     # A run driven smoothly (the spacecraft's base slewing 0.5 rad in 1 s under its attitude law,
