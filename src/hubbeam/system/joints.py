@@ -37,7 +37,8 @@ from numba import njit
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
 from hubbeam.system.chains import Link, revolute
-from hubbeam.system.laws import TorqueLaw, torque_values
+from hubbeam.system.law_kernels import torque_values
+from hubbeam.system.laws import TorqueLaw
 
 #: the named axes in the joint frame (a, b, c)
 NAMED_AXES = {"flap": (0.0, 0.0, 1.0), "lag": (0.0, 1.0, 0.0), "pitch": (-1.0, 0.0, 0.0)}
