@@ -178,7 +178,7 @@ def test_drag_force_and_damping_matrix():
 
 def test_rotary_inertia_force_subtracts_the_rotary_mass_times_acceleration():
     """The kernel's force with an acceleration is Q_v - M_rot acc, M_rot = M - M_trans."""
-    from hubbeam.elements.ancf import kernels
+    from hubbeam.elements.ancf import inertia
 
     fat = AncfBeam(1.45, 2, plate(width=0.3, thickness=0.2), gauss_points=6)
     q, F = bent_state(fat, seed=6, amplitude=0.1)
@@ -188,7 +188,7 @@ def test_rotary_inertia_force_subtracts_the_rotary_mass_times_acceleration():
     M_rot = _dense(fat, fat.mass_blocks(q, F)) - fat.section.mass_per_length * _dense(fat, _trans_blocks(fat))
     S, dS, _, w = fat._tables
     out = np.empty(q.size)
-    kernels.rotary_inertia_kernel(q, qdot, acc, F, fat.element_length, S, dS, w, fat._inertia, 0.0, out,
+    inertia.rotary_inertia_kernel(q, qdot, acc, F, fat.element_length, S, dS, w, fat._inertia, 0.0, out,
                                   np.empty((0, 16, 16)))
     assert np.allclose(out, Qv - M_rot @ acc, atol=1e-10 * np.max(np.abs(M_rot @ acc)))
 
@@ -196,7 +196,7 @@ def test_rotary_inertia_force_subtracts_the_rotary_mass_times_acceleration():
 def test_elastic_rotary_kernel_adds_the_rotary_mass_to_the_elastic_matrix():
     """The fused matrix path: elastic blocks plus coef_m M_rot (the rotary kernel's blocks), the
     force the elastic kernel's alone."""
-    from hubbeam.elements.ancf import kernels
+    from hubbeam.elements.ancf import elastic, inertia
 
     fat = AncfBeam(1.45, 3, plate(width=0.3, thickness=0.2), gauss_points=5)
     q, F = bent_state(fat, seed=4, amplitude=0.1)
@@ -206,11 +206,11 @@ def test_elastic_rotary_kernel_adds_the_rotary_mass_to_the_elastic_matrix():
     coef_m, coef_c, damping = 3.0e4, 20.0, 0.01
     args = (q, qdot, F, fat.element_length, S, dS, d2S, w, fat._stiffness, fat._reference, damping)
     f_el, b_el = np.empty(q.size), np.zeros((fat.elements, 16, 16))
-    out_el = kernels.elastic_kernel(*args, coef_c, 1.0, f_el, b_el)
-    kernels.rotary_inertia_kernel(q, qdot, np.zeros(q.size), F, fat.element_length, S, dS, w, fat._inertia, coef_m,
+    out_el = elastic.elastic_kernel(*args, coef_c, 1.0, f_el, b_el)
+    inertia.rotary_inertia_kernel(q, qdot, np.zeros(q.size), F, fat.element_length, S, dS, w, fat._inertia, coef_m,
                                   np.empty(q.size), b_el)
     f, b = np.empty(q.size), np.zeros((fat.elements, 16, 16))
-    out = kernels.elastic_rotary_kernel(*args, fat._inertia, coef_m, coef_c, 1.0, f, b)
+    out = elastic.elastic_rotary_kernel(*args, fat._inertia, coef_m, coef_c, 1.0, f, b)
     assert out == out_el
     assert np.array_equal(f, f_el)
     assert np.max(np.abs(b - b_el)) < 1e-13 * np.max(np.abs(b_el))

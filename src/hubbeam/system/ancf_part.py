@@ -5,7 +5,8 @@ compiled terms.
 steadily rotating states, the rotation chart and the measured quantities. The kind "ANCF
 beams" (:data:`KIND`, :mod:`hubbeam.system.terms`) packs every ANCF beam of a system
 (:class:`AncfBeams`) and gives the compiled equations their terms: elastic forces with
-structural damping, rotary inertia, drag (:mod:`hubbeam.elements.ancf.kernels`),
+structural damping (:mod:`hubbeam.elements.ancf.elastic`), rotary inertia
+(:mod:`hubbeam.elements.ancf.inertia`), drag (:mod:`hubbeam.elements.ancf.loads`),
 translational mass, gravity and tip loads (:func:`applied_load`), and the clamp of each
 root to its root frame (:mod:`hubbeam.system.clamp`); their energies, dissipated power, tip
 displacements and momenta.
@@ -19,7 +20,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 from numba import njit
 
-from hubbeam.elements.ancf import kernels
+from hubbeam.elements.ancf import elastic, inertia, loads
 from hubbeam.elements.ancf.chart import frame_from_director, remap_chart
 from hubbeam.elements.ancf.frame import section_frame
 from hubbeam.elements.ancf.strain import strain_measures
@@ -296,7 +297,7 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
         blocks = np.zeros((n_el if want_matrix else 0, 16, 16))
         fq = np.empty(nq)
         # the elastic matrix path adds the rotary mass coef_m M_rot too (one chart-to-global rotation)
-        _, mk, pk = kernels.elastic_rotary_kernel(q, qd, Fk, le, S, dS, d2S, w, pack.stiffness[k], pack.reference[k],
+        _, mk, pk = elastic.elastic_rotary_kernel(q, qd, Fk, le, S, dS, d2S, w, pack.stiffness[k], pack.reference[k],
                                                   pack.structural_damping[k], pack.inertia[k][:n_el], coef_m, coef_c,
                                                   coef_k, fq, blocks)
         margin = min(margin, mk)
@@ -304,14 +305,14 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
         if not mk > terms.CHART_SINGULAR:
             return margin, 0.0
         term = np.empty(nq)
-        kernels.rotary_inertia_kernel(q, qd, qa, Fk, le, S, dS, w, pack.inertia[k], coef_m, term, no_blocks)
+        inertia.rotary_inertia_kernel(q, qd, qa, Fk, le, S, dS, w, pack.inertia[k], coef_m, term, no_blocks)
         for j in range(nq):
             fq[j] -= term[j]  # -(Q_v - M_rot acc)
         if ctx.drag[0] != 0.0 or ctx.drag[1] != 0.0:
-            power += kernels.drag_kernel(qd, le, S, w, pack.width[k], ctx.drag[0], ctx.drag[1], coef_c, term, blocks)
+            power += loads.drag_kernel(qd, le, S, w, pack.width[k], ctx.drag[0], ctx.drag[1], coef_c, term, blocks)
             for j in range(nq):
                 fq[j] -= term[j]
-        kernels.translational_mass_product(pack.trans_mass[k], qa, fq)
+        inertia.translational_mass_product(pack.trans_mass[k], qa, fq)
         applied_load(pack, k, q, Fk, load_factor, term, tip_jacobian)
         for j in range(nq):
             res[zx[x0 + j]] += coef_k * (fq[j] - term[j])
@@ -335,7 +336,7 @@ def ancf_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scal
         for i in range(4):
             for j in range(3):
                 blocks[n_el - 1, 11 + i, 11 + j] -= coef_k * tip_jacobian[i, j]
-        kernels.add_translational_mass(pack.trans_mass[k], n_el, coef_m, blocks)
+        inertia.add_translational_mass(pack.trans_mass[k], n_el, coef_m, blocks)
         add_element_blocks_banded(ab, blocks, zx[x0] - ctx.border, ku, 1.0)
         add_clamp_matrix(ab, brow, bcol, bb, ku, jac, hess, rows, nc, scale, coef_k, zl, l0)
     return margin, power
@@ -347,16 +348,16 @@ def ancf_energies(pack, ctx, F, x, v, beams):
         _, nq, Fk, q, qd = ancf_beam(pack, k, F, x, v)
         S, dS, d2S, w, le = pack.S[k], pack.dS[k], pack.d2S[k], pack.w[k], pack.element_length[k]
         term = np.zeros(nq)
-        kernels.translational_mass_product(pack.trans_mass[k], qd, term)
+        inertia.translational_mass_product(pack.trans_mass[k], qd, term)
         kinetic = 0.0
         potential = 0.0
         g = pack.gravity_load[k]
         for j in range(nq):
             kinetic += 0.5 * qd[j] * term[j]
             potential -= g[j] * q[j]
-        kinetic += kernels.rotary_inertia_kernel(q, qd, np.zeros(nq), Fk, le, S, dS, w, pack.inertia[k], 0.0, term,
+        kinetic += inertia.rotary_inertia_kernel(q, qd, np.zeros(nq), Fk, le, S, dS, w, pack.inertia[k], 0.0, term,
                                                  np.empty((0, 16, 16)))
-        strain = kernels.elastic_kernel(q, qd, Fk, le, S, dS, d2S, w, pack.stiffness[k], pack.reference[k], 0.0, 0.0,
+        strain = elastic.elastic_kernel(q, qd, Fk, le, S, dS, d2S, w, pack.stiffness[k], pack.reference[k], 0.0, 0.0,
                                         0.0, term, np.empty((0, 16, 16)))[0]
         terms.add_beam_energy(beams, pack.index[k], kinetic, strain, potential)
     return 0.0, 0.0, 0.0
@@ -371,7 +372,7 @@ def ancf_momenta(pack, ctx, F, x, v, out):
     for k in range(pack.index.shape[0]):
         _, nq, Fk, q, qd = ancf_beam(pack, k, F, x, v)
         p = np.zeros(nq)
-        kernels.translational_mass_product(pack.trans_mass[k], qd, p)
+        inertia.translational_mass_product(pack.trans_mass[k], qd, p)
         H = np.zeros(3)
         for node in range(nq // NODE_DOFS):
             o = NODE_DOFS * node
@@ -383,7 +384,7 @@ def ancf_momenta(pack, ctx, F, x, v, out):
                 H[2] += r0 * p1 - r1 * p0
             for i in range(3):
                 out[4 + i] += p[o + i]
-        kernels.rotary_momentum(q, qd, Fk, pack.element_length[k], pack.S[k], pack.dS[k], pack.w[k], pack.inertia[k],
+        inertia.rotary_momentum(q, qd, Fk, pack.element_length[k], pack.S[k], pack.dS[k], pack.w[k], pack.inertia[k],
                                 H)
         for i in range(3):
             out[7 + i] += H[i]
@@ -394,7 +395,7 @@ def ancf_momenta(pack, ctx, F, x, v, out):
             for node in range(nq // NODE_DOFS):
                 u[NODE_DOFS * node + i] = 1.0
             mu = np.zeros(nq)
-            kernels.translational_mass_product(pack.trans_mass[k], u, mu)
+            inertia.translational_mass_product(pack.trans_mass[k], u, mu)
             first = 0.0
             mass = 0.0
             for j in range(nq):
@@ -411,10 +412,10 @@ def ancf_power(pack, ctx, F, x, v):
     for k in range(pack.index.shape[0]):
         _, nq, Fk, q, qd = ancf_beam(pack, k, F, x, v)
         force = np.empty(nq)
-        power += kernels.drag_kernel(qd, pack.element_length[k], pack.S[k], pack.w[k], pack.width[k],
+        power += loads.drag_kernel(qd, pack.element_length[k], pack.S[k], pack.w[k], pack.width[k],
                                      ctx.drag[0], ctx.drag[1], 0.0, force, np.empty((0, 16, 16)))
         if pack.structural_damping[k] > 0.0:
-            power += kernels.elastic_kernel(q, qd, Fk, pack.element_length[k], pack.S[k], pack.dS[k], pack.d2S[k],
+            power += elastic.elastic_kernel(q, qd, Fk, pack.element_length[k], pack.S[k], pack.dS[k], pack.d2S[k],
                                             pack.w[k], pack.stiffness[k], pack.reference[k],
                                             pack.structural_damping[k], 0.0, 0.0, force, np.empty((0, 16, 16)))[2]
     return power

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hubbeam.elements.ancf import kernels
+from hubbeam.elements.ancf import coordinates, elastic, inertia, loads
 from hubbeam.elements.ancf.chart import choose_director, frame_from_director
 from hubbeam.elements.ancf.frame import section_frame, section_frames
 from hubbeam.elements.ancf.strain import strain_measures, strain_measures_at
@@ -29,7 +29,7 @@ from hubbeam.errors import ChartSingularityError
 
 #: Names of the 8 coordinates of an ANCF node (Eq. 14).
 DOF_NAMES = ("r_x", "r_y", "r_z", "r'_x", "r'_y", "r'_z", "theta_1", "theta_1'")
-NODE_DOFS = kernels.NODE_DOFS
+NODE_DOFS = coordinates.NODE_DOFS
 
 #: Gauss points per element for the strain energy, chosen by the convergence study in
 #: tests/elements/test_gauss_order.py (4 points give the energy of a strongly bent,
@@ -70,13 +70,13 @@ class AncfBeam:
         self._inertia = np.ascontiguousarray(props[..., _INERTIA])  # (n_el, ng, 3) kg m
         self._rho_a = np.ascontiguousarray(props[..., COLUMN["rho_A"]])  # (n_el, ng) kg/m
         self._width = np.ascontiguousarray(props[..., COLUMN["width"]])  # (n_el, ng) m, the drag's frontal width
-        self._trans_mass = kernels.translational_mass_blocks(self.element_length, S, w, self._rho_a)
+        self._trans_mass = inertia.translational_mass_blocks(self.element_length, S, w, self._rho_a)
         # the stress-free state: straight along e_1, twisted by the pretwist
         self._twist = self._node_pretwist()
         self._reference = np.zeros_like(self._stiffness)
         if np.any(self._twist):  # an untwisted straight beam's strains are exactly 0
             q_ref, F_ref = self.straight_state(np.zeros(3), np.eye(3))
-            kernels.gauss_strains(q_ref, F_ref, self.element_length, S, dS, d2S, w, self._reference)
+            elastic.gauss_strains(q_ref, F_ref, self.element_length, S, dS, d2S, w, self._reference)
             self._reference_state = (q_ref, F_ref)
         else:
             self._reference_state = None
@@ -155,13 +155,13 @@ class AncfBeam:
 
     def internal(self, q: np.ndarray, qdot: np.ndarray, F: np.ndarray, coef_c: float = 0.0,
                  coef_k: float | None = 1.0):
-        """The section resultants with structural damping (:func:`~hubbeam.elements.ancf.kernels.elastic_kernel`):
+        """The section resultants with structural damping (:func:`~hubbeam.elements.ancf.elastic.elastic_kernel`):
         (U (J), internal force (n_dof, elastic plus damping), element blocks coef_k dforce/dq +
         coef_c dforce/dqdot (n_el, 16, 16; None when coef_k is None), dissipated power (W))."""
         S, dS, d2S, w = self._tables
         force = np.empty(self.ndof)
         blocks = np.zeros((self.elements if coef_k is not None else 0, 16, 16))
-        U, margin, power = kernels.elastic_kernel(
+        U, margin, power = elastic.elastic_kernel(
             np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(qdot, dtype=float), np.ascontiguousarray(F),
             self.element_length, S, dS, d2S, w, self._stiffness, self._reference, self.structural_damping,
             float(coef_c), float(coef_k or 0.0), force, blocks,
@@ -180,9 +180,9 @@ class AncfBeam:
         """Element mass matrices (n_el, 16, 16) of Eq. 35 (kg, kg m, kg m^2 blocks)."""
         S, dS, _, w = self._tables
         out = np.zeros((self.elements, 16, 16))
-        kernels.add_translational_mass(self._trans_mass, self.elements, 1.0, out)
+        inertia.add_translational_mass(self._trans_mass, self.elements, 1.0, out)
         z = np.zeros(self.ndof)
-        kernels.rotary_inertia_kernel(
+        inertia.rotary_inertia_kernel(
             np.ascontiguousarray(q, dtype=float), z, z, np.ascontiguousarray(F), self.element_length, S, dS, w,
             self._inertia, 1.0, np.empty(self.ndof), out,
         )
@@ -202,7 +202,7 @@ class AncfBeam:
         """Rotational kinetic energy of the sections (J) and their quadratic-velocity force Q_v."""
         S, dS, _, w = self._tables
         out = np.empty(self.ndof)
-        T = kernels.rotary_inertia_kernel(
+        T = inertia.rotary_inertia_kernel(
             np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(qdot, dtype=float), np.zeros(self.ndof),
             np.ascontiguousarray(F), self.element_length, S, dS, w, self._inertia, 0.0, out, np.empty((0, 16, 16)),
         )
@@ -213,7 +213,7 @@ class AncfBeam:
         S, _, _, w = self._tables
         force = np.empty(self.ndof)
         blocks = np.zeros((self.elements, 16, 16))
-        power = kernels.drag_kernel(
+        power = loads.drag_kernel(
             np.ascontiguousarray(qdot, dtype=float), self.element_length, S, w, self._width,
             float(linear), float(quadratic), 1.0, force, blocks,
         )
@@ -229,7 +229,7 @@ class AncfBeam:
 
     def _load(self, density, load) -> np.ndarray:
         S, _, _, w = self._tables
-        return kernels.distributed_load(self.elements, self.element_length, S, w, density,
+        return loads.distributed_load(self.elements, self.element_length, S, w, density,
                                         np.asarray(load, dtype=float))
 
     # ---------------------------------------------------------------- stations

@@ -58,7 +58,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from hubbeam.elements.ancf import kernels
+from hubbeam.elements.ancf import coordinates
 from hubbeam.elements.ancf.strain import strain_jet
 from hubbeam.system.frames import chain_state
 from hubbeam.system.pose_inputs import TIP_NF, base_rotation_input, tip_columns, tip_deflection_input
@@ -264,7 +264,7 @@ def pack_inputs(system, specs) -> tuple:
                            for i, w in ((2, 4), (3, 4), (4, 4), (5, 6)))
     width = 1
     for i in range(m):
-        width = max(width, kernels.ELEMENT_DOFS if rows.form[i] == InputForm.ANCF_STRAIN else
+        width = max(width, coordinates.ELEMENT_DOFS if rows.form[i] == InputForm.ANCF_STRAIN else
                     7 if rows.form[i] == InputForm.BASE_RATE else rows.cols[i].size)
     ints = lambda v: np.array(v, dtype=np.int64)  # noqa: E731
     cat = lambda parts, dtype: np.concatenate(parts).astype(dtype) if parts else np.zeros(0, dtype)  # noqa: E731
@@ -308,14 +308,14 @@ def _ancf_strain(where, S, dS, d2S, section, g, F, x, v, rate, cols, dx, dv):
     """u of ANCF gauge g (its rate when ``rate``) at (x, v), its derivatives into cols, dx, dv (16)."""
     w1, w2 = np.empty(16), np.empty(16)
     Y, X = np.empty(8), np.empty(8)
-    kernels.dof_weights(S, dS, d2S, g, w1, w2)
+    coordinates.dof_weights(S, dS, d2S, g, w1, w2)
     Fc = F[where[g, 0]]
     o = where[g, 1]
-    kernels.gauss_variables(x, o, Fc, w1, w2, Y, X)
+    coordinates.gauss_variables(x, o, Fc, w1, w2, Y, X)
     J = np.zeros((8, 16))  # dX/dq: X = T^T Y, Y[first] += w1 q, Y[second] += w2 q
     for j in range(16):
         for which in range(2):
-            slot = kernels.DOF_FIRST[j] if which == 0 else kernels.DOF_SECOND[j]
+            slot = coordinates.DOF_FIRST[j] if which == 0 else coordinates.DOF_SECOND[j]
             w = w1[j] if which == 0 else w2[j]
             if slot >= 6:
                 J[slot, j] += w

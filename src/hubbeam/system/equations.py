@@ -24,7 +24,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import literal_unroll, njit
 
-from hubbeam.elements.ancf import kernels
+from hubbeam.elements.ancf import coordinates
 from hubbeam.elements.ancf.strain import strain_measures
 from hubbeam.system.frames import evaluate_chains
 from hubbeam.system.terms import (CHART_SINGULAR, Context, part_drive_power, part_energies, part_equations,
@@ -187,8 +187,8 @@ def gauge_strains(F, x, gauges, out):
     Y = np.empty(8)
     X = np.empty(8)
     for i in range(where.shape[0]):
-        kernels.dof_weights(S, dS, d2S, i, w1, w2)
-        kernels.gauss_variables(x, where[i, 1], F[where[i, 0]], w1, w2, Y, X)
+        coordinates.dof_weights(S, dS, d2S, i, w1, w2)
+        coordinates.gauss_variables(x, where[i, 1], F[where[i, 0]], w1, w2, Y, X)
         eps0, _, kappa2, kappa3 = strain_measures(X[0:3], X[3:6], X[6], X[7])
         sec = section[i]
         out[i] = (eps0 - sec[2]) - sec[0] * (kappa3 - sec[5]) + sec[1] * (kappa2 - sec[4])

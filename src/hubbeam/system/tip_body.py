@@ -10,7 +10,7 @@ orientation.
 q8 = [r0 (3), r0' (3), theta_1, theta_1'] (global components). The section frame is
 R = F [tau m n](X), X = (U, theta_1), U = F^T r0' (chart components, see
 :mod:`hubbeam.elements.ancf.frame`); theta_1' does not move the body. As in
-:func:`hubbeam.elements.ancf.kernels.rotary_inertia_kernel`, the section's angular
+:func:`hubbeam.elements.ancf.inertia.rotary_inertia_kernel`, the section's angular
 velocity in its own frame, omega = B(X) Xdot, and d omega / dX are the curvature
 measures of :func:`~hubbeam.elements.ancf.strain.strain_jet` evaluated at
 Z = (U, Udot, theta_1, theta_1dot) (R^T R' and R^T Rdot are the same function of their
@@ -59,8 +59,8 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from hubbeam.elements.ancf.coordinates import mass_to_global
 from hubbeam.elements.ancf.frame import section_frame
-from hubbeam.elements.ancf.kernels import _mass_to_global
 from hubbeam.elements.ancf.strain import PHI, PSI, strain_jet, strain_measures
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
@@ -355,7 +355,7 @@ def ancf_tip_body_terms(params, F, q8, v8, a8, gravity, coef_m, coef_k, force8, 
 def _add_x_block(F, Mx, coef, Mg, block):
     """ADD coef times the symmetric 4 x 4 matrix Mx on X = (U, theta_1) (chart components), mapped
     to the tip node's global (r0', theta_1) rows and columns, to ``block`` (Mg: 4 x 4 work space)."""
-    _mass_to_global(F, Mx, Mg)
+    mass_to_global(F, Mx, Mg)
     for r in range(4):
         for s in range(4):
             block[_QX[r], _QX[s]] += coef * Mg[r, s]
