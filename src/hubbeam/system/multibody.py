@@ -183,9 +183,9 @@ class MultibodySystem(SystemStatics, SystemMeasures):
             for chain in hessian_chains(self, controller.inputs):
                 self.frames.needs_hessian(chain)
         self.rigid_bodies = self._rigid_bodies()
-        self._models: dict[tuple[bool, bool], SystemModel] = {}
-        self._function_loads: dict[tuple[bool, bool], object] = {}
-        self._laws: dict[tuple[bool, bool], list] = {}
+        #: what is built once per layout (:meth:`_per_layout`): the compiled equations' constants,
+        #: the loads from Python functions and the Python controller laws' packs
+        self._built: dict[tuple[str, bool, bool], object] = {}
 
     def _rigid_bodies(self) -> list[RigidBody]:
         """The hub's rotor (its inertia about its axis) and a free base's body."""
@@ -229,6 +229,14 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         """The layout with the hub held or not; ``static``: statics, which also hold a free base
         at its initial pose (six constraints, as a table's)."""
         return self.layout.with_held(held, self.base.table is not None or (static and self.base.moves))
+
+    def _per_layout(self, what: str, held: bool, static: bool, build):
+        """``build(held, static)``, built once for each layout (:meth:`layout_for`): ``static`` counts
+        only where the base moves (a fixed base's statics use the layout of its runs)."""
+        key = (what, bool(held), bool(static) and self.base.moves)
+        if key not in self._built:
+            self._built[key] = build(*key[1:])
+        return self._built[key]
 
     def n_constraints(self, held: bool, static: bool = False) -> int:
         return self.layout_for(held, static).n_lambda
@@ -492,11 +500,8 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         """The :class:`~hubbeam.system.load_functions.FunctionLoads` of the layout (held, static)."""
         from hubbeam.system.load_functions import FunctionLoads
 
-        key = (bool(held), bool(static) and self.base.moves)
-        if key not in self._function_loads:
-            self._function_loads[key] = FunctionLoads(self, self.layout_for(*key), self.model(*key).context,
-                                                      self.load_functions)
-        return self._function_loads[key]
+        return self._per_layout("function loads", held, static, lambda h, s: FunctionLoads(
+            self, self.layout_for(h, s), self.model(h, s).context, self.load_functions))
 
     @property
     def controller_laws(self) -> list:
@@ -509,25 +514,21 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         """(law, its pack) of each Python controller law for the layout (held, static), built once."""
         from hubbeam.system.controllers import law_pack
 
-        key = (bool(held), bool(static))
-        if key not in self._laws:
-            layout = self.layout_for(held, static)
-            self._laws[key] = [(law, law_pack(self, layout, law)) for law in self.controller_laws]
-        return self._laws[key]
+        return self._per_layout("controller laws", held, static, lambda h, s: [
+            (law, law_pack(self, self.layout_for(h, s), law)) for law in self.controller_laws])
 
     def model(self, held: bool | None = None, static: bool = False) -> SystemModel:
         """The constants of the compiled equations for the hub held or not (default: its motion)
         and, with ``static``, a free base held (:meth:`layout_for`)."""
         held = self.hub.held if held is None else held
-        key = (bool(held), bool(static) and self.base.moves)
-        if key not in self._models:
-            layout = self.layout_for(*key)
-            bandwidth = self.bandwidth_for(layout)
-            packs = terms.packs(self, layout)
-            self._models[key] = SystemModel(packs,
-                                            context(layout, bandwidth, self.gravity, self.damping, self.frames.table),
-                                            bandwidth, terms.with_events(packs))
-        return self._models[key]
+        return self._per_layout("model", held, static, self._build_model)
+
+    def _build_model(self, held: bool, static: bool) -> SystemModel:
+        layout = self.layout_for(held, static)
+        bandwidth = self.bandwidth_for(layout)
+        packs = terms.packs(self, layout)
+        return SystemModel(packs, context(layout, bandwidth, self.gravity, self.damping, self.frames.table),
+                           bandwidth, terms.with_events(packs))
 
     @property
     def functions(self) -> Compiled:
