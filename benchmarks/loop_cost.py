@@ -3,6 +3,7 @@ Newton test would save (issue 26).
 
     python benchmarks/loop_cost.py parts CASE [REPS]
     python benchmarks/loop_cost.py first-iteration CASE [REPS] [M,M,...] [OVERRIDE ...]
+    python benchmarks/loop_cost.py copies CASE [REPS]   # the loop's speed against copies of its source
     python benchmarks/loop_cost.py powers exp1_modal   # the step's powers by parts (us per call)
     python benchmarks/loop_cost.py rates exp1_modal [STEPS]   # Newton's increments, Python steps
 
@@ -29,6 +30,10 @@ again and measures the rate anew. M = 0 is today's loop (it must print today's n
 the loop's time per step, Newton iterations per step and the results (exp1: the P1 strain at
 5 s, its peak and end; R: the vertical tip's minimum and end). OVERRIDEs are passed to the
 scenario (e.g. analysis.tolerance=1e-12 for a reference converged further).
+
+``copies``: the loop as it is against copies of its source compiled in this process: unchanged,
+with one more (unused) integer argument first, and the prototype above at M = 0 (its lines
+never taken): how much the compiled loop's speed moves with code that does nothing.
 
 ``powers``: one call (process time, best of 5, as ``step_cost.py``) of the step's powers
 (``step_powers``), of the frames' kinematics to order 1 and 2 (``evaluate_chains``: the powers
@@ -93,9 +98,20 @@ def _equations_twice(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
                             ab, brow, bcol, bb)
 
 
+def _loop_source():
+    return textwrap.dedent(inspect.getsource(compiled_alpha.advance.py_func)).replace("@njit(cache=True)\n", "")
+
+
+def _compile_copy(src, name):
+    namespace = dict(compiled_alpha.__dict__)
+    namespace["kept_matrix_worked"] = ga.kept_matrix_worked
+    exec(src, namespace)
+    return njit(namespace[name])
+
+
 def first_iteration_loop():
     """A copy of compiled_alpha.advance taking max_borrowed (M) first: the prototype above."""
-    src = textwrap.dedent(inspect.getsource(compiled_alpha.advance.py_func)).replace("@njit(cache=True)\n", "")
+    src = _loop_source()
     src = src.replace("def advance(model,", "def advance_first_iteration(max_borrowed, model,")
     src = src.replace("    size = 0.0\n", "    size = 0.0\n    borrowed = np.inf\n    n_borrowed = 0\n", 1)
     old = ("            size = apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, mu_weight, x1, v1, xdd1, lam1)\n"
@@ -113,10 +129,7 @@ def first_iteration_loop():
            "            action = newton_decide(")
     if old not in src:
         raise SystemExit("compiled_alpha.advance changed: update the prototype's insertion point")
-    namespace = dict(compiled_alpha.__dict__)
-    namespace["kept_matrix_worked"] = ga.kept_matrix_worked
-    exec(src.replace(old, new), namespace)
-    return njit(namespace["advance_first_iteration"])
+    return _compile_copy(src.replace(old, new), "advance_first_iteration")
 
 
 class TimedLoop:
@@ -255,8 +268,19 @@ def main(argv):
     elif mode == "first-iteration":
         ms = [int(m) for m in argv[3].split(",")] if len(argv) > 3 else [0, 1, 3, 8]
         prototype = first_iteration_loop()
-        variants = {f"M = {m}": (lambda *args, m=m: prototype(m, *args)) for m in ms}
+        variants = {"the loop as it is": compiled_alpha.advance}
+        variants.update({f"M = {m}": (lambda *args, m=m: prototype(m, *args)) for m in ms})
         out = measure(case, variants, reps, argv[4:])
+    elif mode == "copies":
+        src = _loop_source()
+        copy = _compile_copy(src, "advance")
+        with_argument = _compile_copy(src.replace("def advance(model,", "def advance_argument(unused, model,"),
+                                      "advance_argument")
+        prototype = first_iteration_loop()
+        variants = {"the loop as it is": compiled_alpha.advance, "a copy of its source": copy,
+                    "the copy with an unused argument": lambda *args: with_argument(0, *args),
+                    "the prototype at M = 0": lambda *args: prototype(0, *args)}
+        out = measure(case, variants, reps, [])
     else:
         raise SystemExit(__doc__)
     for name, (times, newton, result) in out.items():
