@@ -1,9 +1,9 @@
 """Where a compiled step's time goes: one evaluation of the system's equations without and with
 the Newton matrix, and the step's powers (process time per call, best of 3; numba's cache warm).
 
-    python benchmarks/step_cost.py exp1_modal|exp1_ancf|casem_modal
+    python benchmarks/step_cost.py exp1_nodal|exp1_modal|exp1_ancf|casem_modal
 
-exp1_modal: experiment 1 on 4 modes; exp1_ancf: experiment 1 with ANCF; casem_modal: case M's
+exp1_nodal: experiment 1 with the nodal FFR beam; exp1_modal: experiment 1 on 4 modes; exp1_ancf: experiment 1 with ANCF; casem_modal: case M's
 free bus with two FFR panels on 4 modes (benchmarks/case_s.toml). A step costs one residual
 for the predictor, one per Newton iteration, the step's powers and the band solves.
 """
@@ -37,7 +37,9 @@ def loop_pow(n, model, F, x, v, lam):
     return s
 
 case = sys.argv[1]
-if case == "exp1_modal":
+if case == "exp1_nodal":
+    sc = load_example("exp1", ['beam.formulation="ffr"'])
+elif case == "exp1_modal":
     sc = load_example("exp1", ['beam.formulation="ffr"', 'beam.modes=4'])
 elif case == "exp1_ancf":
     sc = load_example("exp1", [])

@@ -147,11 +147,13 @@ def test_padded_arrays_give_the_same_numbers():
             width[0] = (0, rows)
         return np.ascontiguousarray(np.pad(x, width))
 
-    b = a._replace(Sbar=pad(a.Sbar, [1]), J=pad(a.J, [2]), II=pad(a.II, [2, 3]), Mff=pad(a.Mff, [0, 1]),
+    b = a._replace(Sbar=pad(a.Sbar, [1]), J=pad(a.J, [2]), II_column=pad(a.II_column, [], rows=extra),
+                   II_value=pad(a.II_value, [], rows=extra), Mff=pad(a.Mff, [0, 1]),
                    K=pad(a.K, [0, 1]), C_struct=pad(a.C_struct, [0, 1]), EAl=pad(a.EAl, [], rows=2),
                    mean_stretch=pad(a.mean_stretch, [1], rows=2),
                    mean_slope2=pad(a.mean_slope2, [1, 2], rows=2), tip_rows=pad(a.tip_rows, [1]),
                    tip_rotation_rows=pad(a.tip_rotation_rows, [1]), N_pts=pad(a.N_pts, [2], rows=3),
+                   N_span=pad(a.N_span, [], rows=3),
                    x_pts=pad(a.x_pts, [], rows=3), w_pts=pad(a.w_pts, [], rows=3), width=pad(a.width, [], rows=3))
     A, p, vb, vdot = random_state(part, np.random.default_rng(2))
     outs = [kernel(arr, A, p, vb, vdot, GRAVITY, (0.4, 1.7)) for arr in (a, b)]

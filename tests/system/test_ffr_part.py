@@ -261,3 +261,39 @@ def test_tip_force_does_the_virtual_work_of_a_force_at_the_deformed_tip(modes):
         [(work(dphi=eps * e) - work(dphi=-eps * e)) / (2 * eps) for e in np.eye(3)],
         [(work(dp=eps * e) - work(dp=-eps * e)) / (2 * eps) for e in np.eye(beam.ndof)]])
     assert np.allclose(generalized, gradient, rtol=0, atol=1e-7 * np.abs(gradient).max())
+
+
+# ----------------------------------------------------------------------------- the compiled pack
+def test_the_stacked_pack_gives_each_beam_its_own_terms():
+    """FfrBeams stacks every FFR beam's constants zero-padded to the largest (II by its nonzero
+    entries in compressed rows, the drag points' spans): a nodal beam of 4 elements beside one
+    of 2 (different numbers of entries, rows and coordinates). Each beam's kernel terms from the
+    stacked pack are bit for bit those from its own constants (kernels.pack), which the kernel
+    tests hold against the dense Python FfrPart."""
+    from hubbeam import api
+    from hubbeam.elements.ffr import kernels as fk
+    from hubbeam.io.scenario import load_example
+    from hubbeam.system.ffr_part import FfrBeams, ffr_arguments
+
+    system = api.build_system(load_example("spacecraft3d", [
+        'beams[0].formulation="ffr"', "beams[0].elements=4", 'beams[1].formulation="ffr"', "beams[1].elements=2"]))
+    pack = next(p for p in system.model().parts if isinstance(p, FfrBeams))
+    assert pack.places.shape[0] == 2 and pack.places[0, 2] != pack.places[1, 2]
+    rng = np.random.default_rng(5)
+    drag_c = (0.4, 1.7)
+    for k in range(2):
+        part = system.beams[pack.places[k, 0]]
+        own = fk.pack(part)
+        nf, npts = part.ndof, own.x_pts.size
+        n = 6 + nf
+        A = np.linalg.qr(rng.standard_normal((3, 3)))[0]
+        p, vb, vdot = 1e-3 * rng.standard_normal(nf), rng.standard_normal(n), rng.standard_normal(n)
+        out = []
+        for inv, tip, drag in (ffr_arguments(pack, k, drag_c), (own.inv, own.tip, own.drag(drag_c))):
+            fv, Mv, Cv, K_el = np.empty(n), np.empty((n, n)), np.empty((n, n)), np.empty((nf, nf))
+            power = fk.ffr_vspace_terms(inv, A, p, vb, vdot, np.array([0.0, -9.81, 0.0]), tip, drag, 1.0, True,
+                                        fv, Mv, Cv, K_el, fk.kernel_work(nf, npts))
+            out.append((fv, Mv, Cv, K_el, power))
+        for a, b in zip(*out):
+            np.testing.assert_array_equal(a, b)
+        assert np.any(out[0][2][6:, 6:] != 0.0)  # the drag reached the elastic coordinates

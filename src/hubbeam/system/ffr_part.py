@@ -282,7 +282,9 @@ FFR_GROUPS = {"scalars": ("m", "stiffening", "damped", "length"),
               "squares": ("Mff", "K", "C_struct"),
               "points": ("x_pts", "w_pts", "width")}
 #: the constants of FfrArrays that FfrBeams holds one array each
-FFR_SINGLE = ("I0", "J", "II", "EAl", "mean_stretch", "mean_slope2", "N_pts")
+FFR_SINGLE = ("I0", "J", "II_value", "EAl", "mean_stretch", "mean_slope2", "N_pts")
+#: the integer tables of FfrArrays (II's entries' places, the drag points' spans), one array each
+FFR_INTEGERS = ("II_start", "II_column", "N_span")
 #: the columns of :attr:`FfrBeams.places`
 INDEX, X0, NF = 0, 1, 2
 
@@ -302,11 +304,14 @@ class FfrBeams(NamedTuple):
     points: np.ndarray  # (nb, 3, npts): x_pts, w_pts, width of the centre-line points
     I0: np.ndarray
     J: np.ndarray
-    II: np.ndarray
+    II_value: np.ndarray
     EAl: np.ndarray
     mean_stretch: np.ndarray
     mean_slope2: np.ndarray
     N_pts: np.ndarray
+    II_start: np.ndarray  # int64 (nb, 9 nf + 1): II's rows (k, l, f) in II_column and II_value
+    II_column: np.ndarray  # int64 (nb, nnz): each entry's g (zero-padded, beyond the last row's end)
+    N_span: np.ndarray  # int64 (nb, npts, 2): the drag points' spans (zero-padded: empty)
     vectors_work: np.ndarray  # (15, W) scratch vectors (W >= L = 6 + the largest nf + the widest frame's columns;
     #                           rows 8: the kernel's, :func:`_kernel_work`)
     squares_work: np.ndarray  # (8, L + 1, L + 1) scratch matrices (6: the kernel's)
@@ -314,11 +319,11 @@ class FfrBeams(NamedTuple):
     moments_work: np.ndarray  # (2, 3, 3, the largest nf): the kernel's (:func:`~hubbeam.elements.ffr.kernels.kernel_work`)
 
 
-def _stacked(values) -> np.ndarray:
+def _stacked(values, dtype=float) -> np.ndarray:
     """The arrays ``values`` (of equal ndim) along a new leading axis, zero-padded to the largest."""
-    values = [np.asarray(v, dtype=float) for v in values]
+    values = [np.asarray(v, dtype=dtype) for v in values]
     shape = tuple(np.max([v.shape for v in values], axis=0)) if values[0].ndim else ()
-    stacked = np.zeros((len(values),) + shape)
+    stacked = np.zeros((len(values),) + shape, dtype=dtype)
     for i, v in enumerate(values):
         stacked[(i,) + tuple(slice(0, n) for n in v.shape)] = v
     return stacked
@@ -334,6 +339,7 @@ def pack_ffr_beams(system, layout) -> FfrBeams | None:
     fields = {group: _stacked([_stacked([getattr(p, name) for name in names]) for p in packs])
               for group, names in FFR_GROUPS.items()}
     fields.update({name: _stacked([getattr(p, name) for p in packs]) for name in FFR_SINGLE})
+    fields.update({name: _stacked([getattr(p, name) for p in packs], np.int64) for name in FFR_INTEGERS})
     places = np.array([(k, layout.beam_x(k).start, b.beam.ndof) for k, b in ffr], dtype=np.int64).reshape(len(ffr), 3)
     chains = np.array([(system.frames.root(k), system.frames.reference(k)) for k, _ in ffr],
                       dtype=np.int64).reshape(len(ffr), 2)
@@ -367,7 +373,7 @@ def ffr_bandwidth(system, layout) -> int:
 def ffr_drag_arguments(pack, k, drag_c):
     """The drag group of FFR beam k for :mod:`hubbeam.elements.ffr.kernels` (``drag_c``: c1, c2 of Eq. 37)."""
     pts = pack.points
-    return (pack.N_pts[k], pts[k, 0], pts[k, 1], pts[k, 2], drag_c[0], drag_c[1])
+    return (pack.N_pts[k], pack.N_span[k], pts[k, 0], pts[k, 1], pts[k, 2], drag_c[0], drag_c[1])
 
 
 @njit(cache=True, inline="always")
@@ -376,8 +382,8 @@ def ffr_arguments(pack, k, drag_c):
     Each array is a view of the pack's (each costs its construction and reference count, about
     10 to 20 ns): callers that need only some groups build only those (:func:`ffr_drag_arguments`)."""
     sc, vec, rows, sq = pack.scalars, pack.vectors, pack.rows, pack.squares  # slots: FFR_GROUPS
-    inv = (sc[k, 0], vec[k, 0], rows[k, 0], pack.I0[k], pack.J[k], pack.II[k], sq[k, 0], sq[k, 1], pack.EAl[k],
-           pack.mean_stretch[k], pack.mean_slope2[k], sc[k, 1], sq[k, 2], sc[k, 2])
+    inv = (sc[k, 0], vec[k, 0], rows[k, 0], pack.I0[k], pack.J[k], (pack.II_start[k], pack.II_column[k], pack.II_value[k]), sq[k, 0],
+           sq[k, 1], pack.EAl[k], pack.mean_stretch[k], pack.mean_slope2[k], sc[k, 1], sq[k, 2], sc[k, 2])
     tip = (vec[k, 1], vec[k, 2], rows[k, 1], rows[k, 2], sc[k, 3])
     return inv, tip, ffr_drag_arguments(pack, k, drag_c)
 
@@ -422,8 +428,8 @@ def _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, motion, vb, vdot):
 @njit(cache=True, _nrt=False)
 def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el, elastic=True):
     """FFR beam k's generalized force on its columns [c (the frame's nc), p (nf)] into ``force``
-    (nc + nf; module docstring), its projection H ((6 + nf) x (nc + nf)) and, when
-    ``want_matrix``, M_v, C_v and K_el (:func:`ffr_vspace_terms`; ``elastic`` False leaves the
+    (nc + nf; module docstring) and, when ``want_matrix``, its projection H ((6 + nf) x (nc +
+    nf)), M_v, C_v and K_el (:func:`ffr_vspace_terms`; ``elastic`` False leaves the
     elastic force out). ``frame`` = (columns, r, R, Jr, Jw, Hr, Hw): its frame at x, as the
     system evaluated it (:func:`~hubbeam.system.frames.chain_state`) or afresh
     (:func:`_fresh_frame`). Returns the dissipated power (W).
@@ -443,23 +449,27 @@ def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, for
     inv, tip, drag = ffr_arguments(pack, k, ctx.drag)
     power = ffr_vspace_terms(inv, R, p, vb, vdot, ctx.gravity, tip, drag, load_factor, want_matrix, fv, Mv, Cv, K_el,
                              _kernel_work(pack), elastic)
-    m = nc + nf
-    for i in range(n):
-        for j in range(m):
-            H[i, j] = 0.0
-    for j in range(nc):
-        for a in range(3):
-            H[a, j] = Jr[a, j]
-            H[3 + a, j] = R[0, a] * Jw[0, j] + R[1, a] * Jw[1, j] + R[2, a] * Jw[2, j]
-    for f in range(nf):
-        H[6 + f, nc + f] = 1.0
+    # the force on c: the frame's rows of H, [Jr; A0^T Jw], times fv[0:6]
     for j in range(nc):
         s = 0.0
-        for i in range(6):
-            s += H[i, j] * fv[i]
+        for a in range(3):
+            s += Jr[a, j] * fv[a]
+        for a in range(3):
+            s += (R[0, a] * Jw[0, j] + R[1, a] * Jw[1, j] + R[2, a] * Jw[2, j]) * fv[3 + a]
         force[j] = s
     for f in range(nf):
         force[nc + f] = fv[6 + f]
+    if want_matrix:  # H itself only for the matrix (zeroing it cost a nodal residual (6 + nf)(nc + nf) stores)
+        m = nc + nf
+        for i in range(n):
+            for j in range(m):
+                H[i, j] = 0.0
+        for j in range(nc):
+            for a in range(3):
+                H[a, j] = Jr[a, j]
+                H[3 + a, j] = R[0, a] * Jw[0, j] + R[1, a] * Jw[1, j] + R[2, a] * Jw[2, j]
+        for f in range(nf):
+            H[6 + f, nc + f] = 1.0
     return power
 
 
@@ -553,21 +563,35 @@ def ffr_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale
         sq = pack.squares_work
         _, H, Mv, Cv, K_el = _beam_scratch(pack, ctx, k, want_matrix)
         rows = pack.rows_work[0, :m]
-        # coef_m H^T M_v H + coef_c H^T C_v H: B = (coef_m M_v + coef_c C_v) H, then H^T B
-        B = sq[4, :n, :m]
+        # coef_m H^T M_v H + coef_c H^T C_v H = H^T W H, W = coef_m M_v + coef_c C_v, with H =
+        # [[Hc, 0], [0, I]] (Hc = H[0:6, 0:nc], the frame's rows): B = W[:, 0:6] Hc, then the
+        # blocks [[Hc^T B[0:6], Hc^T W[0:6, 6:]], [B[6:], W[6:, 6:]]]; the products with H's zero
+        # blocks left out (the same sums, term for term: a nodal beam's matrix was two dense
+        # (6 + nf)^2 (nc + nf) products)
+        B = sq[4, :n, :nc]
         for i in range(n):
-            for j in range(m):
+            for j in range(nc):
                 s = 0.0
-                for a in range(n):
+                for a in range(6):
                     s += (coef_m * Mv[i, a] + coef_c * Cv[i, a]) * H[a, j]
                 B[i, j] = s
         block = sq[5, :m, :m]
-        for i in range(m):
-            for j in range(m):
+        for i in range(nc):
+            for j in range(nc):
                 s = 0.0
-                for a in range(n):
+                for a in range(6):
                     s += H[a, i] * B[a, j]
                 block[i, j] = s
+            for g in range(nf):
+                s = 0.0
+                for a in range(6):
+                    s += H[a, i] * (coef_m * Mv[a, 6 + g] + coef_c * Cv[a, 6 + g])
+                block[i, nc + g] = s
+        for f in range(nf):
+            for j in range(nc):
+                block[nc + f, j] = B[6 + f, j]
+            for g in range(nf):
+                block[nc + f, nc + g] = coef_m * Mv[6 + f, 6 + g] + coef_c * Cv[6 + f, 6 + g]
         Cs = pack.squares[k, 2]
         damped = pack.scalars[k, 2] != 0.0
         for f in range(nf):

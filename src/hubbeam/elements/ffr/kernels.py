@@ -11,11 +11,11 @@ coordinates and p. :func:`ffr_energies`, :func:`ffr_momentum` and
 
 **Argument groups** (plain tuples of float64 arrays and floats, built by :func:`pack`):
 
-    inv  = (m, c0 (3,), Sbar (3, nf), I0 (3, 3), J (3, 3, nf), II (3, 3, nf, nf), Mff (nf, nf),
+    inv  = (m, c0 (3,), Sbar (3, nf), I0 (3, 3), J (3, 3, nf), II (start, column, value), Mff (nf, nf),
             K (nf, nf), EAl (n_el,), mean_stretch (n_el, nf), mean_slope2 (n_el, nf, nf), stiffening,
             C_struct (nf, nf), damped)
     tip  = (tip_force (3,), tip_moment (3,), tip_rows (3, nf), tip_rotation_rows (3, nf), length)
-    drag = (N (npts, 3, nf), x (npts,), w (npts,), width (npts,), c1, c2)
+    drag = (N (npts, 3, nf), span (npts, 2), x (npts,), w (npts,), width (npts,), c1, c2)
 
 m, length, c1, c2, stiffening and damped (0.0 or 1.0) are floats. K is the stiffness
 of Eq. 61, or without its axial part when ``stiffening`` (the axial energy then uses the
@@ -23,7 +23,11 @@ element-mean strain with the element integrals EAl = int_e EA dx (N m),
 :meth:`FfrBeam.elastic <hubbeam.elements.ffr.body.FfrBeam.elastic>`). C_struct = c K (N s) is
 the structural damping (Kelvin-Voigt on the material stiffness, :attr:`FfrBeam.damping_matrix
 <hubbeam.elements.ffr.body.FfrBeam.damping_matrix>`), read when ``damped``; width is the drag's
-frontal width at each centre-line point (m).
+frontal width at each centre-line point (m). II, the integrals int rho N_k^T N_l dV (3, 3, nf,
+nf), is given by its entries that are not zero (:func:`sparse_entries`: compressed rows (k, l,
+f), start (9 nf + 1,) and column (nnz,) int64), and span[k] = (first, last + 1) of the
+coordinates f where N[k, :, f] is not zero (:func:`point_spans`, int64): a nodal beam's element
+touches only its own nodes.
 nf is taken from p (nf = p.shape[0]): the arrays may be larger (zero-padded, for
 stacking beams of different meshes); only their leading nf entries are read, and padded
 elements (zero rows of mean_stretch / mean_slope2) or Gauss points (zero weights) add
@@ -33,7 +37,8 @@ The kernels use three properties of the arrays as FfrBeam builds them: II[k, l, 
 II[l, k, g, f] (so one contraction of II with p serves both of its last indices); each
 mean_slope2[e] is a sum of outer products (a zero diagonal entry means a zero row: element e
 only touches the coordinates with a nonzero diagonal or mean_stretch entry); the drag's
-N[k] rows vanish outside the point's element (the damping matrix skips zero columns).
+N[k] rows vanish outside the point's element (the drag reads only the point's span, the damping
+matrix skips zero columns).
 """
 
 from __future__ import annotations
@@ -49,8 +54,14 @@ from numba import njit
 @njit(cache=True, error_model="numpy", _nrt=False)
 def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
     """St = c0 + Sbar p; Q2[k, l, g] = sum_f p_f II[k, l, f, g] (and, when ``with_rate``,
-    Q2d the same with p'); R2 = I0 + J p + (J p)^T + p II p (the second moment, body frame; 9
+    Q2d the same with p' for k != l: the terms of Q_v read only those; Q2d[k, k] is left
+    unwritten); R2 = I0 + J p + (J p)^T + p II p (the second moment, body frame; 9
     entries, row-major).
+    II = (start, column, value), its entries that are not zero by rows (k, l, f)
+    (:func:`sparse_entries`): a nodal beam's II holds about 6 % of its (3, 3, nf, nf) entries
+    (an element couples only its own nodes: 688 of 11664 on exp1's 6 elements), and the dense
+    contraction was half of a nodal residual. Each Q2[k, l, g] sums its terms over f in the
+    order of the dense loops (the same numbers to the last bit).
     II is symmetric as built, II[k, l, f, g] = II[l, k, g, f], so Q2 also gives the
     contractions on the last index: sum_g II[k, l, f, g] p_g = Q2[l, k, f]. (c0, Sbar, I0, J,
     II: the invariants of the module docstring.)"""
@@ -59,23 +70,27 @@ def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
         for f in range(nf):
             acc += Sbar[k, f] * p[f]
         St[k] = c0[k] + acc
+    start, column, value = II
     for k in range(3):
         for l in range(3):
+            rate = with_rate and k != l
             for g in range(nf):
                 Q2[k, l, g] = 0.0
-            if with_rate:
+            if rate:
                 for g in range(nf):
                     Q2d[k, l, g] = 0.0
+            row = (3 * k + l) * nf
             for f in range(nf):
                 pf = p[f]
-                if pf != 0.0:
-                    for g in range(nf):
-                        Q2[k, l, g] += pf * II[k, l, f, g]
-                if with_rate:
-                    pdf = pd[f]
-                    if pdf != 0.0:
-                        for g in range(nf):
-                            Q2d[k, l, g] += pdf * II[k, l, f, g]
+                pdf = pd[f]
+                if rate:
+                    for e in range(start[row + f], start[row + f + 1]):
+                        g = column[e]
+                        Q2[k, l, g] += pf * value[e]
+                        Q2d[k, l, g] += pdf * value[e]
+                else:
+                    for e in range(start[row + f], start[row + f + 1]):
+                        Q2[k, l, column[e]] += pf * value[e]
     for k in range(3):
         for l in range(3):
             jkl = 0.0  # (J p)[k, l] and (J p)[l, k]
@@ -86,6 +101,30 @@ def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
                 jlk += J[l, k, f] * p[f]
                 acc += Q2[k, l, f] * p[f]
             R2[3 * k + l] = I0[k, l] + jkl + jlk + acc
+
+
+def point_spans(N: np.ndarray) -> np.ndarray:
+    """(first, last + 1) of the coordinates f where N[k, :, f] is not zero, for each point k of
+    N (npts, 3, nf) (int64 (npts, 2); (0, 0) for a point without any)."""
+    spans = np.zeros((N.shape[0], 2), dtype=np.int64)
+    for k in range(N.shape[0]):
+        touched = np.flatnonzero(np.any(N[k] != 0.0, axis=0))
+        if touched.size:
+            spans[k] = touched[0], touched[-1] + 1
+    return spans
+
+
+def sparse_entries(II: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The entries of II (3, 3, nf, nf) that are not zero, as :func:`_moments` takes them, by
+    rows r = (3 k + l) nf + f (compressed sparse rows): (start (9 nf + 1,) int64, the entries of
+    row r being start[r]:start[r + 1]; column (nnz,) int64: their g; value (nnz,)), ordered by
+    (k, l, f, g)."""
+    nf = II.shape[2]
+    rows = np.ascontiguousarray(II, dtype=np.float64).reshape(9 * nf, II.shape[3])
+    r, g = np.nonzero(rows)
+    start = np.zeros(9 * nf + 1, dtype=np.int64)
+    start[1:] = np.cumsum(np.bincount(r, minlength=9 * nf))
+    return start, g.astype(np.int64), np.ascontiguousarray(rows[r, g])
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -267,7 +306,7 @@ def _drag_point(Npts, xpts, k, p, pd, A, vb, rb, ub, rd):
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
+def _drag_loop(Npts, span, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
     """The drag of Eq. 64 summed over the centre-line points: returns its dissipated power
     sum_k b_k w_k (c1 + c2 |rdot_k|) |rdot_k|^2 (W) and, when ``want_force``, writes Q_d (on v,
     6 + nf) into the leading entries of ``Qd`` (6 + 3 npts + nf: the rest is scratch). Works in
@@ -275,7 +314,9 @@ def _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
     so that Q_d[0:3] = -A0 sum_k f_k A0^T rdot_k is turned to the global frame once; Q_d on
     omega^b = -sum_k r_b,k x (f_k A0^T rdot_k) and on p = -sum_k N_k^T (f_k A0^T rdot_k),
     f_k = b_k w_k (c1 + c2 |rdot_k|). No arrays per point (the residual's drag took about 2 us of
-    its 4 us on exp1 with 4 modes and 24 points when each point filled small arrays)."""
+    its 4 us on exp1 with 4 modes and 24 points when each point filled small arrays). Point k
+    reads only the coordinates of its span (module docstring: N_k is zero outside it, so the
+    sums are those over every coordinate, term for term)."""
     nf = p.shape[0]
     w0, w1, w2 = vb[3], vb[4], vb[5]
     # body-frame velocity of the frame origin, A0^T r_C'
@@ -297,7 +338,7 @@ def _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
         u0 = 0.0
         u1 = 0.0
         u2 = 0.0
-        for f in range(nf):
+        for f in range(span[k, 0], span[k, 1]):
             pf = p[f]
             pdf = pd[f]
             n0 = Npts[k, 0, f]
@@ -331,14 +372,19 @@ def _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, want_force):
             Qd[8 + 3 * k] = f2
     if not want_force:
         return power
-    # Q_d on p: -sum_k N_k^T f_k (Qd[6:] holds the f_k until then)
+    # Q_d on p: -sum_k N_k^T f_k (Qd[6:] holds the f_k until then), summed into Qd[3 npts + 6:]
+    # point by point over its span (for each f, the points in the same order as a sum over all)
+    acc = Qd[3 * npts + 6:3 * npts + 6 + nf]
     for f in range(nf):
-        acc = 0.0
-        for k in range(npts):
-            acc += Npts[k, 0, f] * Qd[6 + 3 * k] + Npts[k, 1, f] * Qd[7 + 3 * k] + Npts[k, 2, f] * Qd[8 + 3 * k]
-        Qd[3 * npts + 6 + f] = -acc
+        acc[f] = 0.0
+    for k in range(npts):
+        fk0 = Qd[6 + 3 * k]
+        fk1 = Qd[7 + 3 * k]
+        fk2 = Qd[8 + 3 * k]
+        for f in range(span[k, 0], span[k, 1]):
+            acc[f] += Npts[k, 0, f] * fk0 + Npts[k, 1, f] * fk1 + Npts[k, 2, f] * fk2
     for f in range(nf):
-        Qd[6 + f] = Qd[3 * npts + 6 + f]
+        Qd[6 + f] = -acc[f]
     for i in range(3):
         Qd[i] = -(A[i, 0] * s0 + A[i, 1] * s1 + A[i, 2] * s2)
     Qd[3] = -m0
@@ -364,10 +410,10 @@ def ffr_dissipated_power(A, p, vb, Cs, damped, drag):
             for g in range(nf):
                 s += Cs[f, g] * pd[g]
             power += pd[f] * s
-    Npts, xpts, wpts, width, dc1, dc2 = drag
+    Npts, span, xpts, wpts, width, dc1, dc2 = drag
     if dc1 == 0.0 and dc2 == 0.0:
         return power
-    return power + _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, vb, False)  # no force: vb unwritten
+    return power + _drag_loop(Npts, span, xpts, wpts, width, dc1, dc2, p, pd, A, vb, vb, False)  # no force: vb unwritten
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -524,7 +570,7 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
     allocate nothing and return no array (a residual's allocations and reference counts were
     about a fifth of an FFR step's time on exp1 with 4 modes)."""
     Sbar, J = inv[2], inv[4]
-    Npts, xpts, wpts, width, dc1, dc2 = drag
+    Npts, span, xpts, wpts, width, dc1, dc2 = drag
     Cs, damped = inv[12], inv[13]
     nf = p.shape[0]
     n = 6 + nf
@@ -624,7 +670,7 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
 
     # drag (Eq. 64) on the centre line
     if dc1 != 0.0 or dc2 != 0.0:
-        power += _drag_loop(Npts, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, True)
+        power += _drag_loop(Npts, span, xpts, wpts, width, dc1, dc2, p, pd, A, vb, Qd, True)
         for i in range(n):
             Q[i] += Qd[i]
         if want_matrix:
@@ -662,7 +708,9 @@ class FfrArrays(NamedTuple):
     Sbar: np.ndarray  # (3, nf)
     I0: np.ndarray  # (3, 3)
     J: np.ndarray  # (3, 3, nf)
-    II: np.ndarray  # (3, 3, nf, nf)
+    II_start: np.ndarray  # (9 nf + 1,) int64: II (3, 3, nf, nf) by its entries that are not zero (sparse_entries)
+    II_column: np.ndarray  # (nnz,) int64
+    II_value: np.ndarray  # (nnz,)
     Mff: np.ndarray  # (nf, nf)
     K: np.ndarray  # (nf, nf): Eq. 61, without its axial part when stiffening
     EAl: np.ndarray  # (n_el,) int_e EA dx (N m)
@@ -677,13 +725,14 @@ class FfrArrays(NamedTuple):
     tip_rotation_rows: np.ndarray  # (3, nf): rotation_row(L)
     length: float
     N_pts: np.ndarray  # (npts, 3, nf): centre-line Gauss table
+    N_span: np.ndarray  # (npts, 2) int64: where N_pts[k] is not zero (point_spans)
     x_pts: np.ndarray  # (npts,)
     w_pts: np.ndarray  # (npts,)
     width: np.ndarray  # (npts,) frontal width b of the drag at the centre-line points (m)
 
     @property
     def inv(self) -> tuple:
-        return (self.m, self.c0, self.Sbar, self.I0, self.J, self.II, self.Mff, self.K, self.EAl,
+        return (self.m, self.c0, self.Sbar, self.I0, self.J, (self.II_start, self.II_column, self.II_value), self.Mff, self.K, self.EAl,
                 self.mean_stretch, self.mean_slope2, self.stiffening, self.C_struct, self.damped)
 
     @property
@@ -691,7 +740,7 @@ class FfrArrays(NamedTuple):
         return (self.tip_force, self.tip_moment, self.tip_rows, self.tip_rotation_rows, self.length)
 
     def drag(self, damping=(0.0, 0.0)) -> tuple:
-        return (self.N_pts, self.x_pts, self.w_pts, self.width, float(damping[0]), float(damping[1]))
+        return (self.N_pts, self.N_span, self.x_pts, self.w_pts, self.width, float(damping[0]), float(damping[1]))
 
     def work(self) -> tuple:
         """Scratch of :func:`ffr_vspace_terms` for this part (:func:`kernel_work`)."""
@@ -710,14 +759,15 @@ def pack(part) -> FfrArrays:
     stiff = bool(beam.geometric_stiffening)
     K = beam.stiffness_matrix - beam._axial_stiffness if stiff else beam.stiffness_matrix
     t = beam.centre_line_table
+    II_start, II_column, II_value = sparse_entries(inv["II"])
     return FfrArrays(
         m=float(inv["m"]), c0=_f64(inv["c0"]), Sbar=_f64(inv["Sbar"]), I0=_f64(inv["I0"]), J=_f64(inv["J"]),
-        II=_f64(inv["II"]), Mff=_f64(inv["Mff"]), K=_f64(K),
+        II_start=II_start, II_column=II_column, II_value=II_value, Mff=_f64(inv["Mff"]), K=_f64(K),
         EAl=_f64(beam.axial_integrals),
         mean_stretch=_f64(t["mean_stretch"]), mean_slope2=_f64(t["mean_slope2"]), stiffening=1.0 if stiff else 0.0,
         C_struct=_f64(beam.damping_matrix), damped=1.0 if beam.structural_damping > 0.0 else 0.0,
         tip_force=_f64(part.tip_force), tip_moment=_f64(part.tip_moment),
         tip_rows=_f64(beam.displacement_row(beam.length)), tip_rotation_rows=_f64(beam.rotation_row(beam.length)),
-        length=float(beam.length), N_pts=_f64(t["N"]), x_pts=_f64(t["x"]), w_pts=_f64(t["w"]),
+        length=float(beam.length), N_pts=_f64(t["N"]), N_span=point_spans(t["N"]), x_pts=_f64(t["x"]), w_pts=_f64(t["w"]),
         width=_f64(t["b"]),
     )
