@@ -5,6 +5,7 @@
     python benchmarks/joint_cost.py newton [REPS]  # why the FFR beam on the hinge refactorises (about 2 minutes)
     python benchmarks/joint_cost.py columns [REPS] # exp1 clamped / on the hinge, joint columns updated or not
     python benchmarks/joint_cost.py stale          # where the FFR hinge's third Newton iterations come from
+    python benchmarks/joint_cost.py loop [REPS] [ancf]  # as hinge on the FFR (or ANCF) plates, the loop alone
 
 For each model: the time loop alone (:class:`hubbeam.simulation.CompiledSteps`, process time per
 step, median and range of REPS runs that alternate with the other models in this one process: on a
@@ -19,6 +20,10 @@ residual + factor), N solves, the powers, and patches x joint angles x (residual
 stale kept matrix (:mod:`hubbeam.solvers.column_update`, the default) and without
 (``NewtonOptions(update_columns=False)``: refactorise it), and the tip deflection and root
 strain of the two runs compared (10 s, every 10th step).
+
+``loop``: as ``hinge`` on the FFR plates (with ``ancf``: the ANCF plate), without the parts' one-call costs (whose functions
+compile in this process: minutes on a loaded machine), so that runs of two versions of the code
+can alternate quickly.
 
 ``stale``: where the FFR plate's third Newton iterations on the hinge come from (:func:`stale`).
 
@@ -50,6 +55,7 @@ from hubbeam import api
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import CompiledSteps, initial_state
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers.column_update import joint_columns
 from hubbeam.system.assembly import BorderedBandMatrix, bordered_factor, bordered_solve
 from hubbeam.system.equations import step_powers, system_equations
 
@@ -328,6 +334,20 @@ def stale() -> None:
         print(f"FFR 4 modes, hinge, first 0.3 s, update {update}: " + "; ".join(
             f"{kind} ({len(r)} steps): |dx1| {statistics.median(a for a, _ in r):.1e}, rate "
             f"{statistics.median(b for _, b in r):.1e}" for kind, r in rates.items()))
+    # the hinge angle's acceleration at steps 200 to 300, and the exact tangent's change per step
+    psi = int(joint_columns(system.layout)[0])
+    states, kept = [initial_state(system)], None
+    for _ in range(300):
+        state, _, kept = ga.step(system, states[-1], 1e-3, p, ga.NewtonOptions(update="step"), kept)
+        states.append(state)
+    acc = np.array([s.xdd[psi] for s in states[200:]])
+    signs = int(np.sum(np.diff(np.sign(acc - acc.mean())) != 0))
+    print(f"  the hinge angle's acceleration, steps 200 to 300: {signs} sign changes about its mean (a period of "
+          f"{200 / signs:.1f} steps), range {acc.min():.1f} to {acc.max():.1f} rad/s^2")
+    D = [_differences_matrix(system, states[k], 1e-3, p)[1] for k in (180, 181, 182)]
+    print(f"  the exact tangent (the residual's differences) from step 180: largest change after 1 step "
+          f"{np.max(np.abs(D[1] - D[0])):.1e}, after 2 steps {np.max(np.abs(D[2] - D[0])):.1e} (largest entry "
+          f"{np.max(np.abs(D[0])):.1f})")
 
 
 def main() -> None:
@@ -340,6 +360,20 @@ def main() -> None:
         newton(reps)
     elif what == "stale":
         stale()
+    elif what == "loop":
+        forms = {"FFR nodal": ['beam.formulation="ffr"'], "FFR 4 modes": ['beam.formulation="ffr"', "beam.modes=4"]}
+        if sys.argv[3:] == ["ancf"]:
+            forms = {"ANCF": []}
+        models = {f"{name}, {kind}": load_example("exp1", extra + ([HINGE] if kind == "hinge" else []))
+                  for name, extra in forms.items() for kind in ("clamped", "hinge")}
+        per = {}
+        for label, (times, newton, lu, steps, _, patches) in compare(models, 10000, reps).items():
+            per[label] = statistics.median(times)
+            print(f"{label:22s} {per[label]:7.2f} us/step ({min(times):.2f}-{max(times):.2f}; {steps} steps)  "
+                  f"Newton {newton:.4f}  LU {lu:.4f}  patches {patches:.4f}")
+        for name in forms:
+            print(f"{name}: hinge / clamped {per[f'{name}, hinge'] / per[f'{name}, clamped']:.3f}")
+        print(f"load average at the end {os.getloadavg()[0]:.1f}")
     elif what == "columns":
         columns(reps)
     elif what == "hinge":
