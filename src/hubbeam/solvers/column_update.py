@@ -34,19 +34,21 @@ falls back to refactorising when a patched matrix does not bring the step back t
 iterations.
 
 A patch also goes stale, and fast: on the 4-mode FFR exp1 beam on that hinge, in its first
-seconds, the exact tangent's psi column (its entries coupling psi to the hub angle and to
-itself, the beam's inertia about the hinge over its slowly changing deflection) moves by
-about 3.5e-5 per step, steadily, and the contraction rate of a patched matrix grows from 8e-4
-at its own step to 4e-3 one step later (the rate of a new code matrix, whose tangent leaves out
-the rates' derivatives, is 1.7e-3): the first increments there, 5e-6, are large (the hinge's
-190 Hz oscillation, which the 1 ms step does not resolve and the predictor cannot follow), and
-the step after each patch took a third iteration. So the patch drifts: a patch made while
-the factors carry the one before (no factorisation between them, ``steps`` steps apart)
-records the change per step of G = A^-1 C and of Ut (both are linear in C), and each later
-step on the same patch extrapolates them, G = G_p + age dG, Ut = Ut_p + age dUt (C linear in
-time since the patch), and recomputes only the capacitance (:func:`record_drift`,
-:func:`drifted`): no residual, no solve. On that model (Python steps, 10 s) third iterations
-fell from 0.096 to 0.032 per step and patches from 0.095 to 0.031.
+seconds, the exact tangent (the residual's differences) moves steadily in the hub and joint
+angles' rows and columns, by at most 3.9e-5 in one step and 7.9e-5 in two, and a patch kept
+from one step before contracted at a median 4.2e-3 against 8.2e-4 at the step that made it
+(a new code matrix, whose tangent leaves out the rates' derivatives: 1.1e-3). The first
+increments there, 3.6e-6, are large (the hinge angle's acceleration swings through +-18 rad/s^2
+with a period of about 6 steps, which no predictor of the acceleration follows), a step then
+converges in two iterations only below a rate of about 2e-3, and the step after each patch took
+a third iteration. So the patch drifts: a patch made while the factors carry the one before
+(no factorisation between them, ``steps`` steps apart) records the change per step of G =
+A^-1 C and of Ut (both linear in C), and each later step on the same patch extrapolates them,
+G = G_p + age dG, Ut = Ut_p + age dUt (C linear in time since the patch), and recomputes only
+the capacitance (:func:`record_drift`, :func:`drifted`): no residual, no solve. A carried
+patch then contracts at a median 1.4e-3, and over 10 s the third iterations fell from 0.096
+to 0.032 per step and the patches from 0.095 to 0.031 (``python benchmarks/joint_cost.py
+stale``; docs/benchmarks.md, case J).
 """
 
 from __future__ import annotations
