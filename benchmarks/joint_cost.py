@@ -367,10 +367,10 @@ def main() -> None:
         models = {f"{name}, {kind}": load_example("exp1", extra + ([HINGE] if kind == "hinge" else []))
                   for name, extra in forms.items() for kind in ("clamped", "hinge")}
         per = {}
-        for label, (times, newton, lu, steps, _, patches) in compare(models, 10000, reps).items():
+        for label, (times, iterations, lu, steps, _, patches) in compare(models, 10000, reps).items():
             per[label] = statistics.median(times)
             print(f"{label:22s} {per[label]:7.2f} us/step ({min(times):.2f}-{max(times):.2f}; {steps} steps)  "
-                  f"Newton {newton:.4f}  LU {lu:.4f}  patches {patches:.4f}")
+                  f"Newton {iterations:.4f}  LU {lu:.4f}  patches {patches:.4f}")
         for name in forms:
             print(f"{name}: hinge / clamped {per[f'{name}, hinge'] / per[f'{name}, clamped']:.3f}")
         print(f"load average at the end {os.getloadavg()[0]:.1f}")
