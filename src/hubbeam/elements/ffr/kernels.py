@@ -559,7 +559,7 @@ def ffr_vspace_terms(inv, A, p, vb, vdot, gravity, tip, drag, load_factor, want_
     geometric stiffening. A (3 x 3) is the body frame (its axes the undeformed root section's),
     p the elastic coordinates, vb and vdot the v-space rates and accelerations; inv, tip, drag:
     the module docstring. The frame's own motion enters through vb and vdot alone: the caller
-    projects on its coordinates (:mod:`hubbeam.system.ffr_part`). ``work``: scratch of
+    projects on its coordinates (:mod:`hubbeam.system.ffr_beams`). ``work``: scratch of
     :func:`kernel_work` for at least nf coordinates and the drag's points. ``elastic`` False
     leaves the elastic force out of fv (the exact stiffness then takes it from K_el, and
     differences only the rest). Returns the power dissipated by the drag and the structural
