@@ -58,8 +58,8 @@ def chain_motions(table, k, X, V, F, r, R, vel, w):
     P, J = pose[0], jac[0]
     work, orders = np.empty((nc, W_WIDTH)), np.full(1, 1, np.int64)
     for s in range(X.shape[0]):
-        chain_kinematics_into(table, k, k + 1, X[s], F, 1, orders, pose, jac, hess, work, table.free_links,
-                              table.ancf_tips, table.ffr_tips)
+        chain_kinematics_into(table, np.int64(k), k + 1, X[s], F, np.int64(1), orders, pose, jac, hess, work,
+                              table.free_links, table.ancf_tips, table.ffr_tips)  # no literal: one signature
         for i in range(3):
             r[s, i] = P[i, 0]
             for j in range(3):

@@ -155,8 +155,8 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
     (its arrays allocated here: for tests, front ends and differences, not for every step)."""
     nc = table.column_start[k + 1] - table.column_start[k]
     pose, jac, hess = np.empty((1, 3, 4)), np.empty((1, 2, 3, nc)), np.empty((1, 2, 3, nc, nc))
-    chain_kinematics_into(table, k, k + 1, x, F, order, np.full(1, 2, np.int64), pose, jac, hess,
-                          np.empty((nc, W_WIDTH)), table.free_links, table.ancf_tips, table.ffr_tips)
+    chain_kinematics_into(table, np.int64(k), k + 1, x, F, np.int64(order), np.full(1, 2, np.int64), pose, jac,
+                          hess, np.empty((nc, W_WIDTH)), table.free_links, table.ancf_tips, table.ffr_tips)
     P, J, H = pose[0], jac[0], hess[0]
     for i in range(3):
         r[i] = P[i, 0]
@@ -473,10 +473,11 @@ def evaluate_chains(table, x, F, order):
     as it was. Inlined into its callers, which call :func:`chain_kinematics_into` once for all
     chains with the table's flags of the link kinds it holds (:class:`ChainTable`) as
     arguments: numba compiles the kinematics of those kinds only; ``order`` as an int64,
-    min(order, 2), not the literal that the callers write: numba compiles a function once per
-    literal argument (the equations pass 2, the powers and measures 1)."""
-    chain_kinematics_into(table, 0, table.orders.shape[0], x, F, min(order, 2), table.orders, table.pose, table.jac,
-                          table.hess, table.work, table.free_links, table.ancf_tips, table.ffr_tips)
+    min(order, 2), and the first chain as np.int64(0), not the literals that the callers
+    write: numba compiles a function once more for every literal argument that a compiled
+    caller passes (the equations pass 2, the powers and measures 1)."""
+    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, min(order, 2), table.orders, table.pose,
+                          table.jac, table.hess, table.work, table.free_links, table.ancf_tips, table.ffr_tips)
 
 
 @njit(cache=True, inline="always")
