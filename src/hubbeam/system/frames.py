@@ -197,6 +197,20 @@ def _cross_columns(J, sa, ja, sb, jb, H, s, i, l, add):
         H[s, 2, i, l] = c2
 
 
+@njit(cache=True, inline="always")
+def _root_translation(x, c0, col, P, J, work):
+    """A root link's translation (a free body's, an ANCF tip node's): the origin P[:, 0] = x[c0 :
+    c0 + 3] (m, global) and its three columns from col on, translations along the global axes
+    (no rotation: J[1, :, col + j] = 0)."""
+    for i in range(3):
+        P[i, 0] = x[c0 + i]
+    for j in range(3):
+        for a in range(3):
+            J[1, a, col + j] = 0.0
+        work[col + j, W_TYPE] = TRANSLATION
+        work[col + j, W_DIRECTION] = j
+
+
 @njit(cache=True, _nrt=False)
 def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, hess, work, free_links, ancf_tips,
                           ffr_tips):
@@ -291,13 +305,7 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
             elif free_links is not None and kind == LinkKind.FREE:
                 root_kind = kind
                 root_columns = 7
-                for i in range(3):
-                    P[i, 0] = x[c0 + i]
-                for j in range(3):
-                    for a in range(3):
-                        J[1, a, col + j] = 0.0
-                    work[col + j, W_TYPE] = TRANSLATION
-                    work[col + j, W_DIRECTION] = j
+                _root_translation(x, c0, col, P, J, work)
                 e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
                 euler_rotation_into(e0, e1, e2, e3, P, 1)
                 s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
@@ -311,13 +319,7 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
                 root_kind = kind
                 root_columns = 7
                 Fc = F[int(par[pr, 0])]
-                for i in range(3):
-                    P[i, 0] = x[c0 + i]
-                for j in range(3):
-                    for a in range(3):
-                        J[1, a, col + j] = 0.0
-                    work[col + j, W_TYPE] = TRANSLATION
-                    work[col + j, W_DIRECTION] = j
+                _root_translation(x, c0, col, P, J, work)
                 slope_length = _ancf_section(Fc, x, c0 + 3, P)
                 tau0, tau1, tau2 = P[0, 1], P[1, 1], P[2, 1]
                 for b in range(3):
