@@ -5,7 +5,8 @@
 Runs the bundled example (default ``exp1``) for one output step in this process, with numba's
 on-disk cache pointed at a new empty directory so that everything compiles, and prints
 
-- the compile time of each compiled function (numba's ``numba:compile`` events): its own
+- the compile time (CPU seconds of this process, the steady number beside other jobs) of each
+  compiled function (numba's ``numba:compile`` events): its own
   (``self``: typing, lowering and LLVM for its own module) and with what it compiled on the way
   (``total``), the largest first, and the functions the run called from Python;
 - LLVM's share: optimising each function as it is lowered, optimising each function's module
@@ -41,9 +42,9 @@ def main(argv: list[str]) -> None:
 
     def timed(slot, method):
         def wrapper(self, *args):
-            start = time.perf_counter()
+            start = time.process_time()
             out = method(self, *args)
-            llvm[self.name][slot] += time.perf_counter() - start
+            llvm[self.name][slot] += time.process_time() - start
             if slot == 2:
                 llvm[self.name][3] = sum(1 for f in self._final_module.functions if not f.is_declaration)
             return out
@@ -56,7 +57,18 @@ def main(argv: list[str]) -> None:
         print("numba's JITCodeLibrary has changed: LLVM's share is not timed")
 
     start_cpu, start_wall = time.process_time(), time.perf_counter()
-    with event.install_recorder("numba:compile") as recorder:
+    class CpuRecorder(event.Listener):  # numba's install_recorder stamps wall time
+        def __init__(self):
+            self.buffer = []
+
+        def on_start(self, ev):
+            self.buffer.append((time.process_time(), ev))
+
+        def on_end(self, ev):
+            self.buffer.append((time.process_time(), ev))
+
+    recorder = CpuRecorder()
+    with event.install_listener("numba:compile", recorder):
         from hubbeam import api
         from hubbeam.io.scenario import load_example
 
@@ -83,11 +95,13 @@ def main(argv: list[str]) -> None:
         count[name] += 1
     compiled = sum(b - a for _, a, b, depth in spans if depth == 0)
     print(f"{example} {' '.join(overrides)}: process {wall:.1f} s wall, {cpu:.1f} s CPU; compiling {compiled:.1f} s "
-          f"in {len(own)} compiled functions")
-    print(f"\n{'self s':>7} {'total s':>8}  function (the 15 largest)")
-    for name, seconds in own.most_common(15):
+          f"of CPU in {len(own)} compiled functions")
+    print(f"\n{'self s':>7} {'total s':>8}  function (the 25 largest)")
+    for name, seconds in own.most_common(25):
         times = f" x{count[name]}" if count[name] > 1 else ""
         print(f"{seconds:7.2f} {total[name]:8.2f}  {name}{times}")
+    again = [f"{name} x{n} ({own[name]:.1f} s)" for name, n in count.most_common() if n > 1]
+    print("\ncompiled more than once (one per signature): " + (", ".join(again) or "none"))
     print("\ncalled from Python: " + ", ".join(f"{name} {b - a:.1f} s" for name, a, b, depth in
                                                sorted(spans, key=lambda s: s[1]) if depth == 0))
     if wrapped:

@@ -4,6 +4,8 @@
     python benchmarks/joint_cost.py chain [REPS]   # case J's chain of 1, 2, 4, 8 links (1 s at 1 ms), both starts
     python benchmarks/joint_cost.py newton [REPS]  # why the FFR beam on the hinge refactorises (about 2 minutes)
     python benchmarks/joint_cost.py columns [REPS] # exp1 clamped / on the hinge, joint columns updated or not
+    python benchmarks/joint_cost.py stale          # where the FFR hinge's third Newton iterations come from
+    python benchmarks/joint_cost.py loop [REPS] [ancf]  # as hinge on the FFR (or ANCF) plates, the loop alone
 
 For each model: the time loop alone (:class:`hubbeam.simulation.CompiledSteps`, process time per
 step, median and range of REPS runs that alternate with the other models in this one process: on a
@@ -18,6 +20,12 @@ residual + factor), N solves, the powers, and patches x joint angles x (residual
 stale kept matrix (:mod:`hubbeam.solvers.column_update`, the default) and without
 (``NewtonOptions(update_columns=False)``: refactorise it), and the tip deflection and root
 strain of the two runs compared (10 s, every 10th step).
+
+``loop``: as ``hinge`` on the FFR plates (with ``ancf``: the ANCF plate), without the parts' one-call costs (whose functions
+compile in this process: minutes on a loaded machine), so that runs of two versions of the code
+can alternate quickly.
+
+``stale``: where the FFR plate's third Newton iterations on the hinge come from (:func:`stale`).
 
 ``newton``: exp1 with the nodal FFR beam, clamped and on the hinge. (1) The spectral radius of
 I - A^-1 D at step 300 (t = 0.3 s), A the code's Newton matrix at step 300 - lag, D central
@@ -47,6 +55,7 @@ from hubbeam import api
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import CompiledSteps, initial_state
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers.column_update import joint_columns
 from hubbeam.system.assembly import BorderedBandMatrix, bordered_factor, bordered_solve
 from hubbeam.system.equations import step_powers, system_equations
 
@@ -275,13 +284,96 @@ def columns(reps: int) -> None:
               f"(largest |x| {np.max(np.abs(x[1])):.2f}; Newton tolerance 1e-9 x length)")
 
 
+def stale() -> None:
+    """The ``stale`` diagnosis: (1) exp1's FFR plate on the hinge, 10 s compiled, with update
+    "adaptive" (the default: kept and patched matrices) and "step" (a new matrix at every
+    step's predictor): Newton iterations, factorisations and patches per step, and per second
+    of the adaptive run. (2) Its first 0.3 s on 4 modes in Python steps: the median first
+    increment and the median contraction rate of the second iteration (|dx2| / |dx1|) on steps
+    that make a patch, that carry one (drifted, :mod:`hubbeam.solvers.column_update`) and, with
+    update "step", on new matrices. A step converges in two iterations when |dx1| rate^2 /
+    (1 - rate) / kappa <= 1e-9 x 1.45 m (kappa = 0.01)."""
+    p = ga.AlphaParameters.from_spectral_radius(0.8)
+    for form, extra in (("FFR nodal", []), ("FFR 4 modes", ["beam.modes=4"])):
+        system = api.build_system(load_example("exp1", ['beam.formulation="ffr"', HINGE] + extra))
+        state = initial_state(system)
+        for update in ("adaptive", "step"):
+            loop = CompiledSteps(system, p, ga.NewtonOptions(update=update), 1e-3, state)
+            start, seconds = state, []
+            for k in range(10):
+                lu0, patches0 = loop.factorisations, loop.patches
+                start, n, its, _, err, _ = loop.advance(start, 1000, 1000 * k, 1000, 10000)
+                if err is not None:
+                    raise err
+                seconds.append((n, its / n, (loop.factorisations - lu0) / n, (loop.patches - patches0) / n))
+            newton = sum(s[1] for s in seconds) / 10
+            print(f"{form}, hinge, update {update}: Newton {newton:.4f}, LU {loop.factorisations / 1e4:.4f}, "
+                  f"patches {loop.patches / 1e4:.4f} per step", flush=True)
+            if update == "adaptive":
+                print("  per second: Newton " + " ".join(f"{s[1]:.3f}" for s in seconds)
+                      + "; patches " + " ".join(f"{s[3]:.3f}" for s in seconds))
+    system = api.build_system(load_example("exp1", ['beam.formulation="ffr"', "beam.modes=4", HINGE]))
+    decide = ga.newton_decide
+    for update in ("adaptive", "step"):
+        log, rates = [], {}
+        ga.newton_decide = lambda size, previous, it, st, *a, log=log: log.append((size, previous, it, st, a[-1])) \
+            or decide(size, previous, it, st, *a)
+        state, kept = initial_state(system), None
+        try:
+            for _ in range(300):
+                log.clear()
+                reuse = kept.reuse.copy() if kept is not None else ga.reuse_state()
+                state, _, kept = ga.step(system, state, 1e-3, p, ga.NewtonOptions(update=update), kept)
+                if len(log) < 2 or log[1][3] != log[0][3]:
+                    continue
+                kind = ("new matrix" if not log[0][3] else "patch made" if log[0][4]
+                        else "patch carried" if reuse[ga.REUSE_PATCHED] else "kept matrix")
+                rates.setdefault(kind, []).append((log[0][0], log[1][0] / log[0][0]))
+        finally:
+            ga.newton_decide = decide
+        print(f"FFR 4 modes, hinge, first 0.3 s, update {update}: " + "; ".join(
+            f"{kind} ({len(r)} steps): |dx1| {statistics.median(a for a, _ in r):.1e}, rate "
+            f"{statistics.median(b for _, b in r):.1e}" for kind, r in rates.items()))
+    # the hinge angle's acceleration at steps 200 to 300, and the exact tangent's change per step
+    psi = int(joint_columns(system.layout)[0])
+    states, kept = [initial_state(system)], None
+    for _ in range(300):
+        state, _, kept = ga.step(system, states[-1], 1e-3, p, ga.NewtonOptions(update="step"), kept)
+        states.append(state)
+    acc = np.array([s.xdd[psi] for s in states[200:]])
+    signs = int(np.sum(np.diff(np.sign(acc - acc.mean())) != 0))
+    print(f"  the hinge angle's acceleration, steps 200 to 300: {signs} sign changes about its mean (a period of "
+          f"{200 / signs:.1f} steps), range {acc.min():.1f} to {acc.max():.1f} rad/s^2")
+    D = [_differences_matrix(system, states[k], 1e-3, p)[1] for k in (180, 181, 182)]
+    print(f"  the exact tangent (the residual's differences) from step 180: largest change after 1 step "
+          f"{np.max(np.abs(D[1] - D[0])):.1e}, after 2 steps {np.max(np.abs(D[2] - D[0])):.1e} (largest entry "
+          f"{np.max(np.abs(D[0])):.1f})")
+
+
 def main() -> None:
     what = sys.argv[1] if len(sys.argv) > 1 else "hinge"
     reps = int(sys.argv[2]) if len(sys.argv) > 2 else 3
-    print(f"{what}: the compiled loop alone, process time, median (range) of {reps} alternating runs; "
-          f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    print(f"{what}: " + ("" if what == "stale" else f"the compiled loop alone, process time, median (range) of "
+                                                     f"{reps} alternating runs; ")
+          + f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     if what == "newton":
         newton(reps)
+    elif what == "stale":
+        stale()
+    elif what == "loop":
+        forms = {"FFR nodal": ['beam.formulation="ffr"'], "FFR 4 modes": ['beam.formulation="ffr"', "beam.modes=4"]}
+        if sys.argv[3:] == ["ancf"]:
+            forms = {"ANCF": []}
+        models = {f"{name}, {kind}": load_example("exp1", extra + ([HINGE] if kind == "hinge" else []))
+                  for name, extra in forms.items() for kind in ("clamped", "hinge")}
+        per = {}
+        for label, (times, iterations, lu, steps, _, patches) in compare(models, 10000, reps).items():
+            per[label] = statistics.median(times)
+            print(f"{label:22s} {per[label]:7.2f} us/step ({min(times):.2f}-{max(times):.2f}; {steps} steps)  "
+                  f"Newton {iterations:.4f}  LU {lu:.4f}  patches {patches:.4f}")
+        for name in forms:
+            print(f"{name}: hinge / clamped {per[f'{name}, hinge'] / per[f'{name}, clamped']:.3f}")
+        print(f"load average at the end {os.getloadavg()[0]:.1f}")
     elif what == "columns":
         columns(reps)
     elif what == "hinge":

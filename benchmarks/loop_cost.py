@@ -38,7 +38,7 @@ never taken): how much the compiled loop's speed moves with code that does nothi
 ``powers``: one call (process time, best of 5, as ``step_cost.py``) of the step's powers
 (``step_powers``), of the frames' kinematics to order 1 and 2 (``evaluate_chains``: the powers
 evaluate them to order 1, each residual to order 2) and of the FFR beams' dissipated power
-(``ffr_part._dissipated_power``: the drag and the structural damping), at the initial state with
+(``ffr_beams._dissipated_power``: the drag and the structural damping), at the initial state with
 every rate raised by 0.1.
 
 ``rates``: the first STEPS (default 2000) steps in Python (:func:`hubbeam.solvers.generalized_alpha.step`,
@@ -67,7 +67,7 @@ from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.simulation import initial_state
 from hubbeam.system.equations import step_powers, system_equations, uncached_twins
-from hubbeam.system.ffr_part import FfrBeams, _dissipated_power
+from hubbeam.system.ffr_beams import FfrBeams, _dissipated_power
 from hubbeam.system.frames import evaluate_chains
 
 CASES = {"exp1_modal": (['beam.formulation="ffr"', "beam.modes=4"], 20.0),

@@ -243,7 +243,7 @@ class CompiledSteps(PythonSteps):
         self.reuse = ga.reuse_state()
         columns = joint_columns(layout, newton.update_columns)
         k = columns.shape[0]
-        rows = (np.zeros((k, layout.nz)) for _ in range(4))  # the kept columns, G, H, Ut
+        rows = (np.zeros((k, layout.nz)) for _ in range(8))  # the kept columns, G, H, Ut, the last patch's, drifts
         self.patch = (columns, layout.z_of_x[columns].astype(np.int64), *rows, np.zeros((2 * k, 2 * k)),
                       np.zeros((2 * k, 2 * k)), np.zeros(2 * k), np.zeros(2 * k), np.zeros(layout.nz))
         self.factorisations = 0

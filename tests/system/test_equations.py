@@ -138,6 +138,10 @@ print(json.dumps([unreleased(0.02), unreleased(0.08)]))
 @pytest.mark.parametrize("example, overrides", [
     ("exp1", ['beam.formulation="ffr"', "beam.modes=4", "beam.elements=4"]),  # terms compiled into the step
     ("blade", ["beam.elements=4"]),  # ANCF, tip body, damping: terms called as functions of their own
+    # the base's laws compiled into the step: a free base's norm and attitude law (a slew) ...
+    ("spacecraft3d", ['beams[*].formulation="ffr"', "beams[*].modes=4", "beams[*].elements=4", "analysis.dt=0.001"]),
+    # ... and a table base's drive
+    ("platform", ['beams[*].formulation="ffr"', "beams[*].modes=2", "beams[*].elements=4"]),
 ])
 def test_a_run_releases_every_array_it_allocates(example, overrides):
     """The time step's system functions count no references (system_equations, step_powers:

@@ -273,7 +273,7 @@ def test_the_stacked_pack_gives_each_beam_its_own_terms():
     from hubbeam import api
     from hubbeam.elements.ffr import kernels as fk
     from hubbeam.io.scenario import load_example
-    from hubbeam.system.ffr_part import FfrBeams, ffr_arguments
+    from hubbeam.system.ffr_beams import FfrBeams, ffr_arguments
 
     system = api.build_system(load_example("spacecraft3d", [
         'beams[0].formulation="ffr"', "beams[0].elements=4", 'beams[1].formulation="ffr"', "beams[1].elements=2"]))

@@ -160,19 +160,20 @@ def test_the_pruned_kinematics_equal_the_whole_code(which):
     assert None in table[-3:], name
     out = []
     for flags in (table[-3:], (True, True, True)):
-        own = table._replace(pose=np.zeros_like(table.pose), jac=np.zeros_like(table.jac),
-                             hess=np.zeros_like(table.hess), work=np.zeros_like(table.work))
-        fr._evaluate_chains(own, x, F, 2, *flags)
-        out.append((own.pose.copy(), own.jac.copy(), own.hess.copy()))
+        pose, jac, hess = np.zeros_like(table.pose), np.zeros_like(table.jac), np.zeros_like(table.hess)
+        fr.chain_kinematics_into(table, 0, table.orders.shape[0], x, F, 2, table.orders, pose, jac, hess,
+                                 np.zeros_like(table.work), *flags)
+        out.append((pose, jac, hess))
     for a, b in zip(*out):
         assert np.array_equal(a, b), name
 
 
 def test_exp1_compiles_its_chains_without_the_other_kinds():
     """exp1 (a fixed base, a hub, one ANCF beam on it: constants and revolutes) has its chains'
-    kinematics for an int64 order with every other kind's flag None, for the Python front end,
-    the equations and the tips alike (on a cold cache all three compile it; on a warm one the
-    first loads it), and no signature for a literal order (one copy per literal 1 and 2)."""
+    kinematics compiled once, for an int64 order with every other kind's flag None, for the
+    Python front end, the equations and the tips alike (on a cold cache all three compile it;
+    on a warm one the first loads it): no second signature for a literal order (one copy per
+    literal 1 and 2) nor for arrays of another layout."""
     from numba import typeof, types
 
     from hubbeam import api
@@ -184,6 +185,8 @@ def test_exp1_compiles_its_chains_without_the_other_kinds():
 
     system = api.build_system(load_example("exp1"))
     model, layout = system.model(), system.layout
+    table_type = typeof(model.context.chains)
+    before = [s for s in fr.chain_kinematics_into.signatures if s[0] == table_type]  # other tests' tables
     state = initial_state(system)
     x, F = state.x, np.ascontiguousarray(state.chart)
     res = np.empty(layout.nz)
@@ -191,7 +194,9 @@ def test_exp1_compiles_its_chains_without_the_other_kinds():
     system_equations(model, F, x, state.v, state.xdd, state.lam, 0.0, 1.0, 0.5, 0.25, 1.0, 1.0, False, True, res,
                      mat.ab, mat.brow, mat.bcol, mat.bb)
     tip_displacements(model, F, x, np.empty((1, 3)))
-    table_type = typeof(model.context.chains)
-    signatures = [s for s in fr._evaluate_chains.signatures if s[0] == table_type]
-    assert any(s[3] == types.int64 and all(t == types.none for t in s[4:]) for s in signatures)
-    assert all(s[3] == types.int64 for s in signatures)
+    fr.chain_pose(model.context.chains, 0, x, F, 2)
+    signatures = [s for s in fr.chain_kinematics_into.signatures if s[0] == table_type]
+    assert any(all(t == types.none for t in s[11:]) for s in signatures)
+    assert not any(isinstance(t, types.Literal) for s in signatures for t in s)  # a copy per literal
+    assert all(t.layout == "C" for s in signatures for t in s if isinstance(t, types.Array))
+    assert len(signatures) - len(before) <= 1

@@ -32,6 +32,23 @@ changes the factorised matrix A (not an earlier patch), so patches do not pile u
 controller (:func:`hubbeam.solvers.generalized_alpha.newton_decide`) asks for a patch, and
 falls back to refactorising when a patched matrix does not bring the step back to two
 iterations.
+
+A patch also goes stale, and fast: on the 4-mode FFR exp1 beam on that hinge, in its first
+seconds, the exact tangent (the residual's differences) moves steadily in the hub and joint
+angles' rows and columns, by at most 3.9e-5 in one step and 7.9e-5 in two, and a patch kept
+from one step before contracted at a median 4.2e-3 against 8.2e-4 at the step that made it
+(a new code matrix, whose tangent leaves out the rates' derivatives: 1.1e-3). The first
+increments there, 3.6e-6, are large (the hinge angle's acceleration swings through +-18 rad/s^2
+with a period of about 6 steps, which no predictor of the acceleration follows), a step then
+converges in two iterations only below a rate of about 2e-3, and the step after each patch took
+a third iteration. So the patch drifts: a patch made while the factors carry the one before
+(no factorisation between them, ``steps`` steps apart) records the change per step of G =
+A^-1 C and of Ut (both linear in C), and each later step on the same patch extrapolates them,
+G = G_p + age dG, Ut = Ut_p + age dUt (C linear in time since the patch), and recomputes only
+the capacitance (:func:`record_drift`, :func:`drifted`): no residual, no solve. A carried
+patch then contracts at a median 1.4e-3, and over 10 s the third iterations fell from 0.096
+to 0.032 per step and the patches from 0.095 to 0.031 (``python benchmarks/joint_cost.py
+stale``; docs/benchmarks.md, case J).
 """
 
 from __future__ import annotations
@@ -149,6 +166,31 @@ def patch_solve(G, H, Ut, K_inverse, z_columns, y, w, s):
         y[z_columns[a]] += s[a]
 
 
+@njit(cache=True)
+def record_drift(G, Ut, G_last, Ut_last, G_drift, Ut_drift, steps):
+    """At a new patch (``G`` = A^-1 C and ``Ut`` as k x n rows): with ``steps`` > 0, the
+    change per step of both since the last patch on the same factors (``G_last``,
+    ``Ut_last``, made ``steps`` steps before) into ``G_drift``, ``Ut_drift``; then the new
+    patch becomes the last (module docstring)."""
+    for a in range(G.shape[0]):
+        for i in range(G.shape[1]):
+            if steps > 0:
+                G_drift[a, i] = (G[a, i] - G_last[a, i]) / steps
+                Ut_drift[a, i] = (Ut[a, i] - Ut_last[a, i]) / steps
+            G_last[a, i] = G[a, i]
+            Ut_last[a, i] = Ut[a, i]
+
+
+@njit(cache=True)
+def drifted(G_last, Ut_last, G_drift, Ut_drift, age, G, Ut):
+    """The patch ``age`` steps after it was made, extrapolated linearly (module docstring):
+    G = G_last + age G_drift, Ut = Ut_last + age Ut_drift."""
+    for a in range(G.shape[0]):
+        for i in range(G.shape[1]):
+            G[a, i] = G_last[a, i] + age * G_drift[a, i]
+            Ut[a, i] = Ut_last[a, i] + age * Ut_drift[a, i]
+
+
 class PatchedMatrix:
     """An iteration matrix (:class:`hubbeam.solvers.generalized_alpha.IterationMatrix`, with
     its ``columns`` kept) whose columns ``z_columns`` become ``columns`` (n x k, in z) and whose
@@ -167,9 +209,27 @@ class PatchedMatrix:
         H = np.empty((k, n))
         unit_rows(H, z_columns)
         self.H = np.array([base.solve(H[a]) for a in range(k)]).reshape(k, n)
+        self.G_last, self.Ut_last = self.G.copy(), self.Ut.copy()
+        self.G_drift, self.Ut_drift = np.zeros((k, n)), np.zeros((k, n))
         self.K_inverse = np.empty((2 * k, 2 * k))
-        if capacitance(self.G, self.H, self.Ut, z_columns, np.empty((2 * k, 2 * k)), self.K_inverse) != 0:
+        self._capacitance()
+
+    def _capacitance(self) -> None:
+        k = self.z_columns.shape[0]
+        if capacitance(self.G, self.H, self.Ut, self.z_columns, np.empty((2 * k, 2 * k)), self.K_inverse) != 0:
             raise np.linalg.LinAlgError("the patched iteration matrix is singular")
+
+    def follow(self, previous: PatchedMatrix, steps: int) -> None:
+        """Record the drift per step since ``previous``, a patch of the same factors made
+        ``steps`` steps before (:func:`record_drift`)."""
+        record_drift(self.G, self.Ut, previous.G_last, previous.Ut_last, self.G_drift, self.Ut_drift, steps)
+        self.G_last, self.Ut_last = self.G.copy(), self.Ut.copy()
+
+    def drift(self, age: int) -> None:
+        """This patch ``age`` steps after it was made (:func:`drifted`); raises numpy's
+        LinAlgError when the drifted matrix is singular."""
+        drifted(self.G_last, self.Ut_last, self.G_drift, self.Ut_drift, age, self.G, self.Ut)
+        self._capacitance()
 
     def valid_for(self, h: float, chart: np.ndarray) -> bool:
         return self.base.valid_for(h, chart)

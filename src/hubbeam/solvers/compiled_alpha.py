@@ -19,11 +19,12 @@ from functools import cache
 import numpy as np
 from numba import njit
 
-from hubbeam.solvers.column_update import (capacitance, column_change, difference_step, matrix_column, patch_solve,
-                                           unit_rows)
-from hubbeam.solvers.generalized_alpha import (REUSE_PATCH, REUSE_PATCHED, REUSE_VALID, NewtonAction, Outcome,
-                                               algorithmic_acceleration, apply_increment, factorised, newton_decide,
-                                               newton_start, predict)
+from hubbeam.solvers.column_update import (capacitance, column_change, difference_step, drifted, matrix_column,
+                                           patch_solve, record_drift, unit_rows)
+from hubbeam.solvers.generalized_alpha import (REUSE_PATCH, REUSE_PATCH_AGE, REUSE_PATCHED, REUSE_VALID,
+                                               NewtonAction, Outcome, algorithmic_acceleration, apply_increment,
+                                               factorised, newton_decide, newton_start, patch_drifts, patch_made,
+                                               predict)
 from hubbeam.system.assembly import bordered_factor, bordered_solve
 from hubbeam.system.equations import CHART_SINGULAR, step_powers, system_equations, system_events
 
@@ -55,9 +56,10 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     (the reuse state of :func:`hubbeam.solvers.generalized_alpha.reuse_state`; valid means
     the factors are for this h and these charts) carry the factorisation between calls.
     ``patch`` = (columns (x indices of the joint angles, int), their z indices, the kept
-    matrix's columns, G, H, Ut, K^-1, S, w, s, residual): the storage of a column update of the
-    kept factors (:mod:`hubbeam.solvers.column_update`: four k x n, two 2k x 2k, two 2k, one
-    n), carried between calls with ``reuse``.
+    matrix's columns, G, H, Ut, G and Ut of the last patch, their drifts per step, K^-1, S, w,
+    s, residual): the storage of a column update of the kept factors
+    (:mod:`hubbeam.solvers.column_update`: eight k x n, two 2k x 2k, two 2k, one n), carried
+    between calls with ``reuse``.
     ``work`` (2) accumulates the dissipated and the drive work (J) by the trapezoidal rule
     from the powers in ``power`` (2, at the current state; updated). ``counters`` (int, 5)
     accumulates steps, Newton iterations, LU factorisations, records and column updates. ``schedule`` =
@@ -74,7 +76,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     am, af, beta, gamma = alpha
     tol, max_iterations, update, refresh_rate, refresh_iterations, mu_weight, kappa = newton
     ab, ipiv, brow, bcol, bb, Y, schur = matrix
-    columns, z_columns, kept, G, H, Ut, K_inverse, S, w_patch, s_patch, res_patch = patch
+    columns, z_columns, kept, G, H, Ut, G_last, Ut_last, G_drift, Ut_drift, K_inverse, S, w_patch, s_patch, res_patch \
+        = patch
     n_columns = columns.shape[0]
     step0, every, total = schedule
     zx, zl = model.context.z_of_x, model.context.z_of_lambda
@@ -104,6 +107,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
                                      fresh, res, ab, brow, bcol, bb)
         patched = False
+        drifts = patch_drifts(reuse, stale)
         if stale and reuse[REUSE_PATCH] == 1:
             # the joint angles' columns by forward differences of the residual, then G = A^-1 C
             # (hubbeam.solvers.column_update; generalized_alpha._patched is the same in Python)
@@ -126,10 +130,17 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, G[c])
                 bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, H[c])
             if capacitance(G, H, Ut, z_columns, S, K_inverse) == 0:
-                reuse[REUSE_PATCHED] = 1
+                record_drift(G, Ut, G_last, Ut_last, G_drift, Ut_drift, patch_made(reuse))
                 patched = True
                 counters[4] += 1
             else:  # the patched matrix is singular: refactorise
+                stale = False
+                fresh = True
+                margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
+                                             exact, new_matrix, res, ab, brow, bcol, bb)
+        elif drifts:  # the patch, extrapolated to this step (hubbeam.solvers.column_update)
+            drifted(G_last, Ut_last, G_drift, Ut_drift, reuse[REUSE_PATCH_AGE], G, Ut)
+            if capacitance(G, H, Ut, z_columns, S, K_inverse) != 0:  # singular: refactorise
                 stale = False
                 fresh = True
                 margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,

@@ -301,15 +301,18 @@ def newton_error(size, previous, reused, kappa):
 #: [matrix valid, back-off (steps to wait after the next failure), steps still to wait,
 #: the next step patches the kept matrix's joint columns (:mod:`.column_update`), the kept
 #: factors carry a patch, the patches' back-off (stale matrices to refactorise after the next
-#: failed patch), stale matrices still to refactorise before the next patch]
-REUSE_VALID, REUSE_BACKOFF, REUSE_WAIT, REUSE_PATCH, REUSE_PATCHED, REUSE_PATCH_BACKOFF, REUSE_PATCH_WAIT = range(7)
+#: failed patch), stale matrices still to refactorise before the next patch, steps since the
+#: kept factors' patch was made, steps between it and the patch before on the same factors (0:
+#: none; the patch then drifts, :mod:`.column_update`)]
+(REUSE_VALID, REUSE_BACKOFF, REUSE_WAIT, REUSE_PATCH, REUSE_PATCHED, REUSE_PATCH_BACKOFF, REUSE_PATCH_WAIT,
+ REUSE_PATCH_AGE, REUSE_DRIFT_STEPS) = range(9)
 #: longest wait (steps, or for patches stale matrices) before a kept matrix or a patch is tried again after failures
 MAX_BACKOFF = 64
 
 
 def reuse_state() -> np.ndarray:
     """A fresh reuse state: no matrix kept, back-offs 1."""
-    return np.array([0, 1, 0, 0, 0, 1, 0], dtype=np.int64)
+    return np.array([0, 1, 0, 0, 0, 1, 0, 0, 0], dtype=np.int64)
 
 
 @njit(cache=True)
@@ -344,6 +347,30 @@ def factorised(reuse):
     reuse[REUSE_VALID] = 1
     reuse[REUSE_PATCH] = 0
     reuse[REUSE_PATCHED] = 0
+    reuse[REUSE_PATCH_AGE] = 0
+    reuse[REUSE_DRIFT_STEPS] = 0
+
+
+@njit(cache=True)
+def patch_drifts(reuse, stale):
+    """At a step's start (``stale``: it starts with the kept matrix): age the kept factors'
+    patch by a step and say whether it drifts in this step (it is not replaced by a new patch
+    and was made after another on the same factors: :mod:`.column_update`)."""
+    if not (stale and reuse[REUSE_PATCHED] == 1):
+        return False
+    reuse[REUSE_PATCH_AGE] += 1
+    return reuse[REUSE_PATCH] == 0 and reuse[REUSE_DRIFT_STEPS] > 0
+
+
+@njit(cache=True)
+def patch_made(reuse):
+    """After a new patch: the steps since the one before on the same factors (0: none), which
+    are now the steps its drift is measured over."""
+    steps = reuse[REUSE_PATCH_AGE] if reuse[REUSE_PATCHED] == 1 else 0
+    reuse[REUSE_DRIFT_STEPS] = steps
+    reuse[REUSE_PATCH_AGE] = 0
+    reuse[REUSE_PATCHED] = 1
+    return steps
 
 
 @njit(cache=True)
@@ -493,14 +520,21 @@ def step(system: MultibodySystem, state: AlphaState, h: float, p: AlphaParameter
     stale = bool(newton_start(update, reuse))
     res, matrix = evaluate(not stale, kept.matrix)
     patched = False
-    if stale and reuse[REUSE_PATCH]:
-        reuse[REUSE_PATCH] = 0
-        try:
+    drifts = patch_drifts(reuse, stale)
+    try:
+        if stale and reuse[REUSE_PATCH]:
+            reuse[REUSE_PATCH] = 0
+            previous = matrix
             matrix = _patched(system, matrix, columns, res, x, v, xdd, lam, t1, gprime, bprime, ck, s)
-            reuse[REUSE_PATCHED] = patched = True
-        except np.linalg.LinAlgError:
-            stale = False
-            res, matrix = evaluate(True, None)
+            steps = patch_made(reuse)
+            if steps > 0:
+                matrix.follow(previous, steps)
+            patched = True
+        elif drifts:
+            matrix.drift(reuse[REUSE_PATCH_AGE])
+    except np.linalg.LinAlgError:
+        stale = patched = False
+        res, matrix = evaluate(True, None)
     previous = np.inf
     size = np.inf
     for it in range(1, options.max_iterations + 1):

@@ -130,10 +130,10 @@ class AttitudeLaw:
 
 # ---------------------------------------------------------------------------- compiled pieces
 @njit(cache=True)
-def table_values(knots, coefs, t):
-    """(r, r', r'', phi, phi', phi'') of a pose table at t: the splines' values and
-    derivatives; after the last row, constant velocity (value + rate (t - t_end), no acceleration)."""
-    out = np.empty((6, 3))
+def table_values_into(knots, coefs, t, out):
+    """(r, r', r'', phi, phi', phi'') of a pose table at t into the rows of out (6 x 3, or wider:
+    columns 0-2): the splines' values and derivatives; after the last row, constant velocity
+    (value + rate (t - t_end), no acceleration)."""
     n = knots.shape[0]
     t_end = knots[n - 1]
     i = n - 2 if t >= t_end else table_interval(knots, t)
@@ -147,6 +147,13 @@ def table_values(knots, coefs, t):
         out[row, c % 3] = value
         out[row + 1, c % 3] = rate
         out[row + 2, c % 3] = accel
+
+
+@njit(cache=True)
+def table_values(knots, coefs, t):
+    """:func:`table_values_into` in a new (6, 3) array."""
+    out = np.empty((6, 3))
+    table_values_into(knots, coefs, t, out)
     return out
 
 
@@ -212,38 +219,51 @@ def _quaternion_matrix(q, R):
 
 
 @njit(cache=True)
-def attitude_torque(pack, t, e, w_base):
-    """The PD law's torque (N m, base axes) for the Euler parameters e and the base's angular
-    velocity w_base (rad/s, base axes); (0, 0, 0) without a law."""
-    tau = np.zeros(3)
+def attitude_torque_into(pack, t, e, w_base, tau):
+    """The PD law's torque (N m, base axes) into tau (3) for the Euler parameters e and the
+    base's angular velocity w_base (rad/s, base axes); (0, 0, 0) without a law. Its
+    quaternions and rotation are views of the pack's scratch (:class:`BaseLaws`): it allocates
+    nothing."""
+    for i in range(3):
+        tau[i] = 0.0
     if pack.attitude == AttitudeKind.NONE:
-        return tau
+        return
     s, ds = 0.0, 0.0
     if pack.attitude == AttitudeKind.SLEW:
         drv = pack.slew
         s, ds, _ = drive_values(drv[0], drv[1], drv[2], drv[3], t)
     a = pack.axis
-    turn = np.array([math.cos(0.5 * s), math.sin(0.5 * s) * a[0], math.sin(0.5 * s) * a[1], math.sin(0.5 * s) * a[2]])
-    q_ref = np.empty(4)
+    quaternions = pack.work[3]
+    q_ref, e_unit, err, turn, conj = quaternions[0], quaternions[1], quaternions[2], quaternions[3], quaternions[4]
+    turn[0] = math.cos(0.5 * s)
+    for i in range(3):
+        turn[1 + i] = math.sin(0.5 * s) * a[i]
     quaternion_product(pack.reference, turn, q_ref)
     norm = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3])
-    e_unit = np.empty(4)
     for i in range(4):
         e_unit[i] = e[i] / norm
-    conj = np.array([q_ref[0], -q_ref[1], -q_ref[2], -q_ref[3]])
-    err = np.empty(4)
+    conj[0] = q_ref[0]
+    for i in range(1, 4):
+        conj[i] = -q_ref[i]
     quaternion_product(conj, e_unit, err)
     if err[0] < 0.0:  # the shorter way round: |phi| <= pi
         for i in range(4):
             err[i] = -err[i]
     vn = math.sqrt(err[1] * err[1] + err[2] * err[2] + err[3] * err[3])
     factor = 2.0 * math.atan2(vn, err[0]) / vn if vn > 1e-300 else 2.0
-    Rerr = np.empty((3, 3))
+    Rerr = pack.work[4]
     _quaternion_matrix(err, Rerr)
     for i in range(3):
         # w_ref in base axes: R_err^T (s' a)
         w_ref = ds * (Rerr[0, i] * a[0] + Rerr[1, i] * a[1] + Rerr[2, i] * a[2])
         tau[i] = -pack.kp[i] * factor * err[1 + i] - pack.kd[i] * (w_base[i] - w_ref)
+
+
+@njit(cache=True)
+def attitude_torque(pack, t, e, w_base):
+    """:func:`attitude_torque_into` in a new array (3)."""
+    tau = np.empty(3)
+    attitude_torque_into(pack, t, e, w_base, tau)
     return tau
 
 
@@ -264,6 +284,13 @@ class BaseLaws(NamedTuple):
     reference: np.ndarray  # (4,) Euler parameters of R_ref at t = 0 (target, or R(0) for a slew)
     axis: np.ndarray  # (3,) the slew's axis, base axes
     slew: tuple  # CompiledDrive of the slew profile
+    #: (6, 6, 4) scratch of the terms (they allocate nothing: compiled into the system's
+    #: equations, which count no references, :func:`hubbeam.system.terms.register`):
+    #: [0] the drive's pose, rows r, r', r'', q, q', q'' (r's in columns 0-2; :func:`driven_pose_into`);
+    #: [1] the pose table's values (:func:`table_values_into`); [2] G (rows 0-2) and the attitude
+    #: law's Newton-matrix product R^T Jw on e (rows 3-5); [3] the attitude law's quaternions and
+    #: [4] its R_err (:func:`attitude_torque_into`); [5] w, w_base, tau and R tau (rows 0-3)
+    work: np.ndarray
 
 
 def pack_base_laws(system, layout) -> BaseLaws | None:
@@ -284,44 +311,52 @@ def pack_base_laws(system, layout) -> BaseLaws | None:
         np.array(law.kp if law is not None else (0.0,) * 3, dtype=float),
         np.array(law.kd if law is not None else (0.0,) * 3, dtype=float), reference,
         np.array(law.slew_axis if law is not None and law.slew_axis is not None else (1.0, 0.0, 0.0), dtype=float),
-        tuple((law.slew() if law is not None else DriveProfile("rest")).compiled()))
+        tuple((law.slew() if law is not None else DriveProfile("rest")).compiled()), np.zeros((6, 6, 4)))
+
+
+@njit(cache=True)
+def driven_pose_into(pack, t, pose):
+    """The base's drive at t into the rows of pose (6 x 4): r, r', r'' (columns 0-2), q, q',
+    q'': its table's (through the pack's scratch), or the held pose."""
+    if pack.coefs.shape[1] == 0:
+        for i in range(3):
+            pose[0, i] = pack.held[i]
+            pose[1, i] = 0.0
+            pose[2, i] = 0.0
+        for i in range(4):
+            pose[3, i] = pack.held[3 + i]
+            pose[4, i] = 0.0
+            pose[5, i] = 0.0
+        return
+    v = pack.work[1]
+    table_values_into(pack.knots, pack.coefs, t, v)
+    for i in range(3):
+        pose[0, i], pose[1, i], pose[2, i] = v[0, i], v[1, i], v[2, i]
+    rotation_vector_quaternion(v[3], v[4], v[5], pose[3], pose[4], pose[5])
 
 
 @njit(cache=True)
 def driven_pose(pack, t):
-    """(r, r', r'', q, q', q'') of the base's drive at t: its table's, or the held pose."""
-    r, dr, ddr = np.empty(3), np.empty(3), np.empty(3)
-    q, dq, ddq = np.empty(4), np.empty(4), np.empty(4)
-    if pack.coefs.shape[1] == 0:
-        for i in range(3):
-            r[i] = pack.held[i]
-            dr[i] = 0.0
-            ddr[i] = 0.0
-        for i in range(4):
-            q[i] = pack.held[3 + i]
-            dq[i] = 0.0
-            ddq[i] = 0.0
-        return r, dr, ddr, q, dq, ddq
-    v = table_values(pack.knots, pack.coefs, t)
-    for i in range(3):
-        r[i], dr[i], ddr[i] = v[0, i], v[1, i], v[2, i]
-    rotation_vector_quaternion(v[3], v[4], v[5], q, dq, ddq)
-    return r, dr, ddr, q, dq, ddq
+    """(r, r', r'', q, q', q'') of the base's drive at t in new arrays (:func:`driven_pose_into`)."""
+    pose = np.empty((6, 4))
+    driven_pose_into(pack, t, pose)
+    return (pose[0, :3].copy(), pose[1, :3].copy(), pose[2, :3].copy(), pose[3].copy(), pose[4].copy(),
+            pose[5].copy())
 
 
 @njit(cache=True)
-def _base_state(pack, ctx, F, x, v):
-    """(columns, R, Jw (3, 7), w_base (base axes)) of the base frame at (x, v)."""
+def _base_state(pack, ctx, F, x, v, w, wb):
+    """(columns, R, Jw (3, 7)) of the base frame at (x, v), its angular velocity into w (global
+    axes) and wb (base axes)."""
     cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chain)
     nc = cols.shape[0]
-    w = np.zeros(3)
     for a in range(3):
+        w[a] = 0.0
         for j in range(nc):
             w[a] += Jw[a, j] * v[cols[j]]
-    wb = np.empty(3)
     for i in range(3):
         wb[i] = R[0, i] * w[0] + R[1, i] * w[1] + R[2, i] * w[2]
-    return cols, R, Jw, wb
+    return cols, R, Jw
 
 
 def base_law_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
@@ -344,12 +379,12 @@ def base_law_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, 
             add_entry(ab, brow, bcol, bb, ku, zx[e0 + i], zx[e0 + i], coef_k * ln)
     # the drive: r_b - r(t) and G(q(t)) e
     if pack.drive_lambda >= 0:
-        r, dr, ddr, q, dq, ddq = driven_pose(pack, t)
-        G = np.empty((3, 4))
-        conjugate_product_matrix(q, G)
+        pose, G = pack.work[0], pack.work[2]
+        driven_pose_into(pack, t, pose)
+        conjugate_product_matrix(pose[3], G)
         l0 = pack.drive_lambda
         for i in range(3):
-            res[zl[l0 + i]] = scale * (x[pack.x0 + i] - r[i])
+            res[zl[l0 + i]] = scale * (x[pack.x0 + i] - pose[0, i])
             res[zx[pack.x0 + i]] += coef_k * lam[l0 + i]
             g = 0.0
             for j in range(4):
@@ -365,24 +400,25 @@ def base_law_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, 
                     add_entry(ab, brow, bcol, bb, ku, zx[e0 + j], zl[l0 + 3 + i], scale * G[i, j])
     # the attitude law: -Jw^T R tau on e
     if pack.attitude != AttitudeKind.NONE:
-        cols, R, Jw, wb = _base_state(pack, ctx, F, x, v)
-        tau = attitude_torque(pack, t, x[e0:e0 + 4], wb)
-        tg = np.empty(3)  # R tau, written out: R is a view of the chain table's pose (not contiguous)
-        for i in range(3):
+        vectors = pack.work[5]
+        w, wb, tau, tg = vectors[0], vectors[1], vectors[2], vectors[3]
+        cols, R, Jw = _base_state(pack, ctx, F, x, v, w, wb)
+        attitude_torque_into(pack, t, x[e0:e0 + 4], wb, tau)
+        for i in range(3):  # tg = R tau, written out: R is a view of the chain table's pose (not contiguous)
             tg[i] = R[i, 0] * tau[0] + R[i, 1] * tau[1] + R[i, 2] * tau[2]
         for j in range(3, 7):
             res[zx[cols[j]]] -= coef_k * load_factor * (Jw[0, j] * tg[0] + Jw[1, j] * tg[1] + Jw[2, j] * tg[2])
         if want_matrix:
             # Jw^T R diag(coef_k kp + coef_c kd) R^T Jw (exact about the reference, where tau = 0)
-            B = np.empty((3, 7))
+            B = pack.work[2]  # rows 3-5: (R^T Jw)[a, j] in B[3 + a, j - 3], j = 3..6 (e's columns)
             for a in range(3):
-                for j in range(7):
-                    B[a, j] = R[0, a] * Jw[0, j] + R[1, a] * Jw[1, j] + R[2, a] * Jw[2, j]
+                for j in range(3, 7):
+                    B[3 + a, j - 3] = R[0, a] * Jw[0, j] + R[1, a] * Jw[1, j] + R[2, a] * Jw[2, j]
             for i in range(3, 7):
                 for j in range(3, 7):
                     value = 0.0
                     for a in range(3):
-                        value += B[a, i] * (coef_k * pack.kp[a] + coef_c * pack.kd[a]) * B[a, j]
+                        value += B[3 + a, i - 3] * (coef_k * pack.kp[a] + coef_c * pack.kd[a]) * B[3 + a, j - 3]
                     add_entry(ab, brow, bcol, bb, ku, zx[cols[i]], zx[cols[j]], load_factor * value)
     return 2.0, 0.0
 
@@ -392,20 +428,23 @@ def base_law_drive_power(pack, ctx, F, t, x, v, lam):
     power = 0.0
     e0 = pack.x0 + 3
     if pack.drive_lambda >= 0:
-        r, dr, ddr, q, dq, ddq = driven_pose(pack, t)
-        Gd = np.empty((3, 4))
-        conjugate_product_matrix(dq, Gd)
+        pose, Gd = pack.work[0], pack.work[2]
+        driven_pose_into(pack, t, pose)
+        conjugate_product_matrix(pose[4], Gd)
         l0 = pack.drive_lambda
         for i in range(3):
             g = 0.0
             for j in range(4):
                 g += Gd[i, j] * x[e0 + j]
-            power += lam[l0 + i] * (-dr[i]) + lam[l0 + 3 + i] * g
+            power += lam[l0 + i] * (-pose[1, i]) + lam[l0 + 3 + i] * g
     if pack.attitude != AttitudeKind.NONE:
-        cols, R, Jw, wb = _base_state(pack, ctx, F, x, v)
-        tau = attitude_torque(pack, t, x[e0:e0 + 4], wb)
+        vectors = pack.work[5]
+        w, wb, tau = vectors[0], vectors[1], vectors[2]
+        _base_state(pack, ctx, F, x, v, w, wb)
+        attitude_torque_into(pack, t, x[e0:e0 + 4], wb, tau)
         power += tau[0] * wb[0] + tau[1] * wb[1] + tau[2] * wb[2]
     return power
 
 
-KIND = terms.register(BaseLaws, pack_base_laws, base_law_equations, drive_power=base_law_drive_power)
+KIND = terms.register(BaseLaws, pack_base_laws, base_law_equations, drive_power=base_law_drive_power,
+                      counts_references=False)

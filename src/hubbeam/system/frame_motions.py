@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from hubbeam.system.frames import W_WIDTH, chain_kinematics_called
+from hubbeam.system.frames import W_WIDTH, chain_kinematics_into
 
 
 @njit(cache=True)
@@ -54,11 +54,12 @@ def chain_motions(table, k, X, V, F, r, R, vel, w):
     a run at once (a sensor over a chunk of records; one call instead of one per record)."""
     nc = table.column_start[k + 1] - table.column_start[k]
     cols = table.columns[table.column_start[k]:table.column_start[k + 1]]
-    P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
-    work = np.empty((nc, W_WIDTH))
+    pose, jac, hess = np.empty((1, 3, 4)), np.empty((1, 2, 3, nc)), np.empty((1, 2, 3, nc, nc))
+    P, J = pose[0], jac[0]
+    work, orders = np.empty((nc, W_WIDTH)), np.full(1, 1, np.int64)
     for s in range(X.shape[0]):
-        chain_kinematics_called(table, k, X[s], F, 1, P, J, H, work, table.free_links, table.ancf_tips,
-                                table.ffr_tips)
+        chain_kinematics_into(table, np.int64(k), k + 1, X[s], F, np.int64(1), orders, pose, jac, hess, work,
+                              table.free_links, table.ancf_tips, table.ffr_tips)  # no literal: one signature
         for i in range(3):
             r[s, i] = P[i, 0]
             for j in range(3):

@@ -151,12 +151,13 @@ W_TYPE, W_DIRECTION, W_ORIGIN, W_INDEX, W_AXES = 0, 1, 2, 5, 6  # W_WIDTH column
 
 @njit(cache=True)
 def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
-    """:func:`chain_kinematics_into` into r (3), R (3 x 3), Jr, Jw (3, nc), Hr, Hw (3, nc, nc)
+    """:func:`chain_kinematics_into` of chain k into r (3), R (3 x 3), Jr, Jw (3, nc), Hr, Hw (3, nc, nc)
     (its arrays allocated here: for tests, front ends and differences, not for every step)."""
     nc = table.column_start[k + 1] - table.column_start[k]
-    P, J, H = np.empty((3, 4)), np.empty((2, 3, nc)), np.empty((2, 3, nc, nc))
-    chain_kinematics_called(table, k, x, F, order, P, J, H, np.empty((nc, W_WIDTH)), table.free_links,
-                            table.ancf_tips, table.ffr_tips)
+    pose, jac, hess = np.empty((1, 3, 4)), np.empty((1, 2, 3, nc)), np.empty((1, 2, 3, nc, nc))
+    chain_kinematics_into(table, np.int64(k), k + 1, x, F, np.int64(order), np.full(1, 2, np.int64), pose, jac,
+                          hess, np.empty((nc, W_WIDTH)), table.free_links, table.ancf_tips, table.ffr_tips)
+    P, J, H = pose[0], jac[0], hess[0]
     for i in range(3):
         r[i] = P[i, 0]
         for j in range(3):
@@ -196,209 +197,222 @@ def _cross_columns(J, sa, ja, sb, jb, H, s, i, l, add):
         H[s, 2, i, l] = c2
 
 
-@njit(cache=True, inline="always")
-def chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips):
-    """The pose of chain k at the coordinates x (charts F for ANCF tips): P (3 x 4), its
-    origin r (column 0, m) and axes R (columns 1-3, global); for each of its nc coordinate
-    columns (the chain's order: :attr:`ChainTable.columns`) J[0, :, i] = Jr[:, i] (m or m/rad
-    per unit coordinate) and J[1, :, i] = Jw[:, i] (rad per unit coordinate, global axes).
-    With ``order`` 2 also H[0, :, i, l] = Hr[:, i, l] = dJr[:, i]/dc_l and H[1, :, i, l] =
-    Hw[:, i, l] = dJw[:, i]/dc_l (module docstring). J (2, 3, >= nc) and H (2, 3, >= nc, >= nc)
-    are overwritten on their first nc columns; ``work`` (>= nc, W_WIDTH): scratch (a column's
-    type, a translation's axis, the point a rotation turns about, an FFR tip's axes). Scalars only: no allocation (a
-    step evaluates every chain), inlined into :func:`evaluate_chains` (the others call
-    :func:`chain_kinematics_called`). ``free_links``, ``ancf_tips``, ``ffr_tips``: the table's
-    (:class:`ChainTable`), arguments of the function this is inlined into, so that numba prunes
-    the code of a kind of link whose flag is None before it types and compiles it (exp1's
-    chains, constants and revolutes only, compile in a fraction of the time)."""
-    l0, l1 = table.start[k], table.start[k + 1]
-    nc = table.column_start[k + 1] - table.column_start[k]
-    par = table.params
-    maps = table.maps
-    for i in range(3):
-        P[i, 0] = 0.0
-        for j in range(3):
-            P[i, 1 + j] = 1.0 if i == j else 0.0
-    root_columns = 0  # the first link's own columns (their mutual derivatives are explicit)
-    root_kind = -1
-    col = 0
-    slope_length = 1.0
-    tau0 = tau1 = tau2 = 0.0  # an ANCF tip's section axis (later links turn P)
-    for li in range(l0, l1):
-        kind = table.links[li, KIND]
-        c0 = table.links[li, COORD]
-        pr = table.links[li, PARAM]
-        if kind == LinkKind.CONSTANT:
-            for i in range(3):
-                R0, R1, R2 = P[i, 1], P[i, 2], P[i, 3]
-                P[i, 0] += R0 * par[pr, 0] + R1 * par[pr, 1] + R2 * par[pr, 2]
-                P[i, 1] = R0 * par[pr, 3] + R1 * par[pr, 6] + R2 * par[pr, 9]
-                P[i, 2] = R0 * par[pr, 4] + R1 * par[pr, 7] + R2 * par[pr, 10]
-                P[i, 3] = R0 * par[pr, 5] + R1 * par[pr, 8] + R2 * par[pr, 11]
-        elif kind == LinkKind.REVOLUTE:
-            a0, a1, a2, sign = par[pr, 0], par[pr, 1], par[pr, 2], par[pr, 3]
-            for i in range(3):
-                J[1, i, col] = sign * (P[i, 1] * a0 + P[i, 2] * a1 + P[i, 3] * a2)
-                work[col, W_ORIGIN + i] = P[i, 0]
-            work[col, W_TYPE] = SCREW
-            _rotate_about(P, a0, a1, a2, sign * x[c0])
-            col += 1
-        elif ffr_tips is not None and kind == LinkKind.FFR_TIP:
-            length, off, nf = par[pr, 0], int(par[pr, 1]), int(par[pr, 2])
-            v0 = v1 = v2 = v3 = v4 = v5 = 0.0  # the virtual coordinates M p
-            for j in range(nf):
-                p = x[c0 + j]
-                v0 += maps[off + j] * p
-                v1 += maps[off + nf + j] * p
-                v2 += maps[off + 2 * nf + j] * p
-                v3 += maps[off + 3 * nf + j] * p
-                v4 += maps[off + 4 * nf + j] * p
-                v5 += maps[off + 5 * nf + j] * p
-            for j in range(nf):  # the translations' part of Jr, along the current axes
-                m0, m1, m2 = maps[off + j], maps[off + nf + j], maps[off + 2 * nf + j]
+@njit(cache=True, _nrt=False)
+def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, hess, work, free_links, ancf_tips,
+                          ffr_tips):
+    """The poses of chains first, ..., last - 1 at the coordinates x (charts F for ANCF tips),
+    chain k into pose[k - first], jac[k - first], hess[k - first] to the order min(``order``,
+    orders[k - first]) (0: left as it was). Its pose P (3 x 4): origin r (column 0, m) and
+    axes R (columns 1-3, global); for each of its nc coordinate columns (the chain's order:
+    :attr:`ChainTable.columns`) J[0, :, i] = Jr[:, i] (m or m/rad per unit coordinate) and
+    J[1, :, i] = Jw[:, i] (rad per unit coordinate, global axes). To order 2 also H[0, :, i, l]
+    = Hr[:, i, l] = dJr[:, i]/dc_l and H[1, :, i, l] = Hw[:, i, l] = dJw[:, i]/dc_l (module
+    docstring). J (2, 3, >= nc) and H (2, 3, >= nc, >= nc) are overwritten on their first nc
+    columns; ``work`` (>= nc, W_WIDTH): scratch (a column's type, a translation's axis, the
+    point a rotation turns about, an FFR tip's axes). Scalars only: no allocation and, compiled
+    without numba's reference counting, no count of the table's arrays (a step evaluates every
+    chain in one call: :func:`evaluate_chains`). One compiled function holds the loop over the
+    chains and the kinematics, called by every user (not inlined: numba's inliner copies an
+    inlined function's IR block by block with all its variables, and inlining this one cost
+    about 5 s of a first compile). ``free_links``, ``ancf_tips``, ``ffr_tips``: the table's
+    (:class:`ChainTable`), so that numba prunes the code of a kind of link whose flag is None
+    before it types and compiles it (exp1's chains, constants and revolutes only, compile in a
+    fraction of the time)."""
+    for k in range(first, last):
+        chain_order = min(order, orders[k - first])
+        if chain_order <= 0:
+            continue
+        P, J, H = pose[k - first], jac[k - first], hess[k - first]
+        l0, l1 = table.start[k], table.start[k + 1]
+        nc = table.column_start[k + 1] - table.column_start[k]
+        par = table.params
+        maps = table.maps
+        for i in range(3):
+            P[i, 0] = 0.0
+            for j in range(3):
+                P[i, 1 + j] = 1.0 if i == j else 0.0
+        root_columns = 0  # the first link's own columns (their mutual derivatives are explicit)
+        root_kind = -1
+        col = 0
+        slope_length = 1.0
+        tau0 = tau1 = tau2 = 0.0  # an ANCF tip's section axis (later links turn P)
+        for li in range(l0, l1):
+            kind = table.links[li, KIND]
+            c0 = table.links[li, COORD]
+            pr = table.links[li, PARAM]
+            if kind == LinkKind.CONSTANT:
                 for i in range(3):
-                    J[0, i, col + j] = P[i, 1] * m0 + P[i, 2] * m1 + P[i, 3] * m2
-                    J[1, i, col + j] = 0.0
-                work[col + j, W_TYPE] = TIP_COMBINATION
-                work[col + j, W_DIRECTION] = pr
-                work[col + j, W_INDEX] = j
-            for i in range(3):
-                P[i, 0] += P[i, 1] * (length + v0) + P[i, 2] * v1 + P[i, 3] * v2
+                    R0, R1, R2 = P[i, 1], P[i, 2], P[i, 3]
+                    P[i, 0] += R0 * par[pr, 0] + R1 * par[pr, 1] + R2 * par[pr, 2]
+                    P[i, 1] = R0 * par[pr, 3] + R1 * par[pr, 6] + R2 * par[pr, 9]
+                    P[i, 2] = R0 * par[pr, 4] + R1 * par[pr, 7] + R2 * par[pr, 10]
+                    P[i, 3] = R0 * par[pr, 5] + R1 * par[pr, 8] + R2 * par[pr, 11]
+            elif kind == LinkKind.REVOLUTE:
+                a0, a1, a2, sign = par[pr, 0], par[pr, 1], par[pr, 2], par[pr, 3]
+                for i in range(3):
+                    J[1, i, col] = sign * (P[i, 1] * a0 + P[i, 2] * a1 + P[i, 3] * a2)
+                    work[col, W_ORIGIN + i] = P[i, 0]
+                work[col, W_TYPE] = SCREW
+                _rotate_about(P, a0, a1, a2, sign * x[c0])
+                col += 1
+            elif ffr_tips is not None and kind == LinkKind.FFR_TIP:
+                length, off, nf = par[pr, 0], int(par[pr, 1]), int(par[pr, 2])
+                v0 = v1 = v2 = v3 = v4 = v5 = 0.0  # the virtual coordinates M p
                 for j in range(nf):
-                    work[col + j, W_ORIGIN + i] = P[i, 0]
-            for a in range(3):  # the rotations about x, then y', then z'': Jw and the axes kept
-                for j in range(nf):
-                    m = maps[off + (3 + a) * nf + j]
+                    p = x[c0 + j]
+                    v0 += maps[off + j] * p
+                    v1 += maps[off + nf + j] * p
+                    v2 += maps[off + 2 * nf + j] * p
+                    v3 += maps[off + 3 * nf + j] * p
+                    v4 += maps[off + 4 * nf + j] * p
+                    v5 += maps[off + 5 * nf + j] * p
+                for j in range(nf):  # the translations' part of Jr, along the current axes
+                    m0, m1, m2 = maps[off + j], maps[off + nf + j], maps[off + 2 * nf + j]
                     for i in range(3):
-                        J[1, i, col + j] += P[i, 1 + a] * m
+                        J[0, i, col + j] = P[i, 1] * m0 + P[i, 2] * m1 + P[i, 3] * m2
+                        J[1, i, col + j] = 0.0
+                    work[col + j, W_TYPE] = TIP_COMBINATION
+                    work[col + j, W_DIRECTION] = pr
+                    work[col + j, W_INDEX] = j
                 for i in range(3):
-                    work[col, W_AXES + 3 * a + i] = P[i, 1 + a]
-                _rotate_about(P, 1.0 if a == 0 else 0.0, 1.0 if a == 1 else 0.0, 1.0 if a == 2 else 0.0,
-                              v3 if a == 0 else (v4 if a == 1 else v5))
-            col += nf
-        elif free_links is not None and kind == LinkKind.FREE:
-            root_kind = kind
-            root_columns = 7
-            for i in range(3):
-                P[i, 0] = x[c0 + i]
-            for j in range(3):
+                    P[i, 0] += P[i, 1] * (length + v0) + P[i, 2] * v1 + P[i, 3] * v2
+                    for j in range(nf):
+                        work[col + j, W_ORIGIN + i] = P[i, 0]
+                for a in range(3):  # the rotations about x, then y', then z'': Jw and the axes kept
+                    for j in range(nf):
+                        m = maps[off + (3 + a) * nf + j]
+                        for i in range(3):
+                            J[1, i, col + j] += P[i, 1 + a] * m
+                    for i in range(3):
+                        work[col, W_AXES + 3 * a + i] = P[i, 1 + a]
+                    _rotate_about(P, 1.0 if a == 0 else 0.0, 1.0 if a == 1 else 0.0, 1.0 if a == 2 else 0.0,
+                                  v3 if a == 0 else (v4 if a == 1 else v5))
+                col += nf
+            elif free_links is not None and kind == LinkKind.FREE:
+                root_kind = kind
+                root_columns = 7
+                for i in range(3):
+                    P[i, 0] = x[c0 + i]
+                for j in range(3):
+                    for a in range(3):
+                        J[1, a, col + j] = 0.0
+                    work[col + j, W_TYPE] = TRANSLATION
+                    work[col + j, W_DIRECTION] = j
+                e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
+                euler_rotation_into(e0, e1, e2, e3, P, 1)
+                s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
+                for a in range(4):
+                    for i in range(3):
+                        J[1, i, col + 3 + a] = 2.0 * _euler_rate_entry(e0, e1, e2, e3, i, a) / s
+                        work[col + 3 + a, W_ORIGIN + i] = P[i, 0]
+                    work[col + 3 + a, W_TYPE] = ROOT_ROTATION
+                col += 7
+            elif ancf_tips is not None:  # ANCF_TIP
+                root_kind = kind
+                root_columns = 7
+                Fc = F[int(par[pr, 0])]
+                for i in range(3):
+                    P[i, 0] = x[c0 + i]
+                for j in range(3):
+                    for a in range(3):
+                        J[1, a, col + j] = 0.0
+                    work[col + j, W_TYPE] = TRANSLATION
+                    work[col + j, W_DIRECTION] = j
+                slope_length = _ancf_section(Fc, x, c0 + 3, P)
+                tau0, tau1, tau2 = P[0, 1], P[1, 1], P[2, 1]
+                for b in range(3):
+                    o0, o1, o2 = _ancf_rate_column(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length, b)
+                    J[1, 0, col + 3 + b], J[1, 1, col + 3 + b], J[1, 2, col + 3 + b] = o0, o1, o2
+                    for i in range(3):
+                        work[col + 3 + b, W_ORIGIN + i] = P[i, 0]
+                    work[col + 3 + b, W_TYPE] = ROOT_ROTATION
+                J[1, 0, col + 6], J[1, 1, col + 6], J[1, 2, col + 6] = tau0, tau1, tau2
+                for i in range(3):
+                    work[col + 6, W_ORIGIN + i] = P[i, 0]
+                work[col + 6, W_TYPE] = ROOT_ROTATION
+                col += 7
+        # origin velocities: a translation's axis, or a rotation's axis x (r - the point it turns
+        # about) (added to an FFR tip column's translations)
+        has_tip = False
+        for i in range(nc):
+            if work[i, W_TYPE] == TRANSLATION:
                 for a in range(3):
-                    J[1, a, col + j] = 0.0
-                work[col + j, W_TYPE] = TRANSLATION
-                work[col + j, W_DIRECTION] = j
-            e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
-            euler_rotation_into(e0, e1, e2, e3, P, 1)
-            s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
-            for a in range(4):
-                for i in range(3):
-                    J[1, i, col + 3 + a] = 2.0 * _euler_rate_entry(e0, e1, e2, e3, i, a) / s
-                    work[col + 3 + a, W_ORIGIN + i] = P[i, 0]
-                work[col + 3 + a, W_TYPE] = ROOT_ROTATION
-            col += 7
-        elif ancf_tips is not None:  # ANCF_TIP
-            root_kind = kind
-            root_columns = 7
-            Fc = F[int(par[pr, 0])]
-            for i in range(3):
-                P[i, 0] = x[c0 + i]
-            for j in range(3):
-                for a in range(3):
-                    J[1, a, col + j] = 0.0
-                work[col + j, W_TYPE] = TRANSLATION
-                work[col + j, W_DIRECTION] = j
-            slope_length = _ancf_section(Fc, x, c0 + 3, P)
-            tau0, tau1, tau2 = P[0, 1], P[1, 1], P[2, 1]
-            for b in range(3):
-                o0, o1, o2 = _ancf_rate_column(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length, b)
-                J[1, 0, col + 3 + b], J[1, 1, col + 3 + b], J[1, 2, col + 3 + b] = o0, o1, o2
-                for i in range(3):
-                    work[col + 3 + b, W_ORIGIN + i] = P[i, 0]
-                work[col + 3 + b, W_TYPE] = ROOT_ROTATION
-            J[1, 0, col + 6], J[1, 1, col + 6], J[1, 2, col + 6] = tau0, tau1, tau2
-            for i in range(3):
-                work[col + 6, W_ORIGIN + i] = P[i, 0]
-            work[col + 6, W_TYPE] = ROOT_ROTATION
-            col += 7
-    # origin velocities: a translation's axis, or a rotation's axis x (r - the point it turns
-    # about) (added to an FFR tip column's translations)
-    has_tip = False
-    for i in range(nc):
-        if work[i, W_TYPE] == TRANSLATION:
-            for a in range(3):
-                J[0, a, i] = 1.0 if a == work[i, W_DIRECTION] else 0.0
-        else:
-            d0 = P[0, 0] - work[i, W_ORIGIN]
-            d1 = P[1, 0] - work[i, W_ORIGIN + 1]
-            d2 = P[2, 0] - work[i, W_ORIGIN + 2]
-            w0, w1, w2 = J[1, 0, i], J[1, 1, i], J[1, 2, i]
-            if work[i, W_TYPE] == TIP_COMBINATION:
-                has_tip = True
-                J[0, 0, i] += w1 * d2 - w2 * d1
-                J[0, 1, i] += w2 * d0 - w0 * d2
-                J[0, 2, i] += w0 * d1 - w1 * d0
+                    J[0, a, i] = 1.0 if a == work[i, W_DIRECTION] else 0.0
             else:
-                J[0, 0, i] = w1 * d2 - w2 * d1
-                J[0, 1, i] = w2 * d0 - w0 * d2
-                J[0, 2, i] = w0 * d1 - w1 * d0
-    if order < 2:
-        return
-    for i in range(nc):
-        for l in range(nc):
-            if i < root_columns and l < root_columns:
-                continue  # below
-            if (has_tip and work[i, W_TYPE] == TIP_COMBINATION and work[l, W_TYPE] == TIP_COMBINATION
-                    and work[i, W_DIRECTION] == work[l, W_DIRECTION]):
-                continue  # the same FFR tip's columns: below
-            if l <= i:
-                _cross_columns(J, 1, l, 1, i, H, 1, i, l, False)
-                _cross_columns(J, 1, l, 0, i, H, 0, i, l, False)
-            else:
+                d0 = P[0, 0] - work[i, W_ORIGIN]
+                d1 = P[1, 0] - work[i, W_ORIGIN + 1]
+                d2 = P[2, 0] - work[i, W_ORIGIN + 2]
+                w0, w1, w2 = J[1, 0, i], J[1, 1, i], J[1, 2, i]
+                if work[i, W_TYPE] == TIP_COMBINATION:
+                    has_tip = True
+                    J[0, 0, i] += w1 * d2 - w2 * d1
+                    J[0, 1, i] += w2 * d0 - w0 * d2
+                    J[0, 2, i] += w0 * d1 - w1 * d0
+                else:
+                    J[0, 0, i] = w1 * d2 - w2 * d1
+                    J[0, 1, i] = w2 * d0 - w0 * d2
+                    J[0, 2, i] = w0 * d1 - w1 * d0
+        if chain_order < 2:
+            continue
+        for i in range(nc):
+            for l in range(nc):
+                if i < root_columns and l < root_columns:
+                    continue  # below
+                if (has_tip and work[i, W_TYPE] == TIP_COMBINATION and work[l, W_TYPE] == TIP_COMBINATION
+                        and work[i, W_DIRECTION] == work[l, W_DIRECTION]):
+                    continue  # the same FFR tip's columns: below
+                if l <= i:
+                    _cross_columns(J, 1, l, 1, i, H, 1, i, l, False)
+                    _cross_columns(J, 1, l, 0, i, H, 0, i, l, False)
+                else:
+                    for a in range(3):
+                        H[1, a, i, l] = 0.0
+                    _cross_columns(J, 1, i, 0, l, H, 0, i, l, False)
+        if ffr_tips is not None:
+            if has_tip:
+                _tip_blocks(table, P, work, nc, H)
+        if free_links is None and ancf_tips is None:
+            continue
+        if root_columns == 0:
+            continue
+        # the first link's own columns among each other
+        for i in range(root_columns):
+            for l in range(root_columns):
                 for a in range(3):
                     H[1, a, i, l] = 0.0
-                _cross_columns(J, 1, i, 0, l, H, 0, i, l, False)
-    if ffr_tips is not None:
-        if has_tip:
-            _tip_blocks(table, P, work, nc, H)
-    if free_links is None and ancf_tips is None:
-        return
-    if root_columns == 0:
-        return
-    # the first link's own columns among each other
-    for i in range(root_columns):
-        for l in range(root_columns):
-            for a in range(3):
-                H[1, a, i, l] = 0.0
-                H[0, a, i, l] = 0.0
-    c0 = table.links[l0, COORD]
-    dr0, dr1, dr2 = P[0, 0] - x[c0], P[1, 0] - x[c0 + 1], P[2, 0] - x[c0 + 2]
-    if free_links is not None and root_kind == LinkKind.FREE:
-        e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
-        s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
-        for l in range(4):
-            u0, u1, u2, u3 = 1.0 * (l == 0), 1.0 * (l == 1), 1.0 * (l == 2), 1.0 * (l == 3)  # dE/de_l: E of the unit
-            el = x[c0 + 3 + l]
-            for i in range(4):
+                    H[0, a, i, l] = 0.0
+        c0 = table.links[l0, COORD]
+        dr0, dr1, dr2 = P[0, 0] - x[c0], P[1, 0] - x[c0 + 1], P[2, 0] - x[c0 + 2]
+        if free_links is not None and root_kind == LinkKind.FREE:
+            e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
+            s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
+            for l in range(4):
+                # dE/de_l: E of the unit
+                u0, u1, u2, u3 = 1.0 * (l == 0), 1.0 * (l == 1), 1.0 * (l == 2), 1.0 * (l == 3)
+                el = x[c0 + 3 + l]
+                for i in range(4):
+                    for a in range(3):
+                        H[1, a, 3 + i, 3 + l] = (2.0 * _euler_rate_entry(u0, u1, u2, u3, a, i) / s
+                                                 - 4.0 * el * _euler_rate_entry(e0, e1, e2, e3, a, i) / (s * s))
+        elif ancf_tips is not None:  # ANCF_TIP: rotation columns r0' (3) and theta_1 (1)
+            Fc = F[int(par[table.links[l0, PARAM], 0])]
+            for i in range(3):  # d(A e_i)/du_b
+                for b in range(3):
+                    o0, o1, o2 = _ancf_rate_derivative(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length,
+                                                       i, b)
+                    H[1, 0, 3 + i, 3 + b], H[1, 1, 3 + i, 3 + b], H[1, 2, 3 + i, 3 + b] = o0, o1, o2
+            tau = (tau0, tau1, tau2)
+            for b in range(3):  # d tau / d u_b
                 for a in range(3):
-                    H[1, a, 3 + i, 3 + l] = (2.0 * _euler_rate_entry(u0, u1, u2, u3, a, i) / s
-                                             - 4.0 * el * _euler_rate_entry(e0, e1, e2, e3, a, i) / (s * s))
-    elif ancf_tips is not None:  # ANCF_TIP: rotation columns r0' (3) and theta_1 (1)
-        Fc = F[int(par[table.links[l0, PARAM], 0])]
-        for i in range(3):  # d(A e_i)/du_b
-            for b in range(3):
-                o0, o1, o2 = _ancf_rate_derivative(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length, i, b)
-                H[1, 0, 3 + i, 3 + b], H[1, 1, 3 + i, 3 + b], H[1, 2, 3 + i, 3 + b] = o0, o1, o2
-        tau = (tau0, tau1, tau2)
-        for b in range(3):  # d tau / d u_b
-            for a in range(3):
-                H[1, a, 6, 3 + b] = ((1.0 if a == b else 0.0) - tau[a] * tau[b]) / slope_length
-    # Hr of the first link's rotations: dHw x (r - r_root) + Jw_i x Jr_l
-    for i in range(3, 7):
-        for l in range(3, 7):
-            h0, h1, h2 = H[1, 0, i, l], H[1, 1, i, l], H[1, 2, i, l]
-            H[0, 0, i, l] = h1 * dr2 - h2 * dr1
-            H[0, 1, i, l] = h2 * dr0 - h0 * dr2
-            H[0, 2, i, l] = h0 * dr1 - h1 * dr0
-            _cross_columns(J, 1, i, 0, l, H, 0, i, l, True)
+                    H[1, a, 6, 3 + b] = ((1.0 if a == b else 0.0) - tau[a] * tau[b]) / slope_length
+        # Hr of the first link's rotations: dHw x (r - r_root) + Jw_i x Jr_l
+        for i in range(3, 7):
+            for l in range(3, 7):
+                h0, h1, h2 = H[1, 0, i, l], H[1, 1, i, l], H[1, 2, i, l]
+                H[0, 0, i, l] = h1 * dr2 - h2 * dr1
+                H[0, 1, i, l] = h2 * dr0 - h0 * dr2
+                H[0, 2, i, l] = h0 * dr1 - h1 * dr0
+                _cross_columns(J, 1, i, 0, l, H, 0, i, l, True)
 
 
 @njit(cache=True, inline="always")
@@ -446,16 +460,6 @@ def _tip_blocks(table, P, work, nc, H):
                 H[0, 2, i + j, i + m] = gaa * qaa2 + gbb * qbb2 + gcc * qcc2 + gab * qab2 + gac * qac2 + gbc * qbc2
 
 
-@njit(cache=True)
-def chain_kinematics_called(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips):
-    """:func:`chain_kinematics_into` as a function of its own, for the callers off the step's
-    hot path (:func:`chain_kinematics`, :func:`chain_motions`): each function that inlines
-    :func:`chain_kinematics_into` compiles a copy of it, so only :func:`evaluate_chains` (every
-    evaluation of the equations) does, and these two call this one copy. The link kinds'
-    flags are arguments (the table's), for numba to prune the kinds the table does not hold."""
-    chain_kinematics_into(table, k, x, F, order, P, J, H, work, free_links, ancf_tips, ffr_tips)
-
-
 @njit(cache=True, inline="always")
 def evaluate_chains(table, x, F, order):
     """Every chain's kinematics at the coordinates x (charts F) into the table's pose, jac and
@@ -466,25 +470,14 @@ def evaluate_chains(table, x, F, order):
     :meth:`hubbeam.system.multibody.Frames.table`); 1 for the functions of the state alone
     (powers, energies, momenta, tips). The Hessians cost most (case M's 10 frames: 3.0 us
     to order 2, 0.7 us to order 1, measured); a chain evaluated to order 1 leaves its hess
-    as it was. Inlined into its callers, which call :func:`_evaluate_chains` with the table's
-    flags of the link kinds it holds (:class:`ChainTable`) as arguments: numba compiles the
-    kinematics of those kinds only; ``order`` as an int64, min(order, 2), not the literal that the
-    callers write: numba compiles a function once per literal argument (the equations pass 2,
-    the powers and measures 1)."""
-    _evaluate_chains(table, x, F, min(order, 2), table.free_links, table.ancf_tips, table.ffr_tips)
-
-
-@njit(cache=True, _nrt=False)
-def _evaluate_chains(table, x, F, order, free_links, ancf_tips, ffr_tips):
-    """:func:`evaluate_chains` for a table holding the link kinds whose flags are not None; a
-    chain whose table.orders is 0 is left as it was (:func:`chain_pose` evaluates one chain).
-    Compiled without numba's reference counting (it allocates nothing): one call per
-    evaluation, no count of the table's arrays per chain."""
-    for k in range(table.start.shape[0] - 1):
-        chain_order = min(order, table.orders[k])
-        if chain_order > 0:
-            chain_kinematics_into(table, k, x, F, chain_order, table.pose[k], table.jac[k], table.hess[k],
-                                  table.work, free_links, ancf_tips, ffr_tips)
+    as it was. Inlined into its callers, which call :func:`chain_kinematics_into` once for all
+    chains with the table's flags of the link kinds it holds (:class:`ChainTable`) as
+    arguments: numba compiles the kinematics of those kinds only; ``order`` as an int64,
+    min(order, 2), and the first chain as np.int64(0), not the literals that the callers
+    write: numba compiles a function once more for every literal argument that a compiled
+    caller passes (the equations pass 2, the powers and measures 1)."""
+    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, min(order, 2), table.orders, table.pose,
+                          table.jac, table.hess, table.work, table.free_links, table.ancf_tips, table.ffr_tips)
 
 
 @njit(cache=True, inline="always")
@@ -502,18 +495,17 @@ def chain_state(table, k):
 
 def chain_pose(table: ChainTable, k: int, x, F=None, order: int = 1):
     """(r, R, Jr, Jw, Hr, Hw) of chain k at x (Python front end; Hr, Hw zero unless ``order`` is
-    2). ``F``: the charts (n, 3, 3) of ANCF tips (default none). The chain is evaluated into a
-    copy of the table's state arrays (the other chains' orders 0: left out) by the equations'
-    own compiled :func:`_evaluate_chains` (the same types as theirs), so that a run compiles no
-    second copy of the kinematics for its Python front ends."""
+    2). ``F``: the charts (n, 3, 3) of ANCF tips (default none). The chain is evaluated into
+    arrays of its own by the equations' own compiled :func:`chain_kinematics_into` (the same
+    types as theirs), so that a run compiles no second copy of the kinematics for its Python
+    front ends."""
     nc = table.width(k)
-    orders = np.zeros_like(table.orders)
-    orders[k] = 2
-    own = table._replace(pose=np.zeros_like(table.pose), jac=np.zeros_like(table.jac), hess=np.zeros_like(table.hess),
-                         work=np.zeros_like(table.work), orders=orders)
+    pose, jac, hess = np.zeros((1,) + table.pose.shape[1:]), np.zeros((1,) + table.jac.shape[1:]), \
+        np.zeros((1,) + table.hess.shape[1:])
     F = np.zeros((1, 3, 3)) if F is None else np.ascontiguousarray(F, dtype=float)
-    _evaluate_chains(own, np.ascontiguousarray(x, dtype=float), F, min(int(order), 2), table.free_links,
-                     table.ancf_tips, table.ffr_tips)
-    P, J, H = own.pose[k], own.jac[k], own.hess[k]
+    chain_kinematics_into(table, k, k + 1, np.ascontiguousarray(x, dtype=float), F, min(int(order), 2),
+                          np.full(1, 2, dtype=np.int64), pose, jac, hess, np.zeros_like(table.work), table.free_links,
+                          table.ancf_tips, table.ffr_tips)
+    P, J, H = pose[0], jac[0], hess[0]
     return (P[:, 0].copy(), P[:, 1:4].copy(), J[0, :, :nc].copy(), J[1, :, :nc].copy(), H[0, :, :nc, :nc].copy(),
             H[1, :, :nc, :nc].copy())

@@ -2,7 +2,7 @@
 (:func:`hubbeam.system.terms.register`). A new kind of part is one module plus its line here."""
 
 from hubbeam.system import (  # noqa: F401
-    ancf_part, base_laws, controllers, drives, ffr_part, joints, rigid_body, span_loads, tip_body)
+    ancf_part, base_laws, controllers, drives, ffr_beams, joints, rigid_body, span_loads, tip_body)
 
-__all__ = ["ancf_part", "base_laws", "controllers", "drives", "ffr_part", "joints", "rigid_body", "span_loads",
+__all__ = ["ancf_part", "base_laws", "controllers", "drives", "ffr_beams", "joints", "rigid_body", "span_loads",
            "tip_body"]
