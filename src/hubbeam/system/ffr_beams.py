@@ -77,8 +77,8 @@ class FfrBeams(NamedTuple):
     mean_stretch: np.ndarray
     mean_slope2: np.ndarray
     N_pts: np.ndarray
-    II_start: np.ndarray  # int64 (nb, 9 nf + 1): II's rows (k, l, f) in II_column and II_value
-    II_column: np.ndarray  # int64 (nb, nnz): each entry's g (zero-padded, beyond the last row's end)
+    II_start: np.ndarray  # int64 (nb, 9 nf + 1): II's rows (k, l, g) in II_column and II_value (sparse_entries)
+    II_column: np.ndarray  # int64 (nb, nnz): each entry's f (zero-padded, beyond the last row's end)
     N_span: np.ndarray  # int64 (nb, npts, 2): the drag points' spans (zero-padded: empty)
     vectors_work: np.ndarray  # (15, W) scratch vectors (W >= L = 6 + the largest nf + the widest frame's columns;
     #                           rows 8: the kernel's, :func:`_kernel_work`)

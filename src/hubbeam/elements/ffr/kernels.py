@@ -25,7 +25,7 @@ the structural damping (Kelvin-Voigt on the material stiffness, :attr:`FfrBeam.d
 <hubbeam.elements.ffr.body.FfrBeam.damping_matrix>`), read when ``damped``; width is the drag's
 frontal width at each centre-line point (m). II, the integrals int rho N_k^T N_l dV (3, 3, nf,
 nf), is given by its entries that are not zero (:func:`sparse_entries`: compressed rows (k, l,
-f), start (9 nf + 1,) and column (nnz,) int64), and span[k] = (first, last + 1) of the
+g), columns f, start (9 nf + 1,) and column (nnz,) int64), and span[k] = (first, last + 1) of the
 coordinates f where N[k, :, f] is not zero (:func:`point_spans`, int64): a nodal beam's element
 touches only its own nodes.
 nf is taken from p (nf = p.shape[0]): the arrays may be larger (zero-padded, for
@@ -58,11 +58,12 @@ def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
     Q2d the same with p' for k != l: the terms of Q_v read only those; Q2d[k, k] is left
     unwritten); R2 = I0 + J p + (J p)^T + p II p (the second moment, body frame; 9
     entries, row-major).
-    II = (start, column, value), its entries that are not zero by rows (k, l, f)
+    II = (start, column, value), its entries that are not zero by rows (k, l, g), columns f
     (:func:`sparse_entries`): a nodal beam's II holds about 6 % of its (3, 3, nf, nf) entries
     (an element couples only its own nodes: 688 of 11664 on exp1's 6 elements), and the dense
-    contraction was half of a nodal residual. Each Q2[k, l, g] sums its terms over f in the
-    order of the dense loops (the same numbers to the last bit).
+    contraction was half of a nodal residual. Each Q2[k, l, g] is one row's sum in a register
+    (no scattered stores: a modal beam's full rows cost what the dense loops did), its terms
+    in the order of the dense loops, f rising from 0.0 (the same numbers to the last bit).
     II is symmetric as built, II[k, l, f, g] = II[l, k, g, f], so Q2 also gives the
     contractions on the last index: sum_g II[k, l, f, g] p_g = Q2[l, k, f]. (c0, Sbar, I0, J,
     II: the invariants of the module docstring.)"""
@@ -75,23 +76,20 @@ def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
     for k in range(3):
         for l in range(3):
             rate = with_rate and k != l
-            for g in range(nf):
-                Q2[k, l, g] = 0.0
-            if rate:
-                for g in range(nf):
-                    Q2d[k, l, g] = 0.0
             row = (3 * k + l) * nf
-            for f in range(nf):
-                pf = p[f]
-                pdf = pd[f]
+            for g in range(nf):
+                acc = 0.0
                 if rate:
-                    for e in range(start[row + f], start[row + f + 1]):
-                        g = column[e]
-                        Q2[k, l, g] += pf * value[e]
-                        Q2d[k, l, g] += pdf * value[e]
+                    acc_rate = 0.0
+                    for e in range(start[row + g], start[row + g + 1]):
+                        f = column[e]
+                        acc += p[f] * value[e]
+                        acc_rate += pd[f] * value[e]
+                    Q2d[k, l, g] = acc_rate
                 else:
-                    for e in range(start[row + f], start[row + f + 1]):
-                        Q2[k, l, column[e]] += pf * value[e]
+                    for e in range(start[row + g], start[row + g + 1]):
+                        acc += p[column[e]] * value[e]
+                Q2[k, l, g] = acc
     for k in range(3):
         for l in range(3):
             jkl = 0.0  # (J p)[k, l] and (J p)[l, k]
@@ -106,15 +104,15 @@ def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
 
 def sparse_entries(II: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The entries of II (3, 3, nf, nf) that are not zero, as :func:`_moments` takes them, by
-    rows r = (3 k + l) nf + f (compressed sparse rows): (start (9 nf + 1,) int64, the entries of
-    row r being start[r]:start[r + 1]; column (nnz,) int64: their g; value (nnz,)), ordered by
-    (k, l, f, g)."""
+    rows r = (3 k + l) nf + g, columns f (compressed sparse rows of II[k, l, :, g]): (start (9
+    nf + 1,) int64, the entries of row r being start[r]:start[r + 1]; column (nnz,) int64: their
+    f; value (nnz,)), ordered by (k, l, g, f)."""
     nf = II.shape[2]
-    rows = np.ascontiguousarray(II, dtype=np.float64).reshape(9 * nf, II.shape[3])
-    r, g = np.nonzero(rows)
+    rows = np.ascontiguousarray(np.swapaxes(II, 2, 3), dtype=np.float64).reshape(9 * nf, II.shape[2])
+    r, f = np.nonzero(rows)
     start = np.zeros(9 * nf + 1, dtype=np.int64)
     start[1:] = np.cumsum(np.bincount(r, minlength=9 * nf))
-    return start, g.astype(np.int64), np.ascontiguousarray(rows[r, g])
+    return start, f.astype(np.int64), np.ascontiguousarray(rows[r, f])
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
