@@ -70,7 +70,10 @@ def test_a_drifted_patch_solves_the_linearly_extrapolated_patched_matrix():
     base = ga.factorise(m, 1e-3, None, z)
     first = PatchedMatrix(base, C0, z)
     second = PatchedMatrix(base, C1, z)
+    G0, Ut0 = first.G.copy(), first.Ut.copy()
     second.follow(first, 3)
+    # the earlier patch is left as it was (follow once wrote the new patch into its G_last / Ut_last)
+    assert np.array_equal(first.G_last, G0) and np.array_equal(first.Ut_last, Ut0)
     b = rng.normal(size=A.shape[0])
     assert np.max(np.abs(second.solve(b) - np.linalg.solve(_patched_dense(A, C1, columns), b))) < 1e-12 * 10
     second.drift(2)

@@ -221,9 +221,9 @@ class PatchedMatrix:
 
     def follow(self, previous: PatchedMatrix, steps: int) -> None:
         """Record the drift per step since ``previous``, a patch of the same factors made
-        ``steps`` steps before (:func:`record_drift`)."""
-        record_drift(self.G, self.Ut, previous.G_last, previous.Ut_last, self.G_drift, self.Ut_drift, steps)
-        self.G_last, self.Ut_last = self.G.copy(), self.Ut.copy()
+        ``steps`` steps before (:func:`record_drift`). ``previous`` is left as it was."""
+        self.G_last, self.Ut_last = previous.G_last.copy(), previous.Ut_last.copy()
+        record_drift(self.G, self.Ut, self.G_last, self.Ut_last, self.G_drift, self.Ut_drift, steps)
 
     def drift(self, age: int) -> None:
         """This patch ``age`` steps after it was made (:func:`drifted`); raises numpy's
