@@ -238,7 +238,7 @@ def _tip(system, spec: ControllerInput, rows: InputRows) -> list[int]:
 
 def hessian_chains(system, specs) -> set[int]:
     """The chains whose derivatives Hr, Hw the inputs ``specs`` read besides the beams' roots
-    (:meth:`~hubbeam.system.multibody.Frames.needs_hessian`): a tip deflection's reference frame."""
+    (:meth:`~hubbeam.system.system_frames.Frames.needs_hessian`): a tip deflection's reference frame."""
     return {system.frames.reference(s.beam) for s in specs if s.kind == "tip_deflection"}
 
 

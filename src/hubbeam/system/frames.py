@@ -469,7 +469,7 @@ def evaluate_chains(table, x, F, order):
     (:func:`chain_state`). Chain k is evaluated to the order min(``order``, table.orders[k]):
     its hess only where the system's equations read it (the root frames of beams and the
     frames of rigid bodies: their velocity products and the clamps' second derivatives;
-    :meth:`hubbeam.system.multibody.Frames.table`); 1 for the functions of the state alone
+    :meth:`hubbeam.system.system_frames.Frames.table`); 1 for the functions of the state alone
     (powers, energies, momenta, tips). The Hessians cost most (case M's 10 frames: 3.0 us
     to order 2, 0.7 us to order 1, measured); a chain evaluated to order 1 leaves its hess
     as it was. Inlined into its callers, which call :func:`chain_kinematics_into` once for all

@@ -7,7 +7,7 @@ placed by a :class:`~hubbeam.system.base.HubPlacement`) and any number of beam p
 (:mod:`hubbeam.system.parts`: ANCF and FFR, mixed), each on its root frame, plus the
 environment (gravity, the air drag of Eq. 37). Every frame (the base's, the hub's, each
 beam's reference and root section frames, the rigid bodies') is a chain of
-:mod:`hubbeam.system.frames` (:class:`Frames`); the :class:`~hubbeam.system.layout.Layout`
+:mod:`hubbeam.system.frames` (:class:`~hubbeam.system.system_frames.Frames`); the :class:`~hubbeam.system.layout.Layout`
 places coordinates x, multipliers lambda and Newton unknowns z. The equations of every part
 are one compiled call (:func:`hubbeam.system.equations.system_equations`) into a bordered
 band matrix; each kind of part present (:mod:`hubbeam.system.terms`: ANCF beams, FFR beams,
@@ -18,6 +18,7 @@ tip bodies, rigid bodies, the hub's law) gives its pack of constants to the comp
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from enum import Enum
 
 import numpy as np
 
@@ -28,19 +29,24 @@ from hubbeam.system.assembly import BorderedBandMatrix
 from hubbeam.system.base import Base, HubPlacement
 from hubbeam.system.controller_inputs import hessian_chains
 from hubbeam.system.equations import CHART_SINGULAR, Compiled, SystemModel, compiled, context
-from hubbeam.system.chains import Chain, ChainTable, revolute
-from hubbeam.system.frames import chain_pose
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 from hubbeam.system.layout import Layout
 from hubbeam.system.measures import SystemMeasures, energy_sums  # noqa: F401  (energy_sums: re-exported)
 from hubbeam.system.parts import BeamPart, ChartedBeamPart
 from hubbeam.system.rigid_body import RigidBody
 from hubbeam.system.statics import SystemStatics
+from hubbeam.system.system_frames import Frames
 from hubbeam.system.tip_body import TipBody
 
 MOTIONS = ("free", "prescribed", "fixed")
-#: the hub's axis in its own frame: theta turns the hub about -j (Eq. 74)
-HUB_AXIS = np.array([0.0, 1.0, 0.0])
+
+
+class PerLayout(Enum):
+    """What a :class:`MultibodySystem` builds once per layout (:meth:`MultibodySystem._per_layout`)."""
+
+    MODEL = "the compiled equations' constants"
+    FUNCTION_LOADS = "the loads from Python functions"
+    CONTROLLER_LAWS = "the Python controller laws' packs"
 
 
 @dataclass(frozen=True)
@@ -61,92 +67,6 @@ class Hub:
     @property
     def held(self) -> bool:
         return self.motion != "free"
-
-
-class Frames:
-    """The frames of a system as chains (:mod:`hubbeam.system.frames`): the base's, the shaft's
-    (the hub frame at theta = 0, the axes ANCF charts are chosen in), the hub's, and for every
-    beam its reference frame (its own hub frame A_h(theta + psi): the tip deflection's axes; on
-    a parent beam, the parent's tip frame), its joint frame (its axis frame, where its joint
-    turns) and its root section frame; rigid bodies add theirs with :meth:`add`. A beam on a
-    parent hangs on the parent's tip frame (:meth:`BeamPart.tip_frame`), so the parent comes
-    first."""
-
-    def __init__(self, base: Base, placement: HubPlacement, beams, layout: Layout) -> None:
-        self._chains: list[Chain] = []
-        base_chain = base.chain(layout.base_x.start)
-        self.base = self.add(base_chain)
-        self.shaft = self.add(base_chain.then(placement.link()))
-        hub = self.chain(self.shaft).then(revolute(layout.theta, HUB_AXIS, -1.0))
-        self.hub = self.add(hub)
-        self._reference, self._root, self._joint, tips = [], [], [], []
-        for k, part in enumerate(beams):
-            mount = part.mount
-            if mount.parent is None:
-                frame, reference = hub, hub.then(mount.reference_link())
-            elif 0 <= mount.parent < k:
-                frame = reference = tips[mount.parent]
-            else:
-                raise ValueError(f"beam {k} hangs on beam {mount.parent}: a parent must come before its child")
-            axis = frame.then(mount.axis_link())
-            root = axis.then(*mount.joint_links(layout.joint_x(k).start), mount.twist_link())
-            self._reference.append(self.add(reference))
-            self._joint.append(self.add(axis))
-            self._root.append(self.add(root))
-            tips.append(part.tip_frame(layout.beam_x(k).start, k, root))
-        self._second: set[int] = set()  # chains whose Hessians the equations read, besides the roots
-        self._table: ChainTable | None = None
-
-    def add(self, chain: Chain) -> int:
-        """Register a chain; returns its index."""
-        self._chains.append(chain)
-        self._table = None
-        return len(self._chains) - 1
-
-    def chain(self, index: int) -> Chain:
-        return self._chains[index]
-
-    def root(self, k: int) -> int:
-        """Beam k's root section frame."""
-        return self._root[k]
-
-    def reference(self, k: int) -> int:
-        """Beam k's reference frame (its own hub frame: radial, along the hub axis, tangential;
-        on a parent, the parent's tip frame)."""
-        return self._reference[k]
-
-    def joint(self, k: int) -> int:
-        """Beam k's joint frame (a, b, c): its axis frame before its joint and twist."""
-        return self._joint[k]
-
-    def needs_hessian(self, index: int) -> int:
-        """Mark chain ``index`` as one whose derivatives Hr, Hw the system's equations read
-        (:func:`hubbeam.system.frames.evaluate_chains` evaluates only those to order 2);
-        returns the index."""
-        self._second.add(index)
-        self._table = None
-        return index
-
-    @property
-    def table(self) -> ChainTable:
-        """Every chain in arrays; the Hessians of the beams' root frames (their velocity
-        products, the ANCF clamps' second derivatives) and of the chains marked by
-        :meth:`needs_hessian` (the rigid bodies') are evaluated in the equations."""
-        if self._table is None:
-            self._table = ChainTable.of(self._chains, self._second | set(self._root))
-        return self._table
-
-    def pose(self, index: int, x, F=None) -> tuple[np.ndarray, np.ndarray]:
-        """(origin, axes) of chain ``index`` at x."""
-        r, R, *_ = chain_pose(self.table, index, x, F)
-        return r, R
-
-    def motion(self, index: int, x, v, F=None):
-        """(origin, axes, origin velocity, angular velocity) of chain ``index`` at (x, v) (global)."""
-        r, R, Jr, Jw, _, _ = chain_pose(self.table, index, x, F)
-        cols = self.chain(index).coordinates
-        cd = np.asarray(v)[cols] if cols else np.zeros(0)
-        return r, R, Jr @ cd, Jw @ cd
 
 
 class MultibodySystem(SystemStatics, SystemMeasures):
@@ -185,7 +105,7 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         self.rigid_bodies = self._rigid_bodies()
         #: what is built once per layout (:meth:`_per_layout`): the compiled equations' constants,
         #: the loads from Python functions and the Python controller laws' packs
-        self._built: dict[tuple[str, bool, bool], object] = {}
+        self._built: dict[tuple[PerLayout, bool, bool], object] = {}
 
     def _rigid_bodies(self) -> list[RigidBody]:
         """The hub's rotor (its inertia about its axis) and a free base's body."""
@@ -230,7 +150,7 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         at its initial pose (six constraints, as a table's)."""
         return self.layout.with_held(held, self.base.table is not None or (static and self.base.moves))
 
-    def _per_layout(self, what: str, held: bool, static: bool, build):
+    def _per_layout(self, what: PerLayout, held: bool, static: bool, build):
         """``build(held, static)``, built once for each layout (:meth:`layout_for`): ``static`` counts
         only where the base moves (a fixed base's statics use the layout of its runs)."""
         key = (what, bool(held), bool(static) and self.base.moves)
@@ -500,7 +420,7 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         """The :class:`~hubbeam.system.load_functions.FunctionLoads` of the layout (held, static)."""
         from hubbeam.system.load_functions import FunctionLoads
 
-        return self._per_layout("function loads", held, static, lambda h, s: FunctionLoads(
+        return self._per_layout(PerLayout.FUNCTION_LOADS, held, static, lambda h, s: FunctionLoads(
             self, self.layout_for(h, s), self.model(h, s).context, self.load_functions))
 
     @property
@@ -514,14 +434,14 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         """(law, its pack) of each Python controller law for the layout (held, static), built once."""
         from hubbeam.system.controllers import law_pack
 
-        return self._per_layout("controller laws", held, static, lambda h, s: [
+        return self._per_layout(PerLayout.CONTROLLER_LAWS, held, static, lambda h, s: [
             (law, law_pack(self, self.layout_for(h, s), law)) for law in self.controller_laws])
 
     def model(self, held: bool | None = None, static: bool = False) -> SystemModel:
         """The constants of the compiled equations for the hub held or not (default: its motion)
         and, with ``static``, a free base held (:meth:`layout_for`)."""
         held = self.hub.held if held is None else held
-        return self._per_layout("model", held, static, self._build_model)
+        return self._per_layout(PerLayout.MODEL, held, static, self._build_model)
 
     def _build_model(self, held: bool, static: bool) -> SystemModel:
         layout = self.layout_for(held, static)
