@@ -386,28 +386,30 @@ def _frame_rates(pack, ctx, k, x, v, F):
     return r, R, vb
 
 
+@njit(cache=True, inline="always")
+def _body_state(pack, ctx, k, x, v, F):
+    """(inv, R, r, p, vb) of FFR beam k: its invariants (:func:`ffr_arguments`), body frame, elastic
+    coordinates and v-space rates, as the energies and momenta take them."""
+    x0 = pack.places[k, X0]
+    r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
+    inv, _, _ = ffr_arguments(pack, k, ctx.drag)
+    return inv, R, r, x[x0:x0 + pack.places[k, NF]], vb
+
+
 def ffr_beam_energies(pack, ctx, F, x, v, beams):
     """Kinetic, strain and gravity energy of every FFR beam, tip body included (J)."""
-    places = pack.places
-    for k in range(places.shape[0]):
-        nf = places[k, NF]
-        x0 = places[k, X0]
-        r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
-        inv, _, _ = ffr_arguments(pack, k, ctx.drag)
-        kinetic, strain, potential = ffr_energies(inv, R, r, x[x0:x0 + nf], vb, ctx.gravity)
-        terms.add_beam_energy(beams, places[k, INDEX], kinetic, strain, potential)
+    for k in range(pack.places.shape[0]):
+        inv, R, r, p, vb = _body_state(pack, ctx, k, x, v, F)
+        kinetic, strain, potential = ffr_energies(inv, R, r, p, vb, ctx.gravity)
+        terms.add_beam_energy(beams, pack.places[k, INDEX], kinetic, strain, potential)
     return 0.0, 0.0, 0.0
 
 
 def ffr_momenta(pack, ctx, F, x, v, out):
     """Every FFR beam's mass, first moment and momenta (:func:`~hubbeam.elements.ffr.kernels.ffr_momentum`)."""
-    places = pack.places
-    for k in range(places.shape[0]):
-        nf = places[k, NF]
-        x0 = places[k, X0]
-        r, R, vb = _frame_rates(pack, ctx, k, x, v, F)
-        inv, _, _ = ffr_arguments(pack, k, ctx.drag)
-        ffr_momentum(inv, R, r, x[x0:x0 + nf], vb, out)
+    for k in range(pack.places.shape[0]):
+        inv, R, r, p, vb = _body_state(pack, ctx, k, x, v, F)
+        ffr_momentum(inv, R, r, p, vb, out)
 
 
 @njit(cache=True, _nrt=False)
