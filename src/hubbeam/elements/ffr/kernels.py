@@ -64,8 +64,8 @@ def _moments(c0, Sbar, I0, J, II, p, pd, with_rate, nf, St, Q2, Q2d, R2):
     contraction was half of a nodal residual. Each Q2[k, l, g] is one row's sum in a register
     (no scattered stores: a modal beam's full rows cost what the dense loops did), its terms
     in the order of the dense loops, f rising from 0.0 (the same numbers to the last bit).
-    II is symmetric as built, II[k, l, f, g] = II[l, k, g, f] (to rounding: the two entries
-    are the same integral summed in different orders), so Q2 also gives the contractions on
+    II is symmetric as built, II[k, l, f, g] = II[l, k, g, f] (to rounding: the built entries
+    differ in their last bits), so Q2 also gives the contractions on
     the last index: sum_g II[k, l, f, g] p_g = Q2[l, k, f] (to rounding). (c0, Sbar, I0, J,
     II: the invariants of the module docstring.)"""
     for k in range(3):
