@@ -306,8 +306,9 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     a table {"function": f(t, u) -> y, "inputs": [sensor columns], "outputs": [names as
     ``[[controllers]]``' outputs], "name": optional}: f receives t (s) and the inputs' current
     values (an array) and returns the outputs' torques (N m), no states (the Python step path;
-    dy/du by central differences); ``state=True`` also records the hub angle and every beam's geometry at the
-    output times (:class:`hubbeam.snapshots.StateRecorder`; ``hubbeam run --state``). Returns (trajectory, failure): on a ComputationError, failure is that error and
+    dy/du by central differences); ``state=True`` also records the hub angle and every beam's
+    geometry at the output times (:class:`hubbeam.snapshots.StateRecorder`; ``hubbeam run
+    --state``). Returns (trajectory, failure): on a ComputationError, failure is that error and
     the trajectory holds the results up to it. A run too large to do (steps, records' memory)
     is a ScenarioError before anything is built; an interruption (KeyboardInterrupt,
     hubbeam.interrupt.Interrupted) carries the trajectory so far in its ``partial``."""
