@@ -152,3 +152,28 @@ def test_a_point_mass_gives_the_modes_of_a_tip_body_of_that_mass():
     """Clamped (fixed hub) about the static sag: the lowest six frequencies (0.70 ... 48.9 Hz) agree."""
     point, body = (modal_analysis(s, solve_static(s, load_steps=2), count=6) for s in systems(motion="fixed"))
     assert np.allclose(point.frequencies_hz, body.frequencies_hz, rtol=1e-12, atol=0)
+
+
+def test_the_time_step_terms_of_a_counting_kind_are_called_as_its_own_functions():
+    """The equations, power and drive power of a kind that counts references (ANCF beams, as in
+    exp1) resolve to the kind's own functions, called by the system's functions and not inlined
+    into them. It fails if an inlined wrapper that only calls them comes back: numba compiled
+    such a wrapper once more on its own just to type it, with the callee's code linked in (on
+    exp1's first run about 3 s of CPU, ``python benchmarks/compile_time.py exp1``)."""
+    from numba import typeof
+    from numba.core.registry import cpu_target
+
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+    from hubbeam.system import ancf_part
+
+    model = api.build_system(load_example("exp1")).model()
+    pack_type = typeof(next(p for p in model.parts if isinstance(p, ancf_part.AncfBeams)))
+    cpu_target.typing_context.refresh()  # the registered overloads
+    for stub, own in ((terms.part_equations, ancf_part.ancf_equations), (terms.part_power, ancf_part.ancf_power),
+                      (terms.part_drive_power, ancf_part.ancf_drive_power)):
+        templates = cpu_target.typing_context.resolve_value_type(stub).templates
+        found = [t for t in templates if t._overload_func(pack_type) is not None]
+        assert len(found) == 1
+        assert found[0]._overload_func(pack_type) is own
+        assert found[0]._inline.is_never_inline

@@ -170,45 +170,27 @@ def _dispatch(stub, pack_class, impl, inline: str = "always", called: bool = Fal
     and the context), twice per step and beam kind in the time loop. "never" for the rest (the
     energies, tips and momenta of the records): numba compiles an inlined overload twice, once
     on its own to type it and once more in its caller, so that a called one costs half the
-    compile. ``called``: ``impl`` is compiled as a function of its own (with numba's reference
-    counting) and the stub inlines only the call of it: for the time step's terms of a kind that
-    allocates or takes arrays from its calls, since the system's functions of the time step
-    count no references (:func:`register`'s ``counts_references``). Only hubbeam's own kinds go
+    compile. ``called``: ``impl`` is a function of its own, compiled with numba's reference
+    counting, that the caller calls (the overload is not inlined): for the time step's terms of
+    a kind that allocates or takes arrays from its calls, since the system's functions of the
+    time step count no references (:func:`register`'s ``counts_references``). (An inlined
+    wrapper that only called it cost its own compile, with the callee's code linked in, on exp1
+    about 3 s of CPU: ``python benchmarks/compile_time.py exp1``.) Only hubbeam's own kinds go
     to numba's on-disk cache: a cache index records the classes of
     every signature compiled, and a class of a script or a test module in it (a default term
     such as ``_no_power`` is compiled for every kind) would make the index unreadable in every
     other process (see :func:`native`)."""
-    cache = native_class(pack_class)
+    jit_options = {"cache": native_class(pack_class)}
     if called:
-        impl = _calling(stub, njit(cache=cache, _nrt=True)(impl))  # explicit: callees inherit _nrt
+        jit_options["_nrt"] = True  # explicit: callees inherit _nrt
+        inline = "never"
 
     def resolve(pack, *args):
         if getattr(pack, "instance_class", None) is pack_class:
             return impl
         return None
 
-    overload(stub, jit_options={"cache": cache}, strict=False, inline=inline)(resolve)
-
-
-def _calling(stub, function):
-    """A term with the parameters of ``stub`` that calls the compiled ``function`` with them
-    (:func:`_dispatch`; numba's inliner takes no ``*args``)."""
-
-    def equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
-                  want_matrix, res, ab, brow, bcol, bb):
-        return function(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
-                        exact_stiffness, want_matrix, res, ab, brow, bcol, bb)
-
-    def power(pack, ctx, F, x, v):
-        return function(pack, ctx, F, x, v)
-
-    def drive_power(pack, ctx, F, t, x, v, lam):
-        return function(pack, ctx, F, t, x, v, lam)
-
-    def events(pack, ctx, x):
-        return function(pack, ctx, x)
-
-    return {part_equations: equations, part_power: power, part_drive_power: drive_power, part_events: events}[stub]
+    overload(stub, jit_options=jit_options, strict=False, inline=inline)(resolve)
 
 
 def register(pack: type, packer: Callable, equations, energies=None, power=None, tips=None,
