@@ -6,6 +6,8 @@
     python benchmarks/joint_cost.py columns [REPS] # exp1 clamped / on the hinge, joint columns updated or not
     python benchmarks/joint_cost.py stale          # where the FFR hinge's third Newton iterations come from
     python benchmarks/joint_cost.py loop [REPS] [ancf]  # as hinge on the FFR (or ANCF) plates, the loop alone
+    python benchmarks/joint_cost.py pieces         # the joint's share of one residual and one call of the powers
+    python benchmarks/joint_cost.py ages [MODES] [STEPS]  # third iterations by the age of a drifted patch
 
 For each model: the time loop alone (:class:`hubbeam.simulation.CompiledSteps`, process time per
 step, median and range of REPS runs that alternate with the other models in this one process: on a
@@ -26,6 +28,13 @@ compile in this process: minutes on a loaded machine), so that runs of two versi
 can alternate quickly.
 
 ``stale``: where the FFR plate's third Newton iterations on the hinge come from (:func:`stale`).
+
+``pieces``: exp1 on 4 modes, clamped and on the hinge, each at its state after 2345 compiled
+steps: one call (process time, best of 5) of the residual, the step's powers, the chains'
+kinematics to order 2 and 1, and each part's equations and powers alone (:func:`pieces`).
+
+``ages``: exp1 on the hinge (default 4 modes, 3000 steps) in Python steps: the steps that carry
+a drifted patch, by its age, and how many of them took a third Newton iteration (:func:`ages`).
 
 ``newton``: exp1 with the nodal FFR beam, clamped and on the hinge. (1) The spectral radius of
 I - A^-1 D at step 300 (t = 0.3 s), A the code's Newton matrix at step 300 - lag, D central
@@ -58,6 +67,8 @@ from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers.column_update import joint_columns
 from hubbeam.system.assembly import BorderedBandMatrix, bordered_factor, bordered_solve
 from hubbeam.system.equations import step_powers, system_equations
+from hubbeam.system.frames import evaluate_chains
+from hubbeam.system.terms import part_drive_power, part_equations, part_power
 
 
 @njit
@@ -91,6 +102,31 @@ def _powers(n, model, F, x, v, lam):
     s = 0.0
     for _ in range(n):
         s += step_powers(model, F, 0.1, x, v, lam)[0]
+    return s
+
+
+@njit
+def _chains(n, model, F, x, order):
+    for _ in range(n):
+        evaluate_chains(model.context.chains, x, F, order)
+
+
+@njit(_nrt=False)
+def _part(n, pack, model, F, x, v, a, lam, res, ab, brow, bcol, bb):
+    evaluate_chains(model.context.chains, x, F, 2)
+    s = 0.0
+    for _ in range(n):
+        s += part_equations(pack, model.context, F, x, v, a, lam, 0.1, 1.0, 0.5, 0.3e-6, 1.0, 1.0, False, False, res, ab,
+                            brow, bcol, bb)[1]
+    return s
+
+
+@njit(_nrt=False)
+def _part_powers(n, pack, model, F, x, v, lam):
+    evaluate_chains(model.context.chains, x, F, 1)
+    s = 0.0
+    for _ in range(n):
+        s += part_power(pack, model.context, F, x, v) + part_drive_power(pack, model.context, F, 0.1, x, v, lam)
     return s
 
 
@@ -350,16 +386,73 @@ def stale() -> None:
           f"{np.max(np.abs(D[0])):.1f})")
 
 
+def pieces() -> None:
+    """The ``pieces`` costs (module docstring)."""
+    best = lambda f, n: min(_best(f, n) for _ in range(2))  # noqa: E731 (best of 2 x 3)
+    p = ga.AlphaParameters.from_spectral_radius(0.8)
+    for kind in ("clamped", "hinge"):
+        system = api.build_system(load_example("exp1", ['beam.formulation="ffr"', "beam.modes=4"]
+                                               + ([HINGE] if kind == "hinge" else [])))
+        state = initial_state(system)
+        state = CompiledSteps(system, p, ga.NewtonOptions(), 1e-3, state).advance(state, 2345, 0, 10000, 10000)[0]
+        model, layout = system.model(), system.layout
+        res = np.empty(layout.nz)
+        m = BorderedBandMatrix.empty(layout.nz, layout.border, model.bandwidth)
+        x, v, a, lam, F = state.x, state.v, state.xdd, state.lam, np.ascontiguousarray(state.chart)
+        args = (model, F, x, v, a, lam, res, m.ab, m.brow, m.bcol, m.bb)
+        line = [f"residual {best(lambda n: _equations(n, False, *args), 20000):.3f}",
+                f"powers {best(lambda n: _powers(n, model, F, x, v, lam), 20000):.3f}",
+                f"chains to order 2 {best(lambda n: _chains(n, model, F, x, 2), 50000):.3f}",
+                f"order 1 {best(lambda n: _chains(n, model, F, x, 1), 50000):.3f}"]
+        for pack in model.parts:
+            line.append(f"{type(pack).__name__} {best(lambda n: _part(n, pack, *args), 20000):.3f} / "
+                        f"{best(lambda n: _part_powers(n, pack, model, F, x, v, lam), 20000):.3f}")
+        print(f"FFR 4 modes, {kind}, us per call: " + ", ".join(line) + " (each part: equations / powers)",
+              flush=True)
+
+
+def ages(modes: int, steps: int) -> None:
+    """The ``ages`` counts (module docstring)."""
+    from hubbeam.solvers.column_update import PatchedMatrix
+
+    system = api.build_system(load_example("exp1", ['beam.formulation="ffr"', HINGE]
+                                           + ([f"beam.modes={modes}"] if modes else [])))
+    p, log, drift = ga.AlphaParameters.from_spectral_radius(0.8), [], PatchedMatrix.drift
+    PatchedMatrix.drift = lambda self, age: log.append(age) or drift(self, age)
+    bounds = (1, 2, 3, 4, 5, 10, 20, 50, 100, 1000, 10**9)
+    counts = {b: [0, 0] for b in bounds}
+    try:
+        state, kept = initial_state(system), None
+        for _ in range(steps):
+            log.clear()
+            state, n, kept = ga.step(system, state, 1e-3, p, ga.NewtonOptions(), kept)
+            if log:
+                row = counts[next(b for b in bounds if log[-1] <= b)]
+                row[0] += 1
+                row[1] += n > 2
+    finally:
+        PatchedMatrix.drift = drift
+    print(f"FFR {modes or 'nodal'}{' modes' if modes else ''}, hinge, {steps} Python steps: steps on a drifted "
+          "patch by its age (up to), those with a third iteration")
+    for b, (count, third) in counts.items():
+        if count:
+            print(f"  age <= {b:4d}: {count:5d} steps, {third:4d} ({third / count:.3f})")
+
+
 def main() -> None:
     what = sys.argv[1] if len(sys.argv) > 1 else "hinge"
     reps = int(sys.argv[2]) if len(sys.argv) > 2 else 3
-    print(f"{what}: " + ("" if what == "stale" else f"the compiled loop alone, process time, median (range) of "
+    print(f"{what}: " + ("" if what in ("stale", "pieces", "ages") else f"the compiled loop alone, process time, median (range) of "
                                                      f"{reps} alternating runs; ")
           + f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     if what == "newton":
         newton(reps)
     elif what == "stale":
         stale()
+    elif what == "pieces":
+        pieces()
+    elif what == "ages":
+        ages(int(sys.argv[2]) if len(sys.argv) > 2 else 4, int(sys.argv[3]) if len(sys.argv) > 3 else 3000)
     elif what == "loop":
         forms = {"FFR nodal": ['beam.formulation="ffr"'], "FFR 4 modes": ['beam.formulation="ffr"', "beam.modes=4"]}
         if sys.argv[3:] == ["ancf"]:

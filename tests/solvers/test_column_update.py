@@ -138,9 +138,10 @@ def test_the_controller_patches_a_stale_matrix_and_backs_off_when_patches_fail()
     assert reuse[ga.REUSE_VALID] == 0
 
 
-def _exp1_on_a_hinge(modes):
-    """exp1 (the FFR plate, free hub, released under gravity) on the stiff flap hinge of case J."""
-    extra = ['beam.formulation="ffr"', 'beam.joint={kind="revolute", axis="flap", stiffness=1.0e4}']
+def _exp1_on_a_hinge(modes, joint='{kind="revolute", axis="flap", stiffness=1.0e4}'):
+    """exp1 (the FFR plate, free hub, released under gravity) on the stiff flap hinge of case J
+    (or on ``joint``)."""
+    extra = ['beam.formulation="ffr"', f"beam.joint={joint}"]
     return api.build_system(load_example("exp1", extra + ([f"beam.modes={modes}"] if modes else [])))
 
 
@@ -152,6 +153,20 @@ def test_the_compiled_loop_patches_as_the_python_step_does(monkeypatch):
     monkeypatch.setattr(PatchedMatrix, "drift", lambda self, age: drifts.append(age) or drift(self, age))
     _, _, fast, _ = assert_compiled_steps_are_python_steps(_exp1_on_a_hinge(4), "adaptive", dt=1e-3, steps=200,
                                                            every=50)
+    assert fast.patches >= 3 and len(drifts) >= 3
+
+
+@pytest.mark.slow
+def test_the_compiled_loop_patches_two_joint_columns_as_the_python_step_does(monkeypatch):
+    """As above on a flap and lag joint (two joint angles: a patch of two columns and two rows,
+    a 4 x 4 capacitance, and their drift): the same steps, iterations and states, and patches
+    and drifts both happened."""
+    drifts = []
+    drift = PatchedMatrix.drift
+    monkeypatch.setattr(PatchedMatrix, "drift", lambda self, age: drifts.append(age) or drift(self, age))
+    system = _exp1_on_a_hinge(4, '{kind="revolute", axis=["flap", "lag"], stiffness=[1.0e4, 1.0e4]}')
+    assert joint_columns(system.layout).tolist() == [1, 2]  # theta, then the flap and lag angles
+    _, _, fast, _ = assert_compiled_steps_are_python_steps(system, "adaptive", dt=1e-3, steps=300, every=50)
     assert fast.patches >= 3 and len(drifts) >= 3
 
 

@@ -89,6 +89,29 @@ def test_spring_damper_and_motor_rows_are_their_energy_and_power(formulation):
     assert row - _joint_row(bare, x, v, F, c, t) == pytest.approx(dU + 0.9 * 0.6 - motor, rel=1e-9)
 
 
+@pytest.mark.parametrize("formulation", ["ancf", "ffr"])
+def test_a_table_motor_row_and_power_in_the_compiled_equations(formulation):
+    """A motor of a torque table (linear between its knots) on the joint angle: the residual's
+    psi row less the bare joint's is -T(t) and the drive power T(t) psi', T(1.25 s) = 1.25 N m
+    by hand between the knots (1 s, 2 N m) and (2 s, -1 N m). The joint's terms run inlined in
+    the system's compiled equations and powers, which count no references: the table's slices
+    of the joints' pack are read there (a wrong offset or a slice not read would break it)."""
+    law = TorqueLaw.table([0.0, 1.0, 2.0], [0.0, 2.0, -1.0])
+    system = _system(Joint.named("lag", torque=law), formulation, gravity=(0.0, 0.0, 0.0))
+    x, F = system.initial_state()
+    c = system.layout.joint_x(0).start
+    v = np.zeros(system.nx)
+    v[c] = 0.6
+    t = 1.25
+    assert law(t, 0.0, 0.0)[0] == pytest.approx(1.25, rel=1e-15)
+    bare = system.with_beams([replace(system.beams[0], mount=replace(system.beams[0].mount, joint=Joint.named(
+        "lag")))])
+    assert _joint_row(system, x, v, F, c, t) - _joint_row(bare, x, v, F, c, t) == pytest.approx(-1.25, rel=1e-12)
+    _, drive = system.step_powers(t, x, v, np.zeros(system.layout.n_lambda), F)
+    _, bare_drive = bare.step_powers(t, x, v, np.zeros(system.layout.n_lambda), F)
+    assert drive - bare_drive == pytest.approx(1.25 * 0.6, rel=1e-12)
+
+
 def _joint_row(system, x, v, F, c, t):
     zero = np.zeros(system.nx)
     res = system.equations(x, v, zero, np.zeros(system.layout.n_lambda), F, t, 0.0, 0.0, 1.0, 1.0,

@@ -139,9 +139,13 @@ def beam_joints(system):
 # ================================================================ compiled terms: the kind "joint laws"
 class JointLaws(NamedTuple):
     """Every joint axis of a system, one row each: its place, spring, damper, motor and latch.
-    Four arrays, not one per field: the compiled equations count the references of every array of
-    every pack at every residual and power (about 10 ns each; a pack of ten arrays cost a 4-mode
-    FFR beam on a hinge 0.15 to 0.25 us of its 3.9 us residual, ``benchmarks/joint_cost.py``)."""
+    Four arrays, not one per field: a compiled call that counts references counts every array of
+    every pack it is given (about 10 ns each; a pack of ten arrays cost a 4-mode FFR beam on a
+    hinge 0.15 to 0.25 us of its 3.9 us residual, ``benchmarks/joint_cost.py``). The kind's
+    terms of the time step (equations, powers, events) allocate nothing and take no array from
+    a call, so they are registered without reference counting (:data:`KIND`): inlined into the
+    system's compiled equations, powers and events instead of called with the pack, the context
+    and the state's arrays counted at every residual and every call of the step's powers."""
 
     places: np.ndarray  # int64 (n, 11): x index of psi, its beam (energy row), its lock in lambda (-1: none),
     #                     the motor's TorqueKind (-1: no motor) and its reference's kind, and where the motor's
@@ -294,7 +298,7 @@ def joint_latches_pending(pack) -> bool:
 
 KIND = terms.register(JointLaws, pack_joint_laws, joint_equations, joint_energies, joint_power,
                       bandwidth=joint_bandwidth, drive_power=joint_drive_power, events=joint_events,
-                      events_possible=joint_latches_pending)
+                      events_possible=joint_latches_pending, counts_references=False)
 
 
 # ================================================================ Python: what the sensors and the latch read
