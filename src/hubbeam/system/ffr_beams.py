@@ -193,7 +193,7 @@ def _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, motion, vb, vdot):
         vdot[6 + f] = acc[x0 + f]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el, elastic=True):
     """FFR beam k's generalized force on its columns [c (the frame's nc), p (nf)] into ``force``
     (nc + nf; module docstring) and, when ``want_matrix``, its projection H ((6 + nf) x (nc +
@@ -253,7 +253,7 @@ def _beam_scratch(pack, ctx, k, want_matrix):
     return pack.vectors_work[7, :m], sq[0, :n, :m], sq[1, :n, :n], Cv, sq[3, :nf, :nf]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def _beam_residual(pack, ctx, k, x, v, acc, load_factor, want_matrix, coef_k, res):
     """FFR beam k's rows of the residual, coef_k H^T (M_v vdot - Q) (:func:`ffr_beam_terms`, the
     pieces of its matrix left in the scratch of :func:`_beam_scratch`), its z rows into the
@@ -483,6 +483,16 @@ def ffr_tips(pack, ctx, F, x, out):
                                   out[places[k, INDEX]])
 
 
+def ffr_powers_possible(pack: FfrBeams, ctx) -> bool:
+    """Whether the FFR beams can have a power that is not zero (:func:`hubbeam.system.terms.with_powers`):
+    the system's drag (Eq. 37) on them, a beam's structural damping, or a tip force or tip moment
+    (the terms of :func:`ffr_power` and :func:`ffr_drive_power`)."""
+    drag = ctx.drag[0] != 0.0 or ctx.drag[1] != 0.0
+    damped = bool(np.any(pack.scalars[:, 2] != 0.0))  # slot of FFR_GROUPS["scalars"]: damped
+    loaded = bool(np.any(pack.vectors[:, 1:3] != 0.0))  # slots of FFR_GROUPS["vectors"]: tip_force, tip_moment
+    return drag or damped or loaded
+
+
 KIND = terms.register(FfrBeams, pack_ffr_beams, ffr_equations, ffr_beam_energies, ffr_power, ffr_tips,
                       bandwidth=ffr_bandwidth, drive_power=ffr_drive_power, momenta=ffr_momenta,
-                      counts_references=False)
+                      powers_possible=ffr_powers_possible, counts_references=False)
