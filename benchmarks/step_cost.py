@@ -1,12 +1,13 @@
 """Where a compiled step's time goes: one evaluation of the system's equations without and with
 the Newton matrix, and the step's powers (process time per call, best of 3; numba's cache warm).
 
-    python benchmarks/step_cost.py exp1_nodal|exp1_modal|exp1_ancf|casem_modal|spacecraft3d_modal
+    python benchmarks/step_cost.py exp1_nodal|exp1_modal|exp1_ancf|casem_modal|spacecraft3d_modal|R
 
 exp1_nodal: experiment 1 with the nodal FFR beam; exp1_modal: experiment 1 on 4 modes;
 exp1_ancf: experiment 1 with ANCF; casem_modal: case M's free bus with two FFR panels on 4
 modes (benchmarks/case_s.toml); spacecraft3d_modal: the bundled spacecraft3d (the free bus
-under its PD attitude law's slew) with the panels on 4 modes, 8 elements, at 1 ms. A step
+under its PD attitude law's slew) with the panels on 4 modes, 8 elements, at 1 ms; R: case R (case A's plate on 4 modes on the fixed hub,
+benchmarks/case_a.toml, as ``loop_cost.py``). A step
 costs one residual
 for the predictor, one per Newton iteration, the step's powers and the band solves.
 """
@@ -49,6 +50,9 @@ elif case == "exp1_ancf":
 elif case == "spacecraft3d_modal":
     sc = load_example("spacecraft3d", ['beams[*].formulation="ffr"', 'beams[*].modes=4', 'beams[*].elements=8',
                                        'analysis.dt=0.001'])
+elif case == "R":
+    sc = load_scenario(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_a.toml"),
+                       ['beam.formulation="ffr"', 'beam.modes=4', 'beam.elements=8', 'analysis.dt=0.001'])
 else:
     sc = load_scenario(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_s.toml"), ['beams[*].formulation="ffr"', 'beams[*].modes=4', 'analysis.dt=0.001'])
 system = api.build_system(sc)

@@ -132,6 +132,29 @@ def test_modally_reduced_beam(stiffening, real_blade):
         assert close(a, b, 1e-12)
 
 
+@pytest.mark.parametrize("modes", [None, 5])
+def test_moments_of_every_entry_are_the_sparse_moments(modes):
+    """A modal beam's II holds every entry (9 nf^2 of them): the kernels contract it without the
+    column indices (kernels._dense_moments), which must give the sparse loops' numbers to the last
+    bit (the same sums, term for term) and both the dense contraction of II (3, 3, nf, nf) with p
+    and p' to rounding; a nodal beam's II (about 6 % of its entries) takes the sparse loops."""
+    beam = FfrBeam(L, 4, plate(), tip_body=BODY, modes=modes)
+    II = beam.invariants["II"]
+    start, column, value = fk.sparse_entries(II)
+    nf = II.shape[2]
+    assert (start[-1] == 9 * nf * nf) == (modes is not None)
+    rng = np.random.default_rng(3)
+    p, pd = rng.normal(size=nf), rng.normal(size=nf)
+    Q2, Q2d, Q2s, Q2ds = (np.zeros((3, 3, nf)) for _ in range(4))
+    fk._sparse_moments(start, column, value, p, pd, True, nf, Q2s, Q2ds)
+    if modes is not None:
+        fk._dense_moments(value, p, pd, True, nf, Q2, Q2d)
+        assert np.array_equal(Q2, Q2s) and np.array_equal(Q2d, Q2ds)
+    off = ~np.eye(3, dtype=bool)
+    assert close(Q2s, np.einsum("klfg,f->klg", II, p), 1e-14)
+    assert close(Q2ds[off], np.einsum("klfg,f->klg", II, pd)[off], 1e-14)
+
+
 def test_padded_arrays_give_the_same_numbers():
     """Arrays zero-padded beyond nf (stacking beams of different meshes) read only nf."""
     part = make_part(stiffening=True, tip_loads=True, tip_body=BODY, sections=tapered_sections(),

@@ -243,3 +243,77 @@ def test_ffr_energy_balance_with_drag():
     dissipated = e[-1]["dissipated"]
     assert dissipated > 1e-3
     assert np.max(np.abs(balance - balance[0])) < 2e-4 * dissipated  # measured: 2.6e-5 (1.8e-6 J of 0.070 J)
+
+
+#: case R's plate (benchmarks/case_a.toml: a fixed hub, gravity, no drag, no damping) on 4 modes,
+#: and each source of a step power added to it in turn
+CASE_A = __import__("pathlib").Path(__file__).parents[2] / "benchmarks" / "case_a.toml"
+PLATE_ON_MODES = ['beam.formulation="ffr"', "beam.modes=4", "beam.elements=4", "analysis.t_end=0.3",
+                  "analysis.spectral_radius=1.0"]
+POWER_SOURCES = {"nothing": [], "drag": ["damping.linear=0.5"],
+                 "structural damping": ["beam.damping.stiffness_proportional=1e-3"],
+                 "tip force": ["loads.tip_force=[0.0, 1.0, 0.0]"], "tip moment": ["loads.tip_moment=[0.0, 0.0, 0.1]"],
+                 "driven hub": ['hub.motion="prescribed"', 'hub.drive.profile="spin_up"', "hub.drive.omega_s=2.0",
+                                "hub.drive.T=1.0"]}
+
+
+@pytest.mark.parametrize("source", POWER_SOURCES)
+def test_step_powers_skipped_only_where_every_power_is_zero(source):
+    """The time loop skips the step's powers where no part can have one (``model.powers`` False:
+    a fixed hub, FFR beams without drag, structural damping or tip loads;
+    :func:`hubbeam.system.terms.with_powers`). The flag against the powers themselves, computed
+    in full (the model with the flag forced on) at a state with random elastic coordinates,
+    rates and multipliers (theta' = 0 on the fixed hub, its constraint's rate): both zero where
+    the flag is off, not both zero for each source of power, so that a dissipating or driving
+    part declared powerless fails here."""
+    from hubbeam import api
+    from hubbeam.io.scenario import load_scenario
+    from hubbeam.simulation import initial_state
+
+    system = api.build_system(load_scenario(CASE_A, PLATE_ON_MODES + POWER_SOURCES[source]))
+    model = system.model()
+    st = initial_state(system)
+    rng = np.random.default_rng(26)
+    theta = system.layout.theta
+    x, v, lam = st.x.copy(), rng.normal(size=st.v.shape), rng.normal(size=st.lam.shape)
+    elastic = np.arange(x.size) != theta
+    x[elastic] += 1e-3 * rng.normal(size=int(elastic.sum()))
+    if source != "driven hub":
+        v[theta] = 0.0
+    dissipated, drive = system.functions.step_powers(model._replace(powers=True), np.ascontiguousarray(st.chart),
+                                                     0.5, x, v, lam)
+    assert model.powers == (source != "nothing")
+    if source == "nothing":
+        assert dissipated == 0.0 and drive == 0.0
+    else:
+        assert abs(dissipated) + abs(drive) > 1e-6, (dissipated, drive)
+
+
+def test_energy_balance_with_powers_skipped_is_the_balance_with_them_computed(monkeypatch):
+    """Case R's plate on 4 modes (a fixed hub, no drag, no damping), 0.3 s at rho_inf = 1: the run
+    that skips the step's powers (``model.powers`` False) and the run that computes them (the flag
+    forced on) give the same states and energies to the last bit; the powers computed are zero to
+    roundoff (the fixed hub's reaction does no work, theta' = 0), and kinetic + strain +
+    gravity energy stays at its initial value (the balance with no work; an independent check). The
+    drive work computed is the drive's multiplier times theta', roundoff of a rate held at zero."""
+    from hubbeam import api
+    from hubbeam.io.scenario import load_scenario
+    from hubbeam.system import terms
+
+    sc = load_scenario(CASE_A, PLATE_ON_MODES)
+    skipped, failure = api.run(sc, sensors=[Sensor(name="energy", kind="energy")])
+    assert failure is None
+    monkeypatch.setattr(terms, "with_powers", lambda packs, ctx: True)
+    computed, failure = api.run(sc, sensors=[Sensor(name="energy", kind="energy")])
+    assert failure is None
+    e_skipped, e_computed = ({key: np.array([r[key] for r in run.records["energy"]]) for key in
+                              ("kinetic", "strain", "gravity", "total", "dissipated", "drive")}
+                             for run in (skipped, computed))
+    for key in ("kinetic", "strain", "gravity", "total"):
+        assert np.array_equal(e_skipped[key], e_computed[key]), key
+    assert np.all(e_skipped["dissipated"] == 0.0) and np.all(e_skipped["drive"] == 0.0)
+    scale = np.max(e_skipped["kinetic"])  # measured: 0.38 J
+    assert np.all(e_computed["dissipated"] == 0.0)
+    assert np.max(np.abs(e_computed["drive"])) < 1e-12 * scale  # measured: 8.9e-58 J (the multiplier times theta')
+    total = e_skipped["total"]
+    assert np.max(np.abs(total - total[0])) < 1e-9 * scale  # measured: 1.3e-15 J

@@ -22,7 +22,7 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
-from hubbeam.system.law_kernels import drive_values, torque_values
+from hubbeam.system.law_kernels import DriveKind, drive_values, torque_values
 from hubbeam.system.laws import DriveProfile, TorqueLaw
 
 
@@ -89,5 +89,12 @@ def hub_law_drive_power(pack, ctx, F, t, x, v, lam):
     return torque * v[ctx.theta]
 
 
+def hub_law_powers_possible(pack: HubLaws, ctx) -> bool:
+    """Whether the hub's law can have a power that is not zero (:func:`hubbeam.system.terms.with_powers`):
+    not for a fixed hub (held at rest, no torque law): its drive's reaction does no work."""
+    return not (pack.held and int(pack.drive[0]) == DriveKind.REST)
+
+
 KIND = terms.register(HubLaws, pack_hub_laws, hub_law_equations, drive_power=hub_law_drive_power,
+                      powers_possible=hub_law_powers_possible,
                       counts_references=False)

@@ -40,6 +40,8 @@ class SystemModel(NamedTuple):
     context: Context  # what the parts' terms see (:func:`context`)
     bandwidth: int
     events: bool = False  # a part's kind has events (:func:`system_events`): the time loop looks for them
+    powers: bool = True  # a part can have a dissipated or drive power (:func:`hubbeam.system.terms.with_powers`):
+    #                      else :func:`step_powers` is (0, 0) at every state and the time loop does not call it
 
 
 def context(layout, bandwidth: int, gravity, drag, chains) -> Context:
@@ -107,7 +109,10 @@ def step_powers(model, F, t, x, v, lam):
     loop (which would save the ~0.5 us of passing the model): inlined, its unrolled loop over
     the parts took stack that the loop's frame never gave back, ~1.3 kB a step, and a chunk of
     ~6000 steps died of SIGSEGV (tests/solvers/test_compiled_alpha.py). Without reference
-    counting (:func:`system_equations`)."""
+    counting (:func:`system_equations`). (0, 0) without evaluating anything where no part can
+    have a power (``model.powers`` False)."""
+    if not model.powers:
+        return 0.0, 0.0
     ctx = model.context
     evaluate_chains(ctx.chains, x, F, 1)
     dissipated = 0.0

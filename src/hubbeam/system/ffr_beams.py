@@ -193,7 +193,7 @@ def _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, motion, vb, vdot):
         vdot[6 + f] = acc[x0 + f]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el, elastic=True):
     """FFR beam k's generalized force on its columns [c (the frame's nc), p (nf)] into ``force``
     (nc + nf; module docstring) and, when ``want_matrix``, its projection H ((6 + nf) x (nc +
@@ -202,9 +202,10 @@ def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, for
     system evaluated it (:func:`~hubbeam.system.frames.chain_state`) or afresh
     (:func:`_fresh_frame`). Returns the dissipated power (W).
 
-    Compiled without numba's reference counting (it allocates nothing and returns no array):
-    a call that counts the references of the pack's and the context's arrays costs about
-    0.5 us per FFR beam and residual."""
+    Inlined into its callers (it allocates nothing and returns no array), so that the system's
+    equations, which count no references, do not pass it the pack and the context: a compiled
+    call of its own, handed their ~40 arrays field by field, cost about 0.3 us per FFR beam and
+    residual on case R (``benchmarks/residual_pieces.py``), 0.5 us when it counted their references."""
     nf = pack.places[k, NF]
     x0 = pack.places[k, X0]
     n = 6 + nf
@@ -253,12 +254,12 @@ def _beam_scratch(pack, ctx, k, want_matrix):
     return pack.vectors_work[7, :m], sq[0, :n, :m], sq[1, :n, :n], Cv, sq[3, :nf, :nf]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def _beam_residual(pack, ctx, k, x, v, acc, load_factor, want_matrix, coef_k, res):
     """FFR beam k's rows of the residual, coef_k H^T (M_v vdot - Q) (:func:`ffr_beam_terms`, the
     pieces of its matrix left in the scratch of :func:`_beam_scratch`), its z rows into the
-    pack's rows_work[0]. Returns its dissipated power (W). Without numba's reference counting,
-    as :func:`ffr_beam_terms` (the views it builds cost nothing then)."""
+    pack's rows_work[0]. Returns its dissipated power (W). Inlined, as :func:`ffr_beam_terms`
+    (a call of its own cost another 0.3 us on case R)."""
     zx = ctx.z_of_x
     nf = pack.places[k, NF]
     x0 = pack.places[k, X0]
@@ -483,6 +484,16 @@ def ffr_tips(pack, ctx, F, x, out):
                                   out[places[k, INDEX]])
 
 
+def ffr_powers_possible(pack: FfrBeams, ctx) -> bool:
+    """Whether the FFR beams can have a power that is not zero (:func:`hubbeam.system.terms.with_powers`):
+    the system's drag (Eq. 37) on them, a beam's structural damping, or a tip force or tip moment
+    (the terms of :func:`ffr_power` and :func:`ffr_drive_power`)."""
+    drag = ctx.drag[0] != 0.0 or ctx.drag[1] != 0.0
+    damped = bool(np.any(pack.scalars[:, 2] != 0.0))  # slot of FFR_GROUPS["scalars"]: damped
+    loaded = bool(np.any(pack.vectors[:, 1:3] != 0.0))  # slots of FFR_GROUPS["vectors"]: tip_force, tip_moment
+    return drag or damped or loaded
+
+
 KIND = terms.register(FfrBeams, pack_ffr_beams, ffr_equations, ffr_beam_energies, ffr_power, ffr_tips,
                       bandwidth=ffr_bandwidth, drive_power=ffr_drive_power, momenta=ffr_momenta,
-                      counts_references=False)
+                      powers_possible=ffr_powers_possible, counts_references=False)

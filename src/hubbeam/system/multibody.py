@@ -447,8 +447,8 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         layout = self.layout_for(held, static)
         bandwidth = self.bandwidth_for(layout)
         packs = terms.packs(self, layout)
-        return SystemModel(packs, context(layout, bandwidth, self.gravity, self.damping, self.frames.table),
-                           bandwidth, terms.with_events(packs))
+        ctx = context(layout, bandwidth, self.gravity, self.damping, self.frames.table)
+        return SystemModel(packs, ctx, bandwidth, terms.with_events(packs), terms.with_powers(packs, ctx))
 
     @property
     def functions(self) -> Compiled:

@@ -88,6 +88,9 @@ class PartKind:
     has_events: bool = False  # it registered events (:func:`part_events`)
     #: whether a pack of this kind can reach an event at all (register's ``events_possible``; None: yes)
     events_possible: Callable | None = None
+    has_powers: bool = False  # it registered a dissipated or a drive power (:func:`part_power`, :func:`part_drive_power`)
+    #: whether a pack of this kind can have a power that is not zero (register's ``powers_possible``; None: yes)
+    powers_possible: Callable | None = None
 
 
 #: the registered kinds (every kind adds its terms: their order does not matter)
@@ -196,7 +199,7 @@ def _dispatch(stub, pack_class, impl, inline: str = "always", called: bool = Fal
 def register(pack: type, packer: Callable, equations, energies=None, power=None, tips=None,
              bandwidth: Callable = lambda system, layout: 1, drive_power=None, momenta=None,
              events=None, events_possible: Callable | None = None,
-             counts_references: bool = True) -> PartKind:
+             powers_possible: Callable | None = None, counts_references: bool = True) -> PartKind:
     """Register a kind of part: its pack class, its ``packer(system, layout) -> pack | None``,
     ``bandwidth(system, layout)``, the half-bandwidth its band entries need (the distance from
     the diagonal of its farthest entry off the border), and its terms: plain Python functions
@@ -205,7 +208,12 @@ def register(pack: type, packer: Callable, equations, energies=None, power=None,
     :func:`part_momenta` and :func:`part_events` (the ones left out are zero, or no event),
     compiled where the system's equations call them; ``events_possible(pack) -> bool``: whether
     that pack can reach an event (default: yes), so that the time loop does not look for events
-    that cannot happen. Returns the kind."""
+    that cannot happen; ``powers_possible(pack, ctx) -> bool``: whether that pack in a system of
+    context ``ctx`` (:class:`Context`) can have a dissipated or drive power that is not zero
+    (default: yes, when it registered ``power`` or ``drive_power``), so that the time loop does
+    not evaluate powers that are zero at every state (:func:`with_powers`): it must say yes
+    wherever one of them can be nonzero, else the energy balance loses that work without a word.
+    Returns the kind."""
     if any(kind.pack is pack for kind in KINDS):
         raise ValueError(f"{pack.__name__} is registered already")
     called = counts_references
@@ -217,7 +225,8 @@ def register(pack: type, packer: Callable, equations, energies=None, power=None,
               called=called and drive_power is not None)
     _dispatch(part_momenta, pack, momenta if momenta is not None else _no_momenta, "never")
     _dispatch(part_events, pack, events if events is not None else _no_events, called=called and events is not None)
-    kind = PartKind(pack, packer, bandwidth, events is not None, events_possible)
+    kind = PartKind(pack, packer, bandwidth, events is not None, events_possible,
+                    power is not None or drive_power is not None, powers_possible)
     KINDS.append(kind)
     return kind
 
@@ -238,6 +247,15 @@ def with_events(packs: tuple) -> bool:
     """Whether a pack's kind registered events and the pack can reach one: the time loop looks for
     events only then (the look costs about 0.3-1 us per step)."""
     return any(kind.has_events and (kind.events_possible is None or kind.events_possible(p))
+               for kind in KINDS for p in packs if type(p) is kind.pack)
+
+
+def with_powers(packs: tuple, ctx: Context) -> bool:
+    """Whether a pack's kind registered a dissipated or drive power and the pack can have one that
+    is not zero in a system of context ``ctx``: the time loop evaluates the step's powers
+    (:func:`hubbeam.system.equations.step_powers`, about 0.4-0.9 us per step) only then, and
+    takes them as zero otherwise."""
+    return any(kind.has_powers and (kind.powers_possible is None or kind.powers_possible(p, ctx))
                for kind in KINDS for p in packs if type(p) is kind.pack)
 
 
