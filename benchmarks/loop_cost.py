@@ -1,5 +1,5 @@
-"""Where a modal step's time goes inside the compiled time loop, and what a first-iteration
-Newton test would save (issue 26).
+"""Where a modal step's time goes inside the compiled time loop, and what the first-iteration
+Newton test saves (issue 26).
 
     python benchmarks/loop_cost.py parts CASE [REPS]
     python benchmarks/loop_cost.py first-iteration CASE [REPS] [M,M,...] [OVERRIDE ...]
@@ -20,20 +20,18 @@ that copy again with every evaluation of the system's equations done twice (the 
 evaluation's cost is the residuals' share of the step). The rest is the loop's own work:
 predictor, band solves, increments, Newton control, records.
 
-``first-iteration``: a prototype, not hubbeam's solver: a copy of the loop (its source, with
-lines added) in which a step whose iteration matrix is kept from earlier steps may stop after
-its first increment dx1 when |dx1| theta / (1 - theta) / kappa <= tolerance, theta the
-contraction rate measured at the last step that iterated twice on the same kept matrix
-(Hairer and Wanner's use of the previous rate, IV.8; kappa and the tolerance as the solver's
-test after the second increment), at most M such steps in a row before a step iterates twice
-again and measures the rate anew. M = 0 is today's loop (it must print today's numbers). Prints
-the loop's time per step, Newton iterations per step and the results (exp1: the P1 strain at
-5 s, its peak and end; R: the vertical tip's minimum and end). OVERRIDEs are passed to the
-scenario (e.g. analysis.tolerance=1e-12 for a reference converged further).
+``first-iteration``: the solver's loop with ``NewtonOptions.borrowed_rate_steps`` = M for each M
+given (default 0,1,3,8; 8 is the default, 0 the solver before the test existed): a step whose
+iteration matrix is kept from earlier steps may stop after its first increment dx1 when
+|dx1| theta / (1 - theta) / kappa <= tolerance, theta borrowed from earlier steps on the same
+kept matrix (:func:`hubbeam.solvers.generalized_alpha.newton_decide`), at most M such steps in a
+row. Prints the loop's time per step, Newton iterations per step and the results (exp1: the P1
+strain at 5 s, its peak and end; R: the vertical tip's minimum and end). OVERRIDEs are passed
+to the scenario (e.g. analysis.tolerance=1e-12 for a reference converged further).
 
 ``copies``: the loop as it is against copies of its source compiled in this process: unchanged,
-with one more (unused) integer argument first, and the prototype above at M = 0 (its lines
-never taken): how much the compiled loop's speed moves with code that does nothing.
+and with one more (unused) integer argument first: how much the compiled loop's speed moves
+with code that does nothing.
 
 ``powers``: one call (process time, best of 5, as ``step_cost.py``) of the step's powers
 (``step_powers``), of the frames' kinematics to order 1 and 2 (``evaluate_chains``: the powers
@@ -42,14 +40,15 @@ evaluate them to order 1, each residual to order 2) and of the FFR beams' dissip
 every rate raised by 0.1.
 
 ``rates``: the first STEPS (default 2000) steps in Python (:func:`hubbeam.solvers.generalized_alpha.step`,
-the controller the compiled loop shares) with the Newton controller's calls logged: the first
-increments |dx1|, the contraction rates theta = |dx2| / |dx1| of the steps that iterated twice,
-and how many steps the first-iteration test above (the rate of the step before) would have
+the controller the compiled loop shares) at M = 0 with the Newton controller's calls logged: the
+first increments |dx1|, the contraction rates theta = |dx2| / |dx1| of the steps that iterated
+twice, and how many steps a first-iteration test with the rate of the step before would have
 accepted.
 """
 
 from __future__ import annotations
 
+import functools
 import inspect
 import os
 import statistics
@@ -104,32 +103,8 @@ def _loop_source():
 
 def _compile_copy(src, name):
     namespace = dict(compiled_alpha.__dict__)
-    namespace["kept_matrix_worked"] = ga.kept_matrix_worked
     exec(src, namespace)
     return njit(namespace[name])
-
-
-def first_iteration_loop():
-    """A copy of compiled_alpha.advance taking max_borrowed (M) first: the prototype above."""
-    src = _loop_source()
-    src = src.replace("def advance(model,", "def advance_first_iteration(max_borrowed, model,")
-    src = src.replace("    size = 0.0\n", "    size = 0.0\n    borrowed = np.inf\n    n_borrowed = 0\n", 1)
-    old = ("            size = apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, mu_weight, x1, v1, xdd1, lam1)\n"
-           "            action = newton_decide(")
-    new = ("            size = apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, mu_weight, x1, v1, xdd1, lam1)\n"
-           "            if it == 1 and stale and not patched and n_borrowed < max_borrowed and borrowed < refresh_rate:\n"
-           "                if size * borrowed / (1.0 - borrowed) / kappa <= tol:\n"
-           "                    kept_matrix_worked(reuse)\n"
-           "                    n_borrowed += 1\n"
-           "                    converged = True\n"
-           "                    break\n"
-           "            if it == 2 and stale and not patched and np.isfinite(previous):\n"
-           "                borrowed = size / previous\n"
-           "                n_borrowed = 0\n"
-           "            action = newton_decide(")
-    if old not in src:
-        raise SystemExit("compiled_alpha.advance changed: update the prototype's insertion point")
-    return _compile_copy(src.replace(old, new), "advance_first_iteration")
 
 
 class TimedLoop:
@@ -155,18 +130,32 @@ def results(case, traj):
     return f"P1 at 5 s {p1[i5]:.12e}, peak {p1.max():.12e}, end {p1[-1]:.12e}"
 
 
-def measure(case, variants, reps, overrides):
-    """{name: (us per step of each rep, Newton per step, results)} with the variants alternating."""
+def _run(sc, borrowed_steps):
+    """api.run(sc), with NewtonOptions.borrowed_rate_steps = ``borrowed_steps`` (None: the default)."""
+    if borrowed_steps is None:
+        return api.run(sc)
+    options = ga.NewtonOptions  # api.run imports it when called
+    ga.NewtonOptions = functools.partial(options, borrowed_rate_steps=borrowed_steps)
+    try:
+        return api.run(sc)
+    finally:
+        ga.NewtonOptions = options
+
+
+def measure(case, variants, reps, overrides, borrowed=None):
+    """{name: (us per step of each rep, Newton per step, results)} with the variants alternating;
+    ``borrowed``: {name: NewtonOptions.borrowed_rate_steps} (default: the default)."""
+    borrowed = borrowed or {}
     timed = TimedLoop()
     t_end = CASES[case][1]
-    for loop in variants.values():  # compile or load each before timing
+    for name, loop in variants.items():  # compile or load each before timing
         timed.loop = loop
-        api.run(scenario(case, 0.002, overrides))
+        _run(scenario(case, 0.002, overrides), borrowed.get(name))
     out = {name: [[], None, None] for name in variants}
     for _ in range(reps):
         for name, loop in variants.items():
             timed.loop, timed.seconds = loop, 0.0
-            traj, failure = api.run(scenario(case, t_end, overrides))
+            traj, failure = _run(scenario(case, t_end, overrides), borrowed.get(name))
             if failure is not None:
                 raise failure
             out[name][0].append(timed.seconds / traj.steps * 1e6)
@@ -227,7 +216,7 @@ def rates(case, n_steps):
     system = api.build_system(sc)
     state = initial_state(system)
     p = ga.AlphaParameters.from_spectral_radius(sc.analysis.spectral_radius)
-    options = ga.NewtonOptions(tolerance=sc.analysis.tolerance)
+    options = ga.NewtonOptions(tolerance=sc.analysis.tolerance, borrowed_rate_steps=0)
     kept = None
     ga.newton_decide = logged
     try:
@@ -267,19 +256,15 @@ def main(argv):
         out = measure(case, variants, reps, [])
     elif mode == "first-iteration":
         ms = [int(m) for m in argv[3].split(",")] if len(argv) > 3 else [0, 1, 3, 8]
-        prototype = first_iteration_loop()
-        variants = {"the loop as it is": compiled_alpha.advance}
-        variants.update({f"M = {m}": (lambda *args, m=m: prototype(m, *args)) for m in ms})
-        out = measure(case, variants, reps, argv[4:])
+        variants = {f"M = {m}": compiled_alpha.advance for m in ms}
+        out = measure(case, variants, reps, argv[4:], {f"M = {m}": m for m in ms})
     elif mode == "copies":
         src = _loop_source()
         copy = _compile_copy(src, "advance")
         with_argument = _compile_copy(src.replace("def advance(model,", "def advance_argument(unused, model,"),
                                       "advance_argument")
-        prototype = first_iteration_loop()
         variants = {"the loop as it is": compiled_alpha.advance, "a copy of its source": copy,
-                    "the copy with an unused argument": lambda *args: with_argument(0, *args),
-                    "the prototype at M = 0": lambda *args: prototype(0, *args)}
+                    "the copy with an unused argument": lambda *args: with_argument(0, *args)}
         out = measure(case, variants, reps, [])
     else:
         raise SystemExit(__doc__)

@@ -241,6 +241,7 @@ class CompiledSteps(PythonSteps):
         self.matrix = (storage.ab, np.zeros(m, dtype=np.int32), storage.brow, storage.bcol, storage.bb,
                        np.zeros((layout.border, m)), np.zeros((layout.border, layout.border)))
         self.reuse = ga.reuse_state()
+        self.rate = ga.borrowed_rate()
         columns = joint_columns(layout, newton.update_columns)
         k = columns.shape[0]
         rows = (np.zeros((k, layout.nz)) for _ in range(8))  # the kept columns, G, H, Ut, the last patch's, drifts
@@ -253,7 +254,7 @@ class CompiledSteps(PythonSteps):
         tol = newton.tolerance * max(system.length_scale, 1.0)
         self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations,
                         ga.multiplier_weights(system.layout, dt, params.beta, newton.tolerance, newton.tests_hold_torque),
-                        ga.KAPPA)
+                        ga.KAPPA, newton.borrowed_rate_steps)
         self.loop = compiled_alpha.loop_for(system)
         self.advance(state, 0, 0, 1, 1)  # compile or load the loop now, not inside the timed run
 
@@ -268,7 +269,7 @@ class CompiledSteps(PythonSteps):
         with interrupt.deferred():  # a signal handler must not raise inside compiled code; see simulate
             status, size, t = self.loop(
                 self.model, chart, state.t, x, v, xdd, a, lam, self.dt, n_steps, self.alpha, self.options,
-                self.system.mass_scale, CHART_LIMIT, self.matrix, self.reuse, self.patch, self.work_done, power,
+                self.system.mass_scale, CHART_LIMIT, self.matrix, self.reuse, self.rate, self.patch, self.work_done, power,
                 counters, (step0, every, total), records)
         steps, its, factorisations, n_rec, patches = (int(c) for c in counters)
         self.power = (power[0], power[1])

@@ -111,8 +111,8 @@ def test_a_singular_patched_matrix_is_refused():
 
 def _decide(reuse, it, stale, columns, patched):
     """newton_decide after a converging increment (size 0) at iteration ``it``."""
-    return ga.newton_decide(0.0, np.inf, it, stale, int(ga.MatrixUpdate.ADAPTIVE), 0.25, 2, 1e-9, reuse, ga.KAPPA,
-                            columns, patched)
+    return ga.newton_decide(0.0, np.inf, it, stale, int(ga.MatrixUpdate.ADAPTIVE), 0.25, 2, 0, 1e-9, reuse,
+                            ga.borrowed_rate(), ga.KAPPA, columns, patched)
 
 
 def test_the_controller_patches_a_stale_matrix_and_backs_off_when_patches_fail():

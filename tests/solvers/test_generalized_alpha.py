@@ -164,3 +164,177 @@ def test_the_newton_test_does_not_loosen_with_dt_spacecraft(dt, t_end, torque, p
     assert float(np.abs(modified["torque"] - full["torque"]).max()) < torque * peak
     assert float(np.abs(modified["tip_a_tangential"] - modified["tip_b_tangential"]).max()) < pair
     assert float(np.abs(full["tip_a_tangential"] - full["tip_b_tangential"]).max()) < 1e-12
+
+
+# --- the first-iteration test with a borrowed contraction rate (NewtonOptions.borrowed_rate_steps) ---
+
+ADAPTIVE = 2  # MatrixUpdate.ADAPTIVE
+TOL = 1e-9
+
+
+def _newton_step(reuse, rate, first, second=None, borrowed_steps=8):
+    """One step's controller calls on the kept matrix: the first increment ``first``, then (if it
+    does not converge) the second ``second``. Returns the iterations the step took."""
+    from hubbeam.solvers import generalized_alpha as ga
+
+    assert ga.newton_start(ADAPTIVE, reuse)
+    action = ga.newton_decide(first, np.inf, 1, True, ADAPTIVE, 0.25, 2, borrowed_steps, TOL, reuse, rate, ga.KAPPA,
+                              0, False)
+    if action == ga.NewtonAction.CONVERGED:
+        return 1
+    assert action == ga.NewtonAction.KEEP
+    assert ga.newton_decide(second, first, 2, True, ADAPTIVE, 0.25, 2, borrowed_steps, TOL, reuse, rate, ga.KAPPA, 0,
+                            False) == ga.NewtonAction.CONVERGED
+    return 2
+
+
+def test_the_borrowed_rate_is_dropped_when_the_matrix_is_refactorised_or_patched():
+    """Two steps measure the kept matrix's rate (1e-4), the third stops after its first increment
+    (1e-8 m: 1e-8 * 3e-4 / 0.01 < 1e-9); after a factorisation or a patch the same increment
+    iterates twice again (a rate kept across them would let it stop)."""
+    from hubbeam.solvers import generalized_alpha as ga
+
+    for renew in (ga.factorised, ga.patch_made):
+        reuse, rate = ga.reuse_state(), ga.borrowed_rate()
+        ga.factorised(reuse)
+        assert [_newton_step(reuse, rate, 1e-6, 1e-10) for _ in range(3)] == [2, 2, 2]  # no rate, one rate, then:
+        assert _newton_step(reuse, rate, 1e-8, 1e-12) == 1
+        renew(reuse)
+        assert _newton_step(reuse, rate, 1e-8, 1e-12) == 2
+
+
+def test_the_borrowed_rate_is_the_larger_of_two_times_the_age_and_is_measured_again_after_m_steps():
+    from hubbeam.solvers import generalized_alpha as ga
+
+    reuse, rate = ga.reuse_state(), ga.borrowed_rate()
+    ga.factorised(reuse)
+    _newton_step(reuse, rate, 1e-6, 1e-10)  # 1e-4 at age 1
+    _newton_step(reuse, rate, 1e-6, 1e-13)  # 1e-7 at age 2
+    # age 3: 3e-4, the larger of the two per step of age, allows 1e-8 m but not 1e-7 m (1e-7 would pass with 1e-7)
+    assert _newton_step(reuse, rate, 1e-7, 1e-12, borrowed_steps=2) == 2  # measures 1e-5 (per age 3.3e-6)
+    assert [_newton_step(reuse, rate, 1e-8, 1e-12, borrowed_steps=2) for _ in range(4)] == [1, 1, 2, 1]
+    reuse[ga.REUSE_AGE] = 1000  # the same rates 1000 steps after the factorisation: 0.017 leaves 1.7e-10 m, too much
+    assert _newton_step(reuse, rate, 1e-8, 1e-12) == 2
+    reuse, rate = ga.reuse_state(), ga.borrowed_rate()  # borrowed_rate_steps = 0: never
+    ga.factorised(reuse)
+    assert [_newton_step(reuse, rate, 1e-8, 1e-14, borrowed_steps=0) for _ in range(5)] == [2] * 5
+
+
+def _exp1(extra):
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+
+    return api.build_system(load_example("exp1", ['beam.formulation="ffr"'] + extra))
+
+
+def _compiled_run(system, options, steps, every=10, dt=1e-3):
+    """(recorded coordinates, Newton iterations per step) of ``steps`` compiled steps from the start."""
+    from hubbeam.simulation import CompiledSteps, initial_state
+    from hubbeam.solvers import generalized_alpha as ga
+
+    state = initial_state(system)
+    loop = CompiledSteps(system, ga.AlphaParameters.from_spectral_radius(0.8), options, dt, state)
+    _, n, its, _, error, chunk = loop.advance(state, steps, 0, every, steps)
+    assert error is None and n == steps
+    return chunk.states.x, its / steps
+
+
+def test_the_borrowed_rate_keeps_the_results_within_the_tolerance_of_a_run_converged_further():
+    """exp1 on 4 modes (5 s at 1 ms, released under gravity: the matrix is kept for the whole
+    run) stops most steps after one increment, and its coordinates stay within N tol L of the
+    run converged to 1e-12 (N steps, each leaving at most the tolerance: the test bounds the
+    estimate by kappa tol, which leaves a factor 1/kappa for a borrowed rate that is too
+    small). Measured 6.4e-7 (the first mode's amplitude; the step size's error, dt against
+    dt/2, is 4.9e-6 there), against 7.3e-6."""
+    from hubbeam.solvers import generalized_alpha as ga
+
+    system = _exp1(["beam.modes=4"])
+    steps = 5000
+    reference, _ = _compiled_run(system, ga.NewtonOptions(tolerance=1e-12, borrowed_rate_steps=0), steps)
+    x, newton = _compiled_run(system, ga.NewtonOptions(), steps)
+    assert newton < 1.2  # measured 1.12: most steps stopped after one increment
+    bound = steps * ga.NewtonOptions().tolerance * max(system.length_scale, 1.0)
+    assert np.max(np.abs(x - reference)) < bound
+
+
+def test_a_kept_matrix_that_goes_stale_within_steps_is_not_trusted_with_its_first_rates():
+    """The nodal FFR beam on a stiff flap hinge, its matrix refactorised every ~6 steps (no
+    column update): a rate borrowed as measured (no age factor, not the larger of two) let
+    steps stop with 1e-8 m left (one pair of increments measured 2e-6 where the matrix
+    contracted at 5e-3) and took the run 3.0e-7 from the run converged to 1e-12 in 2 s,
+    against 2.9e-8 without borrowing. It must stay where borrowing leaves it (measured: equal)."""
+    from hubbeam.solvers import generalized_alpha as ga
+
+    system = _exp1(['beam.joint={kind="revolute", axis="flap", stiffness=1.0e4}'])
+    reference, _ = _compiled_run(system, ga.NewtonOptions(tolerance=1e-12, borrowed_rate_steps=0), 2000, every=20)
+    never, _ = _compiled_run(system, ga.NewtonOptions(update_columns=False, borrowed_rate_steps=0), 2000, every=20)
+    borrowed, _ = _compiled_run(system, ga.NewtonOptions(update_columns=False), 2000, every=20)
+    assert np.max(np.abs(borrowed - reference)) < 2.0 * np.max(np.abs(never - reference))
+
+
+def test_the_compiled_loop_borrows_as_the_python_step_does_across_chunks():
+    """exp1 on 4 modes, 300 steps in chunks of 7 (the rates are carried between the compiled
+    loop's calls): the same Newton iterations in every chunk and the same states."""
+    from hubbeam.simulation import CompiledSteps, PythonSteps, initial_state
+    from hubbeam.solvers import generalized_alpha as ga
+
+    system = _exp1(["beam.modes=4"])
+    state = initial_state(system)
+    p, options = ga.AlphaParameters.from_spectral_radius(0.8), ga.NewtonOptions()
+    fast, slow = CompiledSteps(system, p, options, 1e-3, state), PythonSteps(system, p, options, 1e-3, state)
+    a = b = state
+    total = 0
+    for k in range(0, 301, 7):
+        a, _, its_a, _, err_a, _ = fast.advance(a, 7, k, 7, 301)
+        b, _, its_b, _, err_b, _ = slow.advance(b, 7, k, 7, 301)
+        assert err_a is None and err_b is None and its_a == its_b
+        total += its_a
+    assert total < 1.3 * 301  # most steps stopped after one increment
+    for u, w in ((a.x, b.x), (a.v, b.v), (a.lam, b.lam)):
+        assert w.size == 0 or np.max(np.abs(u - w)) <= 1e-9 * max(1.0, np.max(np.abs(w)))
+
+
+def test_without_borrowing_the_solver_gives_the_numbers_it_gave_before(monkeypatch):
+    """borrowed_rate_steps = 0: exp1 on 4 modes (20 s at 1 ms) gives the P1 strains and Newton
+    iterations printed by the solver before the test existed (`python benchmarks/loop_cost.py
+    first-iteration exp1_modal 1 0` on commit 3378476): 1.98675 iterations per step, P1 at 5 s
+    2.732459343782e-4, peak 8.132899212080e-4, end 4.176980610330e-4 (with borrowing: 1.113 and
+    2.7324627e-4, 8.1328826e-4, 4.1769884e-4)."""
+    import functools
+
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+    from hubbeam.solvers import generalized_alpha as ga
+
+    monkeypatch.setattr(ga, "NewtonOptions", functools.partial(ga.NewtonOptions, borrowed_rate_steps=0))
+    traj, failure = api.run(load_example("exp1", ['beam.formulation="ffr"', "beam.modes=4", "analysis.t_end=20.0"]))
+    assert failure is None
+    assert traj.newton_iterations == 39735 and traj.steps == 20000
+    p1 = np.array(traj.records["strain_P1"])
+    at5 = p1[int(np.argmin(np.abs(np.array(traj.times) - 5.0)))]
+    assert [at5, p1.max(), p1[-1]] == pytest.approx([2.732459343782e-4, 8.132899212080e-4, 4.176980610330e-4],
+                                                   rel=1e-10)
+
+
+def test_a_modal_beam_on_a_free_hub_keeps_energy_and_angular_momentum_while_borrowing():
+    """An undamped FFR beam on 4 modes on a free hub (rho_inf = 1, 5 s at 1 ms, the same model
+    and bounds as tests/system/test_ffr_system.py's 0.6 s) with most steps stopping after one
+    increment: the total energy within 1e-4 of the largest kinetic energy, the angular momentum
+    about the axis (gravity along it) within 1e-4 of the hub's. Measured 6.8e-6 and 1.6e-5 (the
+    energy's drift grows about linearly: 1.4e-5 at 10 s, 2.8e-5 at 20 s); without borrowing
+    4e-8 and 5e-8 over 20 s: each borrowed step leaves theta |dx1|, with the same sign step
+    after step, where a second iteration left theta^2 |dx1|."""
+    from hubbeam.elements.ffr.body import FfrBeam
+    from hubbeam.solvers import generalized_alpha as ga
+
+    system = single_beam_system(FfrBeam(L, 4, plate(), modes=4), radius=0.35, twist=np.pi / 4, motion="free",
+                                hub_inertia=9.557, gravity=np.array([0, -9.81, 0]))
+    sensors = SENSORS + [Sensor(name="H", kind="angular_momentum")]
+    traj = simulate(system, sensors, t_end=5.0, dt=1e-3, spectral_radius=1.0, output_dt=0.05,
+                    newton=ga.NewtonOptions())
+    assert traj.newton_iterations < 1.2 * traj.steps  # measured 1.11
+    e = traj.records["energy"]
+    total = np.array([r["total"] for r in e])
+    assert np.max(np.abs(total - total[0])) < 1e-4 * max(r["kinetic"] for r in e)
+    hub_momentum = 9.557 * max(abs(w) for w in traj.records["omega"])
+    assert max(abs(h) for h in traj.records["H"]) < 1e-4 * hub_momentum

@@ -43,7 +43,7 @@ def cache_is_cold(function=None) -> bool:
 
 @njit(cache=True)
 def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scale, chart_limit,
-            matrix, reuse, patch, work, power, counters, schedule, records):
+            matrix, reuse, rate, patch, work, power, counters, schedule, records):
     """Take up to ``n_steps`` steps of length h from (t, x, v, xdd, a, lam) in the charts F.
 
     The state arrays are updated in place after every converged step, so on any failure
@@ -51,10 +51,12 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     = (tolerance on |dx| (m), max iterations, NewtonOptions.update_code, refresh rate,
     refresh iterations, the multipliers' weights of
     :func:`~hubbeam.solvers.generalized_alpha.multiplier_weights`, the factor kappa of the
-    rate-based error estimate). ``matrix`` = (ab, ipiv,
+    rate-based error estimate, NewtonOptions.borrowed_rate_steps). ``matrix`` = (ab, ipiv,
     brow, bcol, bb, Y, schur): the bordered storage and its factors (:func:`hubbeam.system.assembly.bordered_factor`), and ``reuse``
     (the reuse state of :func:`hubbeam.solvers.generalized_alpha.reuse_state`; valid means
-    the factors are for this h and these charts) carry the factorisation between calls.
+    the factors are for this h and these charts) carry the factorisation between calls, and
+    ``rate`` (1) the contraction rate measured on it
+    (:func:`hubbeam.solvers.generalized_alpha.borrowed_rate`).
     ``patch`` = (columns (x indices of the joint angles, int), their z indices, the kept
     matrix's columns, G, H, Ut, G and Ut of the last patch, their drifts per step, K^-1, S, w,
     s, residual): the storage of a column update of the kept factors
@@ -74,7 +76,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     chart_limit; the caller changes the chart), or a failure.
     """
     am, af, beta, gamma = alpha
-    tol, max_iterations, update, refresh_rate, refresh_iterations, mu_weight, kappa = newton
+    tol, max_iterations, update, refresh_rate, refresh_iterations, mu_weight, kappa, borrowed_steps = newton
     ab, ipiv, brow, bcol, bb, Y, schur = matrix
     columns, z_columns, kept, G, H, Ut, G_last, Ut_last, G_drift, Ut_drift, K_inverse, S, w_patch, s_patch, res_patch \
         = patch
@@ -168,8 +170,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 reuse[REUSE_VALID] = 0
                 return Outcome.NOT_FINITE, size, t
             size = apply_increment(res, zx, zl, gprime, bprime, mass_scale / ck, mu_weight, x1, v1, xdd1, lam1)
-            action = newton_decide(size, previous, it, stale, update, refresh_rate, refresh_iterations, tol, reuse,
-                                   kappa, n_columns, patched)
+            action = newton_decide(size, previous, it, stale, update, refresh_rate, refresh_iterations, borrowed_steps,
+                                   tol, reuse, rate, kappa, n_columns, patched)
             if action == NewtonAction.CONVERGED:
                 converged = True
                 break

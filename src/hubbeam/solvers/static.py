@@ -27,7 +27,8 @@ import numpy as np
 from numpy.linalg import LinAlgError
 
 from hubbeam.errors import ChartSingularityError, ConvergenceError
-from hubbeam.solvers.generalized_alpha import KAPPA, MatrixUpdate, NewtonAction, newton_decide, reuse_state
+from hubbeam.solvers.generalized_alpha import (KAPPA, MatrixUpdate, NewtonAction, borrowed_rate, newton_decide,
+                                               reuse_state)
 from hubbeam.system.multibody import MultibodySystem
 
 #: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
@@ -104,6 +105,7 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0, r
     layout = system.layout_for(True, static=True)
     scale_x = max(system.length_scale, 1e-12)
     reuse = reuse_state()
+    rate = borrowed_rate()
     norm = np.inf
     relaxing = relax > 0.0
     for it in range(1, max_iter + 1):
@@ -122,8 +124,8 @@ def _newton(system, x, mu, F, factor, tol_force, tol_step, max_iter, spin=0.0, r
         x = x + dx
         mu = mu + dmu
         step = np.max(np.abs(dx[layout.beams_x])) / scale_x
-        action = newton_decide(step, np.inf, it, False, int(MatrixUpdate.ITERATION), 1.0, max_iter, tol_step, reuse,
-                               KAPPA, 0, False)
+        action = newton_decide(step, np.inf, it, False, int(MatrixUpdate.ITERATION), 1.0, max_iter, 0, tol_step,
+                               reuse, rate, KAPPA, 0, False)
         if norm <= tol_force or action == NewtonAction.CONVERGED:
             return x, mu, it, norm
     raise ConvergenceError(f"residual {norm:.3e} N after {max_iter} iterations")
