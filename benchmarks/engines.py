@@ -284,26 +284,12 @@ def run_hubbeam_spacecraft(elements: int, t_end: float, dt: float) -> dict:
             "tip_b": [[float(r[p]) for p in parts] for r in rec["tip_b"]]}
 
 
-def _spacecraft_cost(elements: int, t_end: float, dt: float, free_base: bool, modes: int = 0,
-                     slew: bool = False) -> dict:
-    """Case M: the panels of case S (benchmarks/case_s.toml, released turning) on the free bus
-    (``free_base``) or, the same panels, elements, steps and Newton settings, on a free 1-DOF
-    hub (no [base]; hub inertia 120 kg m^2, the bus's about its y axis, spun up from rest by a
-    constant 2 N m: a free hub has no initial speed);
-    ANCF panels, or FFR on ``modes`` clamped modes. Output every 10 ms.
-
-    ``slew``: the same motion on both instead: the bus with its principal inertia (150, 120,
-    160 kg m^2, no products) starts at rest and a PD law turns it by 30 deg in 20 s about the
-    hub axis y (spacecraft3d's gains about y: kp = 138 N m/rad, kd = 550 N m s/rad; the other
-    axes held at rest), and the free hub (120 kg m^2) follows the same slew under the same PD
-    law: the two models then move alike and differ only in the base's other five degrees of
-    freedom, which stay at rest."""
+def case_m_text(free_base: bool, slew: bool = False) -> str:
+    """The scenario text of case M (:func:`_spacecraft_cost`): case S's panels (ANCF, 8
+    elements, before overrides) on the free bus (``free_base``) or on a free 1-DOF hub, turned
+    by the tumble and a constant hub torque, or by the same PD slew (``slew``)."""
     import os
     import re
-    import tempfile
-
-    from hubbeam import api
-    from hubbeam.io.scenario import load_scenario
 
     with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_s.toml"), encoding="utf-8") as f:
         text = f.read()
@@ -321,6 +307,30 @@ def _spacecraft_cost(elements: int, t_end: float, dt: float, free_base: bool, mo
         if slew:  # the hub's torque tables after its keys
             text = text.replace("[[beams]]", law + "\n[[beams]]", 1)
         text = text.replace('[[sensors]]\nname = "rate"\nkind = "base_angular_velocity"\n', "")
+    return text
+
+
+def _spacecraft_cost(elements: int, t_end: float, dt: float, free_base: bool, modes: int = 0,
+                     slew: bool = False) -> dict:
+    """Case M: the panels of case S (benchmarks/case_s.toml, released turning) on the free bus
+    (``free_base``) or, the same panels, elements, steps and Newton settings, on a free 1-DOF
+    hub (no [base]; hub inertia 120 kg m^2, the bus's about its y axis, spun up from rest by a
+    constant 2 N m: a free hub has no initial speed);
+    ANCF panels, or FFR on ``modes`` clamped modes. Output every 10 ms.
+
+    ``slew``: the same motion on both instead: the bus with its principal inertia (150, 120,
+    160 kg m^2, no products) starts at rest and a PD law turns it by 30 deg in 20 s about the
+    hub axis y (spacecraft3d's gains about y: kp = 138 N m/rad, kd = 550 N m s/rad; the other
+    axes held at rest), and the free hub (120 kg m^2) follows the same slew under the same PD
+    law: the two models then move alike and differ only in the base's other five degrees of
+    freedom, which stay at rest."""
+    import os
+    import tempfile
+
+    from hubbeam import api
+    from hubbeam.io.scenario import load_scenario
+
+    text = case_m_text(free_base, slew)
     overrides = [f"beams[*].elements={elements}", f"analysis.dt={dt}", "analysis.output_dt=0.01"]
     if modes:
         overrides += ['beams[*].formulation="ffr"', f"beams[*].modes={modes}"]

@@ -51,6 +51,12 @@ class Link:
     rows: tuple = ()
 
     @property
+    def is_identity(self) -> bool:
+        """A constant link that moves nothing: offset zero and rotation exactly the unit matrix."""
+        return (self.kind == LinkKind.CONSTANT and all(v == 0.0 for v in self.offset)
+                and all(self.rotation[i][j] == (1.0 if i == j else 0.0) for i in range(3) for j in range(3)))
+
+    @property
     def coordinates(self) -> int:
         if self.kind == LinkKind.FFR_TIP:
             return len(self.rows[0])
@@ -127,8 +133,11 @@ class Chain:
         return Chain(self.links + tuple(links))
 
     def merged(self) -> "Chain":
-        """The same frame with every run of constant links merged into one (fewer products to
-        evaluate; the pose and its derivatives are the same)."""
+        """The same frame with every run of constant links merged into one and a merged link that
+        is exactly the identity (no offset, the unit rotation) left out: fewer products to
+        evaluate, and chains that differ only by such links become equal (:meth:`Frames.add
+        <hubbeam.system.system_frames.Frames.add>` then keeps one). The pose and its derivatives
+        are the same (a product by the identity changes at most the sign of a zero)."""
         out: list[Link] = []
         for link in self.links:
             if link.kind == LinkKind.CONSTANT and out and out[-1].kind == LinkKind.CONSTANT:
@@ -137,7 +146,10 @@ class Chain:
                 R2, t2 = np.array(link.rotation), np.array(link.offset)
                 link = constant(t1 + R1 @ t2, R1 @ R2)
             out.append(link)
-        return Chain(tuple(out))
+        kept = tuple(link for link in out if not link.is_identity)
+        if kept and kept[0].kind == LinkKind.FFR_TIP:  # an FFR tip is never first: the identity stays before it
+            kept = (constant(),) + kept
+        return Chain(kept)
 
     @property
     def coordinates(self) -> list[int]:

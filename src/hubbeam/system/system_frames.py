@@ -26,6 +26,7 @@ class Frames:
 
     def __init__(self, base: Base, placement: HubPlacement, beams, layout: Layout) -> None:
         self._chains: list[Chain] = []
+        self._merged: list[Chain] = []  # each chain's :meth:`Chain.merged`, to find an equal one
         base_chain = base.chain(layout.base_x.start)
         self.base = self.add(base_chain)
         self.shaft = self.add(base_chain.then(placement.link()))
@@ -50,8 +51,17 @@ class Frames:
         self._table: ChainTable | None = None
 
     def add(self, chain: Chain) -> int:
-        """Register a chain; returns its index."""
+        """Register a chain; returns its index. A chain equal to one registered before, link by
+        link once constants are merged (:meth:`Chain.merged`: a hub on the base's origin and axes,
+        a beam's reference at azimuth 0, a root without twist, a free base's centre of mass at its
+        origin), gets that chain's index, so that the frame is evaluated once per evaluation of the
+        system's equations (:func:`~hubbeam.system.frames.evaluate_chains`), not once per name."""
+        key = chain.merged()
+        for index, known in enumerate(self._merged):
+            if known == key:
+                return index
         self._chains.append(chain)
+        self._merged.append(key)
         self._table = None
         return len(self._chains) - 1
 
