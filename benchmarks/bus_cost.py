@@ -11,7 +11,7 @@ dissipated and drive power). Prints the frames' count, orders and widths of each
 """
 import os, sys, time, tempfile
 import numpy as np
-from numba import njit, literal_unroll
+from numba import njit
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from engines import case_m_text
 from hubbeam import api

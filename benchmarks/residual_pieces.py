@@ -17,7 +17,7 @@ from hubbeam import api
 from hubbeam.io.scenario import load_example, load_scenario
 from hubbeam.simulation import initial_state
 from hubbeam.system.assembly import BorderedBandMatrix
-from hubbeam.system.equations import system_equations, step_powers
+from hubbeam.system.equations import system_equations
 from hubbeam.system.frames import evaluate_chains, chain_state
 from hubbeam.system.terms import part_equations, part_power, part_drive_power
 from hubbeam.system import ffr_beams as fb
@@ -102,7 +102,6 @@ def t_elastic(n, pack, x):
 def t_mass(n, pack, ctx, x):
     k = 0
     nf = pack.places[k, 2]; x0 = pack.places[k, 1]
-    p = x[x0:x0 + nf]
     force, H, Mv, Cv, K_el = fb._beam_scratch(pack, ctx, k, False)
     cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
     vectors, Q2s, squares, ints = fb._kernel_work(pack)
