@@ -101,7 +101,7 @@ def t_elastic(n, pack, x):
 @njit(_nrt=False)
 def t_mass(n, pack, ctx, x):
     k = 0
-    nf = pack.places[k, 2]; x0 = pack.places[k, 1]
+    nf = pack.places[k, 2]
     force, H, Mv, Cv, K_el = fb._beam_scratch(pack, ctx, k, False)
     cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
     vectors, Q2s, squares, ints = fb._kernel_work(pack)
