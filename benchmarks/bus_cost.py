@@ -9,18 +9,14 @@ powers: the step's powers; chains2 / chains1: every frame's kinematics to order 
 equations') / 1 (the powers'); eq / pow KIND: one kind's terms alone (its residual rows; its
 dissipated and drive power). Prints the frames' count, orders and widths of each model.
 """
-import os, sys, time, tempfile
-import numpy as np
+import os, sys, tempfile
 from numba import njit
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from engines import case_m_text
-from hubbeam import api
+from probes import best, evaluation_point, part_loop, part_powers_loop
 from hubbeam.io.scenario import load_scenario
-from hubbeam.simulation import initial_state
-from hubbeam.system.assembly import BorderedBandMatrix
 from hubbeam.system.equations import system_equations, step_powers
 from hubbeam.system.frames import evaluate_chains
-from hubbeam.system.terms import part_equations, part_power, part_drive_power
 
 @njit(_nrt=False)  # as the system's functions: the kinds' terms count no references
 def loop_eq(n, want, model, F, x, v, a, lam, res, ab, brow, bcol, bb):
@@ -43,45 +39,17 @@ def loop_chains(n, table, x, F, order):
     for i in range(n):
         evaluate_chains(table, x, F, order)
 
-@njit(_nrt=False)
-def loop_part(n, pack, ctx, F, x, v, a, lam, res, ab, brow, bcol, bb):
-    s = 0.0
-    for i in range(n):
-        m, p = part_equations(pack, ctx, F, x, v, a, lam, 0.1 + 1e-9 * i, 1.0, 0.5, 0.3e-6, 1.0, 1.0, False, False, res, ab, brow, bcol, bb)
-        s += m
-    return s
-
-@njit(_nrt=False)
-def loop_partpow(n, pack, ctx, F, x, v, lam):
-    s = 0.0
-    for i in range(n):
-        s += part_power(pack, ctx, F, x, v) + part_drive_power(pack, ctx, F, 0.1 + 1e-9 * i, x, v, lam)
-    return s
-
-def best(f, n):
-    f(1); b = 1e9
-    for _ in range(5):
-        t = time.process_time(); f(n); b = min(b, (time.process_time() - t) / n * 1e6)
-    return b
-
-def model_of(free_base):
+def scenario_of(free_base):
     text = case_m_text(free_base, slew=True)
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "m.toml")
         open(path, "w").write(text)
-        sc = load_scenario(path, ['beams[*].formulation="ffr"', 'beams[*].modes=4', 'analysis.dt=0.001'])
-    system = api.build_system(sc)
-    return system
+        return load_scenario(path, ['beams[*].formulation="ffr"', 'beams[*].modes=4', 'analysis.dt=0.001'])
 
 for free_base in (True, False):
-    system = model_of(free_base)
-    st = initial_state(system)
-    model = system.model()
-    lay = system.layout
-    res = np.empty(lay.nz)
-    mat = BorderedBandMatrix.empty(lay.nz, lay.border, model.bandwidth)
-    x, v, a, lam, F = st.x, st.v + 0.1, st.xdd + 0.05, st.lam, np.ascontiguousarray(st.chart)
-    ctx = model.context
+    point = evaluation_point(scenario_of(free_base), acceleration=0.05)
+    model, lay, ctx, res, mat = point.model, point.layout, point.ctx, point.res, point.mat
+    x, v, a, lam, F = point.x, point.v, point.a, point.lam, point.F
     tab = ctx.chains
     out = {}
     out["residual"] = best(lambda n: loop_eq(n, False, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 50000)
@@ -91,7 +59,7 @@ for free_base in (True, False):
     out["chains1"] = best(lambda n: loop_chains(n, tab, x, F, 1), 50000)
     for pack in model.parts:
         nm = type(pack).__name__
-        out["eq " + nm] = best(lambda n: loop_part(n, pack, ctx, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 50000)
-        out["pow " + nm] = best(lambda n: loop_partpow(n, pack, ctx, F, x, v, lam), 50000)
+        out["eq " + nm] = best(lambda n: part_loop(n, pack, ctx, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 50000)
+        out["pow " + nm] = best(lambda n: part_powers_loop(n, pack, ctx, F, x, v, lam), 50000)
     print(("BUS" if free_base else "HUB"), f"nz {lay.nz} border {lay.border} bw {model.bandwidth} chains {tab.orders.shape[0]} orders {list(tab.orders)} widths {[tab.width(k) for k in range(tab.orders.shape[0])]}")
     print("   " + ", ".join(f"{k} {v:.2f}" for k, v in out.items()))

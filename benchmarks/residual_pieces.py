@@ -10,16 +10,13 @@ the mass matrix and the building of its argument tuples; the FFR beam's terms wi
 the scatter into the residual; and the whole ``system_equations``. Pieces timed alone run
 warmer than inside a step: their sum is less than the whole.
 """
-import os, sys, time
-import numpy as np
+import os, sys
 from numba import njit
-from hubbeam import api
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from probes import best, evaluation_point, part_loop, part_powers_loop
 from hubbeam.io.scenario import load_example, load_scenario
-from hubbeam.simulation import initial_state
-from hubbeam.system.assembly import BorderedBandMatrix
 from hubbeam.system.equations import system_equations
 from hubbeam.system.frames import evaluate_chains, chain_state
-from hubbeam.system.terms import part_equations, part_power, part_drive_power
 from hubbeam.system import ffr_beams as fb
 from hubbeam.elements.ffr import kernels as kn
 
@@ -28,21 +25,6 @@ def t_chains(n, ctx, x, F, order):
     for i in range(n):
         evaluate_chains(ctx.chains, x, F, order)
     return 0.0
-
-@njit(_nrt=False)
-def t_part(n, pack, ctx, F, x, v, a, lam, res, ab, brow, bcol, bb):
-    s = 0.0
-    for i in range(n):
-        m, p = part_equations(pack, ctx, F, x, v, a, lam, 0.1, 1.0, 0.5, 0.3e-6, 1.0, 1.0, False, False, res, ab, brow, bcol, bb)
-        s += p
-    return s
-
-@njit(_nrt=False)
-def t_partpow(n, pack, ctx, F, x, v, lam):
-    s = 0.0
-    for i in range(n):
-        s += part_power(pack, ctx, F, x, v) + part_drive_power(pack, ctx, F, 0.1, x, v, lam)
-    return s
 
 @njit(_nrt=False)
 def t_vspace(n, pack, ctx, x, v, a):
@@ -126,25 +108,15 @@ elif case == "exp1_nodal":
 else:
     sc = load_scenario(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_a.toml"),
                        ['beam.formulation="ffr"', 'beam.modes=4', 'beam.elements=8', 'analysis.dt=0.001'])
-system = api.build_system(sc)
-st = initial_state(system)
-model = system.model()
-lay = system.layout
-res = np.empty(lay.nz)
-mat = BorderedBandMatrix.empty(lay.nz, lay.border, model.bandwidth)
-x, v, a, lam, F = st.x, st.v + 0.1, st.xdd, st.lam, np.ascontiguousarray(st.chart)
-ctx = model.context
-def best(f, n):
-    f(1); b = 1e9
-    for _ in range(5):
-        t = time.process_time(); f(n); b = min(b, (time.process_time() - t) / n * 1e6)
-    return b
+point = evaluation_point(sc)
+model, lay, ctx, res, mat = point.model, point.layout, point.ctx, point.res, point.mat
+x, v, a, lam, F = point.x, point.v, point.a, point.lam, point.F
 N = 50000
 print(case, "nz", lay.nz, "nx", len(x), [type(q).__name__ for q in model.parts], "chains", ctx.chains.orders)
 print(f"chains order2 {best(lambda n: t_chains(n, ctx, x, F, 2), N):.3f}  order1 {best(lambda n: t_chains(n, ctx, x, F, 1), N):.3f}")
 evaluate_chains(ctx.chains, x, F, 2)
 for pk in model.parts:
-    print(f"  part {type(pk).__name__}: eq {best(lambda n: t_part(n, pk, ctx, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), N):.3f}  powers {best(lambda n: t_partpow(n, pk, ctx, F, x, v, lam), N):.3f}")
+    print(f"  part {type(pk).__name__}: eq {best(lambda n: part_loop(n, pk, ctx, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), N):.3f}  powers {best(lambda n: part_powers_loop(n, pk, ctx, F, x, v, lam), N):.3f}")
     if isinstance(pk, fb.FfrBeams):
         print(f"    vspace_terms {best(lambda n: t_vspace(n, pk, ctx, x, v, a), N):.3f} rates {best(lambda n: t_rates(n, pk, ctx, x, v, a), N):.3f} moments {best(lambda n: t_moments(n, pk, x, v), N):.3f} elastic {best(lambda n: t_elastic(n, pk, x), N):.3f} mass {best(lambda n: t_mass(n, pk, ctx, x), N):.3f} args {best(lambda n: t_args(n, pk, ctx), N):.3f}")
 

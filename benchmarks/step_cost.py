@@ -13,15 +13,13 @@ for the predictor, one per Newton iteration, the step's powers and the band solv
 """
 import os
 import sys
-import time
 
-import numpy as np
 from numba import njit
 
-from hubbeam import api
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from probes import best, evaluation_point  # noqa: E402
+
 from hubbeam.io.scenario import load_example, load_scenario
-from hubbeam.simulation import initial_state
-from hubbeam.system.assembly import BorderedBandMatrix
 from hubbeam.system.equations import system_equations, step_powers
 
 @njit
@@ -55,19 +53,10 @@ elif case == "R":
                        ['beam.formulation="ffr"', 'beam.modes=4', 'beam.elements=8', 'analysis.dt=0.001'])
 else:
     sc = load_scenario(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_s.toml"), ['beams[*].formulation="ffr"', 'beams[*].modes=4', 'analysis.dt=0.001'])
-system = api.build_system(sc)
-st = initial_state(system)
-model = system.model()
-lay = system.layout
-res = np.empty(lay.nz)
-mat = BorderedBandMatrix.empty(lay.nz, lay.border, model.bandwidth)
-x, v, a, lam, F = st.x, st.v + 0.1, st.xdd, st.lam, np.ascontiguousarray(st.chart)
-def best(f, n):
-    f(1); b = 1e9
-    for _ in range(3):
-        t = time.process_time(); f(n); b = min(b, (time.process_time() - t) / n * 1e6)
-    return b
-r = best(lambda n: loop_eq(n, False, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 50000)
-m = best(lambda n: loop_eq(n, True, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 10000)
-p = best(lambda n: loop_pow(n, model, F, x, v, lam), 50000)
+point = evaluation_point(sc)
+model, lay, res, mat = point.model, point.layout, point.res, point.mat
+x, v, a, lam, F = point.x, point.v, point.a, point.lam, point.F
+r = best(lambda n: loop_eq(n, False, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 50000, 3)
+m = best(lambda n: loop_eq(n, True, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 10000, 3)
+p = best(lambda n: loop_pow(n, model, F, x, v, lam), 50000, 3)
 print(f"{case}: nz {lay.nz}, parts {[type(q).__name__ for q in model.parts]}: residual {r:.2f} us, with matrix {m:.2f} us, step powers {p:.2f} us")
