@@ -68,6 +68,12 @@ def assert_contract(code, stdout: str, stderr: str, json_out: bool = False) -> N
         json.loads(stdout, parse_constant=lambda c: (_ for _ in ()).throw(AssertionError(f"{c} in JSON")))
 
 
+def without_notes(stderr: str) -> str:
+    """stderr without its notes (``hubbeam: note:`` lines, such as the one before the first
+    compile on a cold numba cache, which a test cannot count on): the error or failure line."""
+    return "\n".join(ln for ln in stderr.splitlines() if ln.strip() and not ln.startswith("hubbeam: note:"))
+
+
 def no_temporary_files(directory) -> bool:
     """No half-written results left behind (the atomic writes' temporary files)."""
     return not [p for p in Path(directory).iterdir() if ".part" in p.name or p.name.startswith(".hubbeam-probe")]

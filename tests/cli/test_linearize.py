@@ -7,7 +7,7 @@ import xarray as xr
 
 from hubbeam import api
 from hubbeam.io.scenario import load_example
-from tests.cli.helpers import EXAMPLES, assert_contract, cli
+from tests.cli.helpers import EXAMPLES, assert_contract, cli, without_notes
 
 SMALL = ["--set", "beam.elements=4", "--set", "analysis.load_steps=4"]
 
@@ -71,11 +71,11 @@ def test_load_inputs_from_the_command_line():
 def test_bad_input_is_one_line_naming_the_option(tmp_path):
     code, out, err = cli("linearize", EXAMPLES / "cantilever.toml", *SMALL, "--inputs", "hub_torque")
     assert_contract(code, out, err)
-    assert code == 2 and err.startswith("hubbeam: error: --inputs: hub_torque needs a free hub")
+    assert code == 2 and without_notes(err).startswith("hubbeam: error: --inputs: hub_torque needs a free hub")
     code, out, err = cli("linearize", EXAMPLES / "exp1.toml", *SMALL, "--inputs", "tip_force:blade9")
     assert code == 2 and "--inputs: tip_force:blade9" in err
     code, out, err = cli("linearize", EXAMPLES / "exp1.toml", *SMALL, "-o", tmp_path / "no" / "ss.nc")
-    assert code == 2 and err.startswith("hubbeam: error: -o ")
+    assert code == 2 and without_notes(err).startswith("hubbeam: error: -o ")
 
 
 def test_reduced_models_from_the_command_line(tmp_path):
