@@ -489,8 +489,9 @@ def ffr_powers_possible(pack: FfrBeams, ctx) -> bool:
     the system's drag (Eq. 37) on them, a beam's structural damping, or a tip force or tip moment
     (the terms of :func:`ffr_power` and :func:`ffr_drive_power`)."""
     drag = ctx.drag[0] != 0.0 or ctx.drag[1] != 0.0
-    damped = bool(np.any(pack.scalars[:, 2] != 0.0))  # slot of FFR_GROUPS["scalars"]: damped
-    loaded = bool(np.any(pack.vectors[:, 1:3] != 0.0))  # slots of FFR_GROUPS["vectors"]: tip_force, tip_moment
+    scalar, vector = FFR_GROUPS["scalars"].index, FFR_GROUPS["vectors"].index
+    damped = bool(np.any(pack.scalars[:, scalar("damped")] != 0.0))
+    loaded = bool(np.any(pack.vectors[:, [vector("tip_force"), vector("tip_moment")]] != 0.0))
     return drag or damped or loaded
 
 
