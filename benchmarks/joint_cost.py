@@ -64,6 +64,7 @@ from hubbeam import api
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import CompiledSteps, initial_state
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers import newton_control as nc
 from hubbeam.solvers.column_update import joint_columns
 from hubbeam.system.assembly import BorderedBandMatrix, bordered_factor, bordered_solve
 from hubbeam.system.equations import step_powers, system_equations
@@ -175,7 +176,7 @@ def compare(models: dict, steps: int, reps: int, dt: float = 1e-3, options: dict
     options = options or {}
     for _ in range(reps):
         for label, (system, state) in built.items():
-            loop = CompiledSteps(system, p, options.get(label, ga.NewtonOptions()), dt, state)
+            loop = CompiledSteps(system, p, options.get(label, nc.NewtonOptions()), dt, state)
             t = time.process_time()
             _, n, its, _, err, _ = loop.advance(state, steps, 0, 10, steps)
             if err is not None:
@@ -244,7 +245,7 @@ def newton(reps: int) -> None:
         system = api.build_system(load_example("exp1", ffr + extra))
         states, kept = [initial_state(system)], None
         for _ in range(300):
-            state, _, kept = ga.step(system, states[-1], h, p, ga.NewtonOptions(), kept)
+            state, _, kept = ga.step(system, states[-1], h, p, nc.NewtonOptions(), kept)
             states.append(state)
         _, D = _differences_matrix(system, states[300], h, p)
         radii = []
@@ -269,7 +270,7 @@ def newton(reps: int) -> None:
         system.dynamic_equations = matrix
         state, kept, its = start, None, 0
         for _ in range(1500):
-            state, n, kept = ga.step(system, state, h, p, ga.NewtonOptions(), kept)
+            state, n, kept = ga.step(system, state, h, p, nc.NewtonOptions(), kept)
             its += n
         print(f"FFR nodal, hinge, first 1.5 s with {label}: Newton {its / 1500:.3f}, LU {calls[0] / 1500:.4f} per step",
               flush=True)
@@ -280,7 +281,7 @@ def newton(reps: int) -> None:
             system = api.build_system(load_example("exp1", extra + [HINGE]))
             state = initial_state(system)
             for ri in (2, 3):
-                loop = CompiledSteps(system, p, ga.NewtonOptions(refresh_iterations=ri), h, state)
+                loop = CompiledSteps(system, p, nc.NewtonOptions(refresh_iterations=ri), h, state)
                 t = time.process_time()
                 _, n, its, _, _, _ = loop.advance(state, 10000, 0, 10, 10000)
                 runs.setdefault((form, ri), []).append((1e6 * (time.process_time() - t) / n, its / n,
@@ -301,7 +302,7 @@ def columns(reps: int) -> None:
         for update in (True, False):
             label = f"{name}, hinge, {'update' if update else 'refactorise'}"
             models[label] = load_example("exp1", extra + [HINGE])
-            options[label] = ga.NewtonOptions(update_columns=update)
+            options[label] = nc.NewtonOptions(update_columns=update)
     per = report(compare(models, 10000, reps, options=options))
     for name, extra in forms.items():
         clamped = per[f"{name}, clamped"]
@@ -311,7 +312,7 @@ def columns(reps: int) -> None:
         state, p = initial_state(system), ga.AlphaParameters.from_spectral_radius(0.8)
         x = []
         for update in (True, False):
-            loop = CompiledSteps(system, p, ga.NewtonOptions(update_columns=update), 1e-3, state)
+            loop = CompiledSteps(system, p, nc.NewtonOptions(update_columns=update), 1e-3, state)
             *_, err, chunk = loop.advance(state, 10000, 0, 10, 10000)
             if err is not None:
                 raise err
@@ -334,7 +335,7 @@ def stale() -> None:
         system = api.build_system(load_example("exp1", ['beam.formulation="ffr"', HINGE] + extra))
         state = initial_state(system)
         for update in ("adaptive", "step"):
-            loop = CompiledSteps(system, p, ga.NewtonOptions(update=update), 1e-3, state)
+            loop = CompiledSteps(system, p, nc.NewtonOptions(update=update), 1e-3, state)
             start, seconds = state, []
             for k in range(10):
                 lu0, patches0 = loop.factorisations, loop.patches
@@ -349,24 +350,24 @@ def stale() -> None:
                 print("  per second: Newton " + " ".join(f"{s[1]:.3f}" for s in seconds)
                       + "; patches " + " ".join(f"{s[3]:.3f}" for s in seconds))
     system = api.build_system(load_example("exp1", ['beam.formulation="ffr"', "beam.modes=4", HINGE]))
-    decide = ga.newton_decide
+    decide = nc.newton_decide
     for update in ("adaptive", "step"):
         log, rates = [], {}
-        ga.newton_decide = lambda size, previous, it, st, *a, log=log: log.append((size, previous, it, st, a[-1])) \
+        nc.newton_decide = lambda size, previous, it, st, *a, log=log: log.append((size, previous, it, st, a[-1])) \
             or decide(size, previous, it, st, *a)
         state, kept = initial_state(system), None
         try:
             for _ in range(300):
                 log.clear()
-                reuse = kept.reuse.copy() if kept is not None else ga.reuse_state()
-                state, _, kept = ga.step(system, state, 1e-3, p, ga.NewtonOptions(update=update), kept)
+                reuse = kept.reuse.copy() if kept is not None else nc.reuse_state()
+                state, _, kept = ga.step(system, state, 1e-3, p, nc.NewtonOptions(update=update), kept)
                 if len(log) < 2 or log[1][3] != log[0][3]:
                     continue
                 kind = ("new matrix" if not log[0][3] else "patch made" if log[0][4]
-                        else "patch carried" if reuse[ga.REUSE_PATCHED] else "kept matrix")
+                        else "patch carried" if reuse[nc.REUSE_PATCHED] else "kept matrix")
                 rates.setdefault(kind, []).append((log[0][0], log[1][0] / log[0][0]))
         finally:
-            ga.newton_decide = decide
+            nc.newton_decide = decide
         print(f"FFR 4 modes, hinge, first 0.3 s, update {update}: " + "; ".join(
             f"{kind} ({len(r)} steps): |dx1| {statistics.median(a for a, _ in r):.1e}, rate "
             f"{statistics.median(b for _, b in r):.1e}" for kind, r in rates.items()))
@@ -374,7 +375,7 @@ def stale() -> None:
     psi = int(joint_columns(system.layout)[0])
     states, kept = [initial_state(system)], None
     for _ in range(300):
-        state, _, kept = ga.step(system, states[-1], 1e-3, p, ga.NewtonOptions(update="step"), kept)
+        state, _, kept = ga.step(system, states[-1], 1e-3, p, nc.NewtonOptions(update="step"), kept)
         states.append(state)
     acc = np.array([s.xdd[psi] for s in states[200:]])
     signs = int(np.sum(np.diff(np.sign(acc - acc.mean())) != 0))
@@ -394,7 +395,7 @@ def pieces() -> None:
         system = api.build_system(load_example("exp1", ['beam.formulation="ffr"', "beam.modes=4"]
                                                + ([HINGE] if kind == "hinge" else [])))
         state = initial_state(system)
-        state = CompiledSteps(system, p, ga.NewtonOptions(), 1e-3, state).advance(state, 2345, 0, 10000, 10000)[0]
+        state = CompiledSteps(system, p, nc.NewtonOptions(), 1e-3, state).advance(state, 2345, 0, 10000, 10000)[0]
         model, layout = system.model(), system.layout
         res = np.empty(layout.nz)
         m = BorderedBandMatrix.empty(layout.nz, layout.border, model.bandwidth)
@@ -425,7 +426,7 @@ def ages(modes: int, steps: int) -> None:
         state, kept = initial_state(system), None
         for _ in range(steps):
             log.clear()
-            state, n, kept = ga.step(system, state, 1e-3, p, ga.NewtonOptions(), kept)
+            state, n, kept = ga.step(system, state, 1e-3, p, nc.NewtonOptions(), kept)
             if log:
                 row = counts[next(b for b in bounds if log[-1] <= b)]
                 row[0] += 1

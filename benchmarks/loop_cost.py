@@ -24,7 +24,7 @@ predictor, band solves, increments, Newton control, records.
 given (default 0,1,3,8; 8 is the default, 0 the solver before the test existed): a step whose
 iteration matrix is kept from earlier steps may stop after its first increment dx1 when
 |dx1| theta / (1 - theta) / kappa <= tolerance, theta borrowed from earlier steps on the same
-kept matrix (:func:`hubbeam.solvers.generalized_alpha.newton_decide`), at most M such steps in a
+kept matrix (:func:`hubbeam.solvers.newton_control.newton_decide`), at most M such steps in a
 row. Prints the loop's time per step, Newton iterations per step and the results (exp1: the P1
 strain at 5 s, its peak and end; R: the vertical tip's minimum and end). OVERRIDEs are passed
 to the scenario (e.g. analysis.tolerance=1e-12 for a reference converged further).
@@ -64,6 +64,7 @@ from hubbeam import api
 from hubbeam.io.scenario import load_example, load_scenario
 from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers import newton_control as nc
 from hubbeam.simulation import initial_state
 from hubbeam.system.equations import step_powers, system_equations, uncached_twins
 from hubbeam.system.ffr_beams import FfrBeams, _dissipated_power
@@ -134,12 +135,12 @@ def _run(sc, borrowed_steps):
     """api.run(sc), with NewtonOptions.borrowed_rate_steps = ``borrowed_steps`` (None: the default)."""
     if borrowed_steps is None:
         return api.run(sc)
-    options = ga.NewtonOptions  # api.run imports it when called
-    ga.NewtonOptions = functools.partial(options, borrowed_rate_steps=borrowed_steps)
+    options = nc.NewtonOptions  # api.run imports it when called
+    nc.NewtonOptions = functools.partial(options, borrowed_rate_steps=borrowed_steps)
     try:
         return api.run(sc)
     finally:
-        ga.NewtonOptions = options
+        nc.NewtonOptions = options
 
 
 def measure(case, variants, reps, overrides, borrowed=None):
@@ -206,7 +207,7 @@ def powers(case):
 
 def rates(case, n_steps):
     log = []
-    decide = ga.newton_decide
+    decide = nc.newton_decide
 
     def logged(size, previous, it, *rest):
         log[-1].append(size)
@@ -216,21 +217,21 @@ def rates(case, n_steps):
     system = api.build_system(sc)
     state = initial_state(system)
     p = ga.AlphaParameters.from_spectral_radius(sc.analysis.spectral_radius)
-    options = ga.NewtonOptions(tolerance=sc.analysis.tolerance, borrowed_rate_steps=0)
+    options = nc.NewtonOptions(tolerance=sc.analysis.tolerance, borrowed_rate_steps=0)
     kept = None
-    ga.newton_decide = logged
+    nc.newton_decide = logged
     try:
         for _ in range(n_steps):
             log.append([])
             state, _, kept = ga.step(system, state, sc.analysis.dt, p, options, kept)
     finally:
-        ga.newton_decide = decide
+        nc.newton_decide = decide
     twice = [(s[0], s[1] / s[0]) for s in log if len(s) >= 2 and s[0] > 0.0]
     theta = np.array([r for _, r in twice])
     first = np.array([d for d, _ in twice])
     tol = options.tolerance * max(system.length_scale, 1.0)
     accepted = sum(1 for k in range(1, len(log)) if len(log[k - 1]) >= 2 and log[k - 1][0] > 0.0
-                   and log[k][0] * (t := log[k - 1][1] / log[k - 1][0]) / (1.0 - t) / ga.KAPPA <= tol)
+                   and log[k][0] * (t := log[k - 1][1] / log[k - 1][0]) / (1.0 - t) / nc.KAPPA <= tol)
     print(f"{case}, {n_steps} Python steps: {len(twice)} iterated twice or more; |dx1| median {np.median(first):.2e} "
           f"max {first.max():.2e} m; theta median {np.median(theta):.2e}, min {theta.min():.2e}, max {theta.max():.2e}; "
           f"tolerance {tol:.3e}; the first-iteration test with the step before's rate would accept "

@@ -50,10 +50,11 @@ def assert_compiled_steps_are_python_steps(system, update, dt=2e-3, steps=40, ev
     the two final states (compiled, Python) and the two steppers."""
     from hubbeam.simulation import CompiledSteps, PythonSteps, initial_state
     from hubbeam.solvers import generalized_alpha as ga
+    from hubbeam.solvers import newton_control as nc
 
     state = initial_state(system)
     p = ga.AlphaParameters.from_spectral_radius(0.8)
-    options = ga.NewtonOptions(update=update)
+    options = nc.NewtonOptions(update=update)
     fast, slow = CompiledSteps(system, p, options, dt, state), PythonSteps(system, p, options, dt, state)
     a, steps_a, its_a, _, err_a, rec_a = fast.advance(state, steps, 0, every, steps)
     b, steps_b, its_b, _, err_b, rec_b = slow.advance(state, steps, 0, every, steps)

@@ -9,6 +9,7 @@ from hubbeam.elements.section import Section
 from hubbeam.io.scenario import Sensor
 from hubbeam.simulation import change_chart, initial_state, simulate
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers import newton_control as nc
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
@@ -172,7 +173,7 @@ def test_strain_gauges_read_over_a_chunk_are_the_gauges_read_state_by_state():
     gauges = [(0, 0.2, 0.01, 0.00125), (1, 0.3, -0.02, 0.00125), (1, 1.0, 0.0, -0.00125), (2, 0.5, 0.01, 0.00125)]
     state = initial_state(system)
     params = ga.AlphaParameters.from_spectral_radius(0.8)
-    steps = CompiledSteps(system, params, ga.NewtonOptions(), 2e-3, state, (False, False, gauges))
+    steps = CompiledSteps(system, params, nc.NewtonOptions(), 2e-3, state, (False, False, gauges))
     *_, error, chunk = steps.advance(state, 60, 0, 20, 60)
     assert error is None and len(chunk) == 3
     for i in range(len(chunk)):
@@ -205,7 +206,7 @@ def test_sensors_read_over_a_chunk_are_the_sensors_read_state_by_state():
     assert system.compiled
     state = initial_state(system)
     params = ga.AlphaParameters.from_spectral_radius(0.8)
-    steps = CompiledSteps(system, params, ga.NewtonOptions(), 2e-3, state, record_needs(scenario.sensors, system))
+    steps = CompiledSteps(system, params, nc.NewtonOptions(), 2e-3, state, record_needs(scenario.sensors, system))
     *_, error, chunk = steps.advance(state, 90, 0, 30, 90)
     assert error is None and len(chunk) == 3
     assert {s.kind for s in scenario.sensors} >= {"hub_angle", "hub_angular_velocity", "applied_torque",
@@ -241,7 +242,7 @@ def test_base_sensors_read_over_a_chunk_are_the_base_sensors_read_state_by_state
     scenario = validate({**scenario.model_dump(exclude_none=True), "sensors": extra})
     system = api.build_system(scenario)
     state = initial_state(system)
-    steps = CompiledSteps(system, ga.AlphaParameters.from_spectral_radius(0.8), ga.NewtonOptions(), 2e-3, state,
+    steps = CompiledSteps(system, ga.AlphaParameters.from_spectral_radius(0.8), nc.NewtonOptions(), 2e-3, state,
                           record_needs(scenario.sensors, system))
     *_, error, chunk = steps.advance(state, 60, 0, 20, 60)
     assert error is None and len(chunk) == 3
@@ -294,5 +295,5 @@ def test_a_fixed_hubs_holding_torque_is_tested_as_a_torque_only_where_a_sensor_r
     hold = np.asarray(read.records["hold"], dtype=float)
     assert np.ptp(hold) > 0.1  # the slew loads the hub: the torque converged is not trivially zero
     strict = simulate(api.build_system(held), [s for s in held.sensors if s.kind != "hub_torque"], 3.0,
-                      held.analysis.dt, output_dt=0.5, newton=replace(ga.NewtonOptions(), hold_torque=True))
+                      held.analysis.dt, output_dt=0.5, newton=replace(nc.NewtonOptions(), hold_torque=True))
     assert strict.newton_iterations > plain.newton_iterations

@@ -315,7 +315,7 @@ def run(scenario: Scenario, progress=None, torque: TorqueLaw | None = None, sens
     from hubbeam.errors import ComputationError
     from hubbeam.limits import check_run
     from hubbeam.simulation import initial_state, simulate
-    from hubbeam.solvers.generalized_alpha import NewtonOptions
+    from hubbeam.solvers.newton_control import NewtonOptions
 
     scenario = as_scenario(scenario)
     torque = torque_argument(torque, scenario)

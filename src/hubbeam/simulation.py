@@ -13,6 +13,7 @@ from hubbeam.sensors import prepare_chunk, record_needs
 from hubbeam.solvers import compiled_alpha
 from hubbeam.solvers.column_update import joint_columns
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers import newton_control as nc
 from hubbeam.errors import ChartSingularityError, ComputationError, ConvergenceError
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.assembly import BorderedBandMatrix
@@ -240,8 +241,8 @@ class CompiledSteps(PythonSteps):
         m = storage.ab.shape[1]
         self.matrix = (storage.ab, np.zeros(m, dtype=np.int32), storage.brow, storage.bcol, storage.bb,
                        np.zeros((layout.border, m)), np.zeros((layout.border, layout.border)))
-        self.reuse = ga.reuse_state()
-        self.rate = ga.borrowed_rate()
+        self.reuse = nc.reuse_state()
+        self.rate = nc.borrowed_rate()
         columns = joint_columns(layout, newton.update_columns)
         k = columns.shape[0]
         rows = (np.zeros((k, layout.nz)) for _ in range(8))  # the kept columns, G, H, Ut, the last patch's, drifts
@@ -254,7 +255,7 @@ class CompiledSteps(PythonSteps):
         tol = newton.tolerance * max(system.length_scale, 1.0)
         self.options = (tol, newton.max_iterations, newton.update_code, newton.refresh_rate, newton.refresh_iterations,
                         ga.multiplier_weights(system.layout, dt, params.beta, newton.tolerance, newton.tests_hold_torque),
-                        ga.KAPPA, newton.borrowed_rate_steps)
+                        nc.KAPPA, newton.borrowed_rate_steps)
         self.loop = compiled_alpha.loop_for(system)
         self.advance(state, 0, 0, 1, 1)  # compile or load the loop now, not inside the timed run
 
@@ -300,7 +301,7 @@ class CompiledSteps(PythonSteps):
         return new, steps, its, status == ga.Outcome.CHART_LIMIT_REACHED, error, chunk
 
     def chart_changed(self):
-        self.reuse[ga.REUSE_VALID] = 0
+        self.reuse[nc.REUSE_VALID] = 0
 
 
 def latch(system: MultibodySystem, state: ga.AlphaState, work: dict, time: float | None = None):
@@ -328,7 +329,7 @@ CHUNK_SECONDS = 0.25
 
 
 def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
-             output_dt: float | None = None, progress=None, newton: ga.NewtonOptions = ga.NewtonOptions(),
+             output_dt: float | None = None, progress=None, newton: nc.NewtonOptions = nc.NewtonOptions(),
              state: ga.AlphaState | None = None, recorder=None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
 

@@ -244,6 +244,7 @@ def test_step_response_is_the_nonlinear_response_to_first_order():
     frequencies differ by 0.4 % at 4 elements, 1e-5 at 16), which is not exactly at rest there."""
     from hubbeam.simulation import simulate
     from hubbeam.solvers import generalized_alpha as ga
+    from hubbeam.solvers import newton_control as nc
 
     sensors = [('sensors=[{name = "P1", kind = "surface_strain", x = 0.3, surface = "upper"}, '
                 '{name = "tip", kind = "tip_deflection"}, {name = "omega", kind = "hub_angular_velocity"}]')]
@@ -254,7 +255,7 @@ def test_step_response_is_the_nonlinear_response_to_first_order():
     errors = []
     for u in (2.0, 4.0):  # N m: the hub reaches 0.06 / 0.12 rad/s in 0.3 s
         system = api.build_system(exp1(SMALL, sensors, [f"hub.torque={u}"]))
-        traj = simulate(system, sc.sensors, 0.3, 2e-4, 0.9, 0.01, newton=ga.NewtonOptions(tolerance=1e-12),
+        traj = simulate(system, sc.sensors, 0.3, 2e-4, 0.9, 0.01, newton=nc.NewtonOptions(tolerance=1e-12),
                         state=ga.init(system, eq.x, eq.chart))
         nonlinear = np.column_stack([traj.records["P1"]] + [[r[k] for r in traj.records["tip"]]
                                                            for k in ("radial", "vertical", "tangential")]

@@ -26,7 +26,7 @@ from hubbeam.io.scenario import (
     validate,
 )
 from hubbeam.simulation import simulate
-from hubbeam.solvers.generalized_alpha import NewtonOptions
+from hubbeam.solvers.newton_control import NewtonOptions
 from hubbeam.solvers.modal import modal_analysis, rotating_modal_analysis
 from hubbeam.solvers.static import solve_static
 from hubbeam.system.multibody import single_beam_system

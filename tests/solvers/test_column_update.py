@@ -11,6 +11,7 @@ from hubbeam import api
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import CompiledSteps, initial_state
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers import newton_control as nc
 from hubbeam.solvers.column_update import PatchedMatrix, joint_columns
 from hubbeam.system.assembly import BorderedBandMatrix
 from tests.conftest import assert_compiled_steps_are_python_steps
@@ -84,22 +85,22 @@ def test_a_drifted_patch_solves_the_linearly_extrapolated_patched_matrix():
 
 
 def test_a_patch_drifts_only_after_a_second_patch_of_the_same_factors():
-    reuse = ga.reuse_state()
-    ga.factorised(reuse)
-    assert not ga.patch_drifts(reuse, True)  # no patch yet
-    reuse[ga.REUSE_PATCH] = 1
-    assert not ga.patch_drifts(reuse, True)
-    assert ga.patch_made(reuse) == 0  # the first patch of these factors: nothing to drift from
-    reuse[ga.REUSE_PATCH] = 0
-    assert not ga.patch_drifts(reuse, True) and not ga.patch_drifts(reuse, True)
-    reuse[ga.REUSE_PATCH] = 1
-    assert not ga.patch_drifts(reuse, True)  # the step that makes the next patch
-    assert ga.patch_made(reuse) == 3  # three steps after the first
-    reuse[ga.REUSE_PATCH] = 0
-    assert ga.patch_drifts(reuse, True) and reuse[ga.REUSE_PATCH_AGE] == 1
-    assert not ga.patch_drifts(reuse, False)  # a step with a new matrix
-    ga.factorised(reuse)
-    assert not ga.patch_drifts(reuse, True) and reuse[ga.REUSE_DRIFT_STEPS] == 0
+    reuse = nc.reuse_state()
+    nc.factorised(reuse)
+    assert not nc.patch_drifts(reuse, True)  # no patch yet
+    reuse[nc.REUSE_PATCH] = 1
+    assert not nc.patch_drifts(reuse, True)
+    assert nc.patch_made(reuse) == 0  # the first patch of these factors: nothing to drift from
+    reuse[nc.REUSE_PATCH] = 0
+    assert not nc.patch_drifts(reuse, True) and not nc.patch_drifts(reuse, True)
+    reuse[nc.REUSE_PATCH] = 1
+    assert not nc.patch_drifts(reuse, True)  # the step that makes the next patch
+    assert nc.patch_made(reuse) == 3  # three steps after the first
+    reuse[nc.REUSE_PATCH] = 0
+    assert nc.patch_drifts(reuse, True) and reuse[nc.REUSE_PATCH_AGE] == 1
+    assert not nc.patch_drifts(reuse, False)  # a step with a new matrix
+    nc.factorised(reuse)
+    assert not nc.patch_drifts(reuse, True) and reuse[nc.REUSE_DRIFT_STEPS] == 0
 
 
 def test_a_singular_patched_matrix_is_refused():
@@ -111,31 +112,31 @@ def test_a_singular_patched_matrix_is_refused():
 
 def _decide(reuse, it, stale, columns, patched):
     """newton_decide after a converging increment (size 0) at iteration ``it``."""
-    return ga.newton_decide(0.0, np.inf, it, stale, int(ga.MatrixUpdate.ADAPTIVE), 0.25, 2, 0, 1e-9, reuse,
-                            ga.borrowed_rate(), ga.KAPPA, columns, patched)
+    return nc.newton_decide(0.0, np.inf, it, stale, int(nc.MatrixUpdate.ADAPTIVE), 0.25, 2, 0, 1e-9, reuse,
+                            nc.borrowed_rate(), nc.KAPPA, columns, patched)
 
 
 def test_the_controller_patches_a_stale_matrix_and_backs_off_when_patches_fail():
-    reuse = ga.reuse_state()
-    reuse[ga.REUSE_VALID] = 1
+    reuse = nc.reuse_state()
+    reuse[nc.REUSE_VALID] = 1
     _decide(reuse, 3, True, 0, False)  # no joint columns: refactorise, as always
-    assert reuse[ga.REUSE_VALID] == 0 and reuse[ga.REUSE_PATCH] == 0
-    reuse[ga.REUSE_VALID] = 1
+    assert reuse[nc.REUSE_VALID] == 0 and reuse[nc.REUSE_PATCH] == 0
+    reuse[nc.REUSE_VALID] = 1
     _decide(reuse, 3, True, 1, False)  # a kept matrix went stale: patch it at the next step
-    assert reuse[ga.REUSE_VALID] == 1 and reuse[ga.REUSE_PATCH] == 1
-    reuse[ga.REUSE_PATCH] = 0
+    assert reuse[nc.REUSE_VALID] == 1 and reuse[nc.REUSE_PATCH] == 1
+    reuse[nc.REUSE_PATCH] = 0
     _decide(reuse, 3, True, 1, True)  # the patch did not help: refactorise, then the next stale one too
-    assert reuse[ga.REUSE_VALID] == 0 and reuse[ga.REUSE_PATCH_WAIT] == 1 and reuse[ga.REUSE_PATCH_BACKOFF] == 2
-    reuse[ga.REUSE_VALID] = 1
+    assert reuse[nc.REUSE_VALID] == 0 and reuse[nc.REUSE_PATCH_WAIT] == 1 and reuse[nc.REUSE_PATCH_BACKOFF] == 2
+    reuse[nc.REUSE_VALID] = 1
     _decide(reuse, 3, True, 1, False)
-    assert reuse[ga.REUSE_VALID] == 0 and reuse[ga.REUSE_PATCH_WAIT] == 0
-    reuse[ga.REUSE_VALID] = 1
+    assert reuse[nc.REUSE_VALID] == 0 and reuse[nc.REUSE_PATCH_WAIT] == 0
+    reuse[nc.REUSE_VALID] = 1
     _decide(reuse, 3, True, 1, False)  # the wait is over
-    assert reuse[ga.REUSE_VALID] == 1 and reuse[ga.REUSE_PATCH] == 1
+    assert reuse[nc.REUSE_VALID] == 1 and reuse[nc.REUSE_PATCH] == 1
     _decide(reuse, 2, True, 1, True)  # a patch that worked resets the back-off
-    assert reuse[ga.REUSE_VALID] == 1 and reuse[ga.REUSE_PATCH_BACKOFF] == 1
+    assert reuse[nc.REUSE_VALID] == 1 and reuse[nc.REUSE_PATCH_BACKOFF] == 1
     _decide(reuse, 3, False, 1, False)  # a matrix made in this step is not patched
-    assert reuse[ga.REUSE_VALID] == 0
+    assert reuse[nc.REUSE_VALID] == 0
 
 
 def _exp1_on_a_hinge(modes, joint='{kind="revolute", axis="flap", stiffness=1.0e4}'):
@@ -181,7 +182,7 @@ def test_patches_end_where_refactorising_ends(modes):
     state, p = initial_state(system), ga.AlphaParameters.from_spectral_radius(0.8)
     runs = []
     for update in (True, False):
-        loop = CompiledSteps(system, p, ga.NewtonOptions(update_columns=update), 1e-3, state)
+        loop = CompiledSteps(system, p, nc.NewtonOptions(update_columns=update), 1e-3, state)
         _, n, its, _, err, chunk = loop.advance(state, 2000, 0, 20, 2000)
         assert err is None
         runs.append((loop, chunk.states.x, its / n))

@@ -7,6 +7,7 @@ from hubbeam.elements.ancf.chart import frame_from_director
 from hubbeam.io.scenario import Sensor
 from hubbeam.simulation import initial_state, simulate
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers import newton_control as nc
 from hubbeam.errors import ComputationError
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.laws import DriveProfile
@@ -53,7 +54,7 @@ def test_a_failed_compiled_run_reports_where_and_keeps_the_results():
     system = spinning_beam()
     with pytest.raises(ComputationError) as info:
         simulate(system, [TIP], t_end=0.1, dt=2e-3, output_dt=0.01,
-                 newton=ga.NewtonOptions(max_iterations=1, tolerance=1e-15, update="iteration"))
+                 newton=nc.NewtonOptions(max_iterations=1, tolerance=1e-15, update="iteration"))
     message = str(info.value)
     assert "Newton did not converge in 1 iterations" in message and "t = 0.002 s (step 1)" in message
     assert info.value.partial.times == [0.0] and info.value.partial.steps == 0
@@ -99,7 +100,7 @@ scenario = load_example("exp1", [])
 system = api.build_system(scenario, None)
 state = S.initial_state(system)
 params = S.ga.AlphaParameters.from_spectral_radius(0.8)
-steps = S.CompiledSteps(system, params, S.ga.NewtonOptions(), 1e-3, state, S.record_needs(scenario.sensors, system))
+steps = S.CompiledSteps(system, params, S.nc.NewtonOptions(), 1e-3, state, S.record_needs(scenario.sensors, system))
 state, done, its, limit, error, records = steps.advance(state, 5000, 0, 10, 5000)
 print(done, error)
 """

@@ -106,7 +106,7 @@ def test_second_order_convergence_in_dt_on_a_smooth_spin_up():
 
 
 def test_modified_newton_gives_the_full_newton_answer():
-    from hubbeam.solvers.generalized_alpha import NewtonOptions
+    from hubbeam.solvers.newton_control import NewtonOptions
 
     sensors = [Sensor(name="tip", kind="tip_deflection")]
     tips = []
@@ -168,58 +168,6 @@ def test_the_newton_test_does_not_loosen_with_dt_spacecraft(dt, t_end, torque, p
 
 # --- the first-iteration test with a borrowed contraction rate (NewtonOptions.borrowed_rate_steps) ---
 
-ADAPTIVE = 2  # MatrixUpdate.ADAPTIVE
-TOL = 1e-9
-
-
-def _newton_step(reuse, rate, first, second=None, borrowed_steps=8):
-    """One step's controller calls on the kept matrix: the first increment ``first``, then (if it
-    does not converge) the second ``second``. Returns the iterations the step took."""
-    from hubbeam.solvers import generalized_alpha as ga
-
-    assert ga.newton_start(ADAPTIVE, reuse)
-    action = ga.newton_decide(first, np.inf, 1, True, ADAPTIVE, 0.25, 2, borrowed_steps, TOL, reuse, rate, ga.KAPPA,
-                              0, False)
-    if action == ga.NewtonAction.CONVERGED:
-        return 1
-    assert action == ga.NewtonAction.KEEP
-    assert ga.newton_decide(second, first, 2, True, ADAPTIVE, 0.25, 2, borrowed_steps, TOL, reuse, rate, ga.KAPPA, 0,
-                            False) == ga.NewtonAction.CONVERGED
-    return 2
-
-
-def test_the_borrowed_rate_is_dropped_when_the_matrix_is_refactorised_or_patched():
-    """Two steps measure the kept matrix's rate (1e-4), the third stops after its first increment
-    (1e-8 m: 1e-8 * 3e-4 / 0.01 < 1e-9); after a factorisation or a patch the same increment
-    iterates twice again (a rate kept across them would let it stop)."""
-    from hubbeam.solvers import generalized_alpha as ga
-
-    for renew in (ga.factorised, ga.patch_made):
-        reuse, rate = ga.reuse_state(), ga.borrowed_rate()
-        ga.factorised(reuse)
-        assert [_newton_step(reuse, rate, 1e-6, 1e-10) for _ in range(3)] == [2, 2, 2]  # no rate, one rate, then:
-        assert _newton_step(reuse, rate, 1e-8, 1e-12) == 1
-        renew(reuse)
-        assert _newton_step(reuse, rate, 1e-8, 1e-12) == 2
-
-
-def test_the_borrowed_rate_is_the_larger_of_two_times_the_age_and_is_measured_again_after_m_steps():
-    from hubbeam.solvers import generalized_alpha as ga
-
-    reuse, rate = ga.reuse_state(), ga.borrowed_rate()
-    ga.factorised(reuse)
-    _newton_step(reuse, rate, 1e-6, 1e-10)  # 1e-4 at age 1
-    _newton_step(reuse, rate, 1e-6, 1e-13)  # 1e-7 at age 2
-    # age 3: 3e-4, the larger of the two per step of age, allows 1e-8 m but not 1e-7 m (1e-7 would pass with 1e-7)
-    assert _newton_step(reuse, rate, 1e-7, 1e-12, borrowed_steps=2) == 2  # measures 1e-5 (per age 3.3e-6)
-    assert [_newton_step(reuse, rate, 1e-8, 1e-12, borrowed_steps=2) for _ in range(4)] == [1, 1, 2, 1]
-    reuse[ga.REUSE_AGE] = 1000  # the same rates 1000 steps after the factorisation: 0.017 leaves 1.7e-10 m, too much
-    assert _newton_step(reuse, rate, 1e-8, 1e-12) == 2
-    reuse, rate = ga.reuse_state(), ga.borrowed_rate()  # borrowed_rate_steps = 0: never
-    ga.factorised(reuse)
-    assert [_newton_step(reuse, rate, 1e-8, 1e-14, borrowed_steps=0) for _ in range(5)] == [2] * 5
-
-
 def _exp1(extra):
     from hubbeam import api
     from hubbeam.io.scenario import load_example
@@ -246,14 +194,14 @@ def test_the_borrowed_rate_keeps_the_results_within_the_tolerance_of_a_run_conve
     estimate by kappa tol, which leaves a factor 1/kappa for a borrowed rate that is too
     small). Measured 6.4e-7 (the first mode's amplitude; the step size's error, dt against
     dt/2, is 4.9e-6 there), against 7.3e-6."""
-    from hubbeam.solvers import generalized_alpha as ga
+    from hubbeam.solvers import newton_control as nc
 
     system = _exp1(["beam.modes=4"])
     steps = 5000
-    reference, _ = _compiled_run(system, ga.NewtonOptions(tolerance=1e-12, borrowed_rate_steps=0), steps)
-    x, newton = _compiled_run(system, ga.NewtonOptions(borrowed_rate_steps=8), steps)
+    reference, _ = _compiled_run(system, nc.NewtonOptions(tolerance=1e-12, borrowed_rate_steps=0), steps)
+    x, newton = _compiled_run(system, nc.NewtonOptions(borrowed_rate_steps=8), steps)
     assert newton < 1.2  # measured 1.12: most steps stopped after one increment
-    bound = steps * ga.NewtonOptions().tolerance * max(system.length_scale, 1.0)
+    bound = steps * nc.NewtonOptions().tolerance * max(system.length_scale, 1.0)
     assert np.max(np.abs(x - reference)) < bound
 
 
@@ -263,12 +211,12 @@ def test_a_kept_matrix_that_goes_stale_within_steps_is_not_trusted_with_its_firs
     steps stop with 1e-8 m left (one pair of increments measured 2e-6 where the matrix
     contracted at 5e-3) and took the run 3.0e-7 from the run converged to 1e-12 in 2 s,
     against 2.9e-8 without borrowing. It must stay where borrowing leaves it (measured: equal)."""
-    from hubbeam.solvers import generalized_alpha as ga
+    from hubbeam.solvers import newton_control as nc
 
     system = _exp1(['beam.joint={kind="revolute", axis="flap", stiffness=1.0e4}'])
-    reference, _ = _compiled_run(system, ga.NewtonOptions(tolerance=1e-12, borrowed_rate_steps=0), 2000, every=20)
-    never, _ = _compiled_run(system, ga.NewtonOptions(update_columns=False, borrowed_rate_steps=0), 2000, every=20)
-    borrowed, _ = _compiled_run(system, ga.NewtonOptions(update_columns=False, borrowed_rate_steps=8), 2000, every=20)
+    reference, _ = _compiled_run(system, nc.NewtonOptions(tolerance=1e-12, borrowed_rate_steps=0), 2000, every=20)
+    never, _ = _compiled_run(system, nc.NewtonOptions(update_columns=False, borrowed_rate_steps=0), 2000, every=20)
+    borrowed, _ = _compiled_run(system, nc.NewtonOptions(update_columns=False, borrowed_rate_steps=8), 2000, every=20)
     assert np.max(np.abs(borrowed - reference)) < 2.0 * np.max(np.abs(never - reference))
 
 
@@ -277,10 +225,11 @@ def test_the_compiled_loop_borrows_as_the_python_step_does_across_chunks():
     loop's calls): the same Newton iterations in every chunk and the same states."""
     from hubbeam.simulation import CompiledSteps, PythonSteps, initial_state
     from hubbeam.solvers import generalized_alpha as ga
+    from hubbeam.solvers import newton_control as nc
 
     system = _exp1(["beam.modes=4"])
     state = initial_state(system)
-    p, options = ga.AlphaParameters.from_spectral_radius(0.8), ga.NewtonOptions(borrowed_rate_steps=8)
+    p, options = ga.AlphaParameters.from_spectral_radius(0.8), nc.NewtonOptions(borrowed_rate_steps=8)
     fast, slow = CompiledSteps(system, p, options, 1e-3, state), PythonSteps(system, p, options, 1e-3, state)
     a = b = state
     total = 0
@@ -321,13 +270,13 @@ def test_a_modal_beam_on_a_free_hub_keeps_energy_and_angular_momentum_while_borr
     4e-8 and 5e-8 over 20 s: each borrowed step leaves theta |dx1|, with the same sign step
     after step, where a second iteration left theta^2 |dx1|."""
     from hubbeam.elements.ffr.body import FfrBeam
-    from hubbeam.solvers import generalized_alpha as ga
+    from hubbeam.solvers import newton_control as nc
 
     system = single_beam_system(FfrBeam(L, 4, plate(), modes=4), radius=0.35, twist=np.pi / 4, motion="free",
                                 hub_inertia=9.557, gravity=np.array([0, -9.81, 0]))
     sensors = SENSORS + [Sensor(name="H", kind="angular_momentum")]
     traj = simulate(system, sensors, t_end=5.0, dt=1e-3, spectral_radius=1.0, output_dt=0.05,
-                    newton=ga.NewtonOptions(borrowed_rate_steps=8))
+                    newton=nc.NewtonOptions(borrowed_rate_steps=8))
     assert traj.newton_iterations < 1.2 * traj.steps  # measured 1.11
     e = traj.records["energy"]
     total = np.array([r["total"] for r in e])

@@ -9,6 +9,7 @@ from hubbeam import api
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import CompiledSteps, initial_state
 from hubbeam.solvers import generalized_alpha as ga
+from hubbeam.solvers import newton_control as nc
 
 SPIN_UP = ['hub.motion="prescribed"', 'hub.drive.profile="spin_up"', "hub.drive.omega_s=2.0", "hub.drive.T=1.0"]
 CASES = {
@@ -43,7 +44,7 @@ def test_the_energy_changes_at_the_rate_of_the_drive_minus_the_dissipated_power(
     system = api.build_system(load_example(name, overrides))
     start = initial_state(system)
     dt = 1e-3
-    steps = CompiledSteps(system, ga.AlphaParameters.from_spectral_radius(0.8), ga.NewtonOptions(), dt, start)
+    steps = CompiledSteps(system, ga.AlphaParameters.from_spectral_radius(0.8), nc.NewtonOptions(), dt, start)
     state = steps.advance(start, 400, 0, 400, 400)[0]
     t, x, v, F = state.t, state.x, state.v.copy(), state.chart
     # rates in every direction (the run's own are mostly bending and rotation about the hub

@@ -11,7 +11,7 @@ import pytest
 from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.io.scenario import Sensor
 from hubbeam.simulation import simulate
-from hubbeam.solvers.generalized_alpha import NewtonOptions
+from hubbeam.solvers.newton_control import NewtonOptions
 from hubbeam.system.ancf_part import AncfPart
 from hubbeam.system.beam import AncfBeam
 from hubbeam.system.ffr_part import FfrPart

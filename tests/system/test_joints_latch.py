@@ -99,7 +99,7 @@ def test_a_damped_panel_deploying_on_a_free_hub_ends_at_rest_with_the_spring_ene
     momentum hold to the integration error (rho_inf = 1, dt = 1 ms: 0.15 % and 3e-4 N m s,
     second order in dt)."""
     from hubbeam.elements.section import saint_venant_torsion_constant
-    from hubbeam.solvers.generalized_alpha import NewtonOptions
+    from hubbeam.solvers.newton_control import NewtonOptions
 
     k, c = 3.0, 0.05
     section = Section(0.3, 0.01, 2700.0, 70e9, 26e9, saint_venant_torsion_constant(0.3, 0.01))

@@ -200,7 +200,7 @@ def states_of_a_run(scenario):
     """(system, times, records, states): a run of ``scenario`` with every output time's (x, v,
     charts) kept beside the sensors' records (a recorder of :func:`hubbeam.simulation.simulate`)."""
     from hubbeam.simulation import initial_state, simulate
-    from hubbeam.solvers.generalized_alpha import NewtonOptions
+    from hubbeam.solvers.newton_control import NewtonOptions
 
     system = api.build_system(scenario)
     a = scenario.analysis

@@ -29,7 +29,7 @@ matrix; the patch only changes how fast. On the nodal FFR exp1 beam on a stiff f
 tangent, B the kept matrix) with B from 10 steps before is 6.5e-2; patched in psi's column
 alone 3.3e-3, in its column and row 6.5e-4 (30 steps: 2.0e-1, 9.7e-3, 1.6e-3). A patch always
 changes the factorised matrix A (not an earlier patch), so patches do not pile up. The
-controller (:func:`hubbeam.solvers.generalized_alpha.newton_decide`) asks for a patch, and
+controller (:func:`hubbeam.solvers.newton_control.newton_decide`) asks for a patch, and
 falls back to refactorising when a patched matrix does not bring the step back to two
 iterations.
 

@@ -4,8 +4,8 @@
 on the compiled equations of the hub and its beams
 (:func:`hubbeam.system.equations.system_equations`), the bordered band LU
 (:func:`hubbeam.system.assembly.bordered_factor`), and the work integrals of the energy
-balance. Its Newton control is the shared controller (:func:`.generalized_alpha.newton_start`,
-:func:`.generalized_alpha.newton_decide`), as is the Python step's, so the two give the same
+balance. Its Newton control is the shared controller (:func:`.newton_control.newton_start`,
+:func:`.newton_control.newton_decide`), as is the Python step's, so the two give the same
 steps; tests compare them.
 
 The equations are imported rather than passed in because numba cannot cache a function
@@ -21,10 +21,9 @@ from numba import njit
 
 from hubbeam.solvers.column_update import (capacitance, column_change, difference_step, drifted, matrix_column,
                                            patch_solve, record_drift, unit_rows)
-from hubbeam.solvers.generalized_alpha import (REUSE_PATCH, REUSE_PATCH_AGE, REUSE_PATCHED, REUSE_VALID,
-                                               NewtonAction, Outcome, algorithmic_acceleration, apply_increment,
-                                               factorised, newton_decide, newton_start, patch_drifts, patch_made,
-                                               predict)
+from hubbeam.solvers.generalized_alpha import Outcome, algorithmic_acceleration, apply_increment, predict
+from hubbeam.solvers.newton_control import (REUSE_PATCH, REUSE_PATCH_AGE, REUSE_PATCHED, REUSE_VALID, NewtonAction,
+                                            factorised, newton_decide, newton_start, patch_drifts, patch_made)
 from hubbeam.system.assembly import bordered_factor, bordered_solve
 from hubbeam.system.equations import CHART_SINGULAR, step_powers, system_equations, system_events
 
@@ -53,10 +52,10 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     :func:`~hubbeam.solvers.generalized_alpha.multiplier_weights`, the factor kappa of the
     rate-based error estimate, NewtonOptions.borrowed_rate_steps). ``matrix`` = (ab, ipiv,
     brow, bcol, bb, Y, schur): the bordered storage and its factors (:func:`hubbeam.system.assembly.bordered_factor`), and ``reuse``
-    (the reuse state of :func:`hubbeam.solvers.generalized_alpha.reuse_state`; valid means
+    (the reuse state of :func:`hubbeam.solvers.newton_control.reuse_state`; valid means
     the factors are for this h and these charts) carry the factorisation between calls, and
     ``rate`` (1) the contraction rate measured on it
-    (:func:`hubbeam.solvers.generalized_alpha.borrowed_rate`).
+    (:func:`hubbeam.solvers.newton_control.borrowed_rate`).
     ``patch`` = (columns (x indices of the joint angles, int), their z indices, the kept
     matrix's columns, G, H, Ut, G and Ut of the last patch, their drifts per step, K^-1, S, w,
     s, residual): the storage of a column update of the kept factors

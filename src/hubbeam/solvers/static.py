@@ -27,8 +27,8 @@ import numpy as np
 from numpy.linalg import LinAlgError
 
 from hubbeam.errors import ChartSingularityError, ConvergenceError
-from hubbeam.solvers.generalized_alpha import (KAPPA, MatrixUpdate, NewtonAction, borrowed_rate, newton_decide,
-                                               reuse_state)
+from hubbeam.solvers.newton_control import (KAPPA, MatrixUpdate, NewtonAction, borrowed_rate, newton_decide,
+                                            reuse_state)
 from hubbeam.system.multibody import MultibodySystem
 
 #: replace the chart when min(1 + d.tau) falls below this (tau within 60 deg of -d)
