@@ -320,7 +320,7 @@ def newton_decide(size, previous, it, stale, update, refresh_rate, refresh_itera
             reuse[REUSE_BORROWED] += 1
             return NewtonAction.CONVERGED
     error, rate_now = newton_error(size, previous, reused, kappa)
-    if it == 2 and kept:
+    if it == 2 and kept and borrowed_steps > 0:  # measured only where a later step may borrow it
         for i in range(rate.shape[0] - 1, 0, -1):
             rate[i] = rate[i - 1]
         rate[0] = rate_now / age
