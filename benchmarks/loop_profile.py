@@ -1,6 +1,6 @@
 """Where a compiled time step's process time goes, function by function, with Linux ``perf``.
 
-    perf record -o /tmp/hinge.data python benchmarks/loop_profile.py run modal_hinge /tmp/hinge.data [REPS]
+    perf record -N -o /tmp/hinge.data python benchmarks/loop_profile.py run modal_hinge /tmp/hinge.data [REPS]
     python benchmarks/loop_profile.py report /tmp/hinge.data
 
 ``run`` builds one model (:data:`MODELS`: exp1, 10 s at 1 ms, FFR on 4 modes or nodal, clamped or
@@ -21,7 +21,8 @@ field by field: some 550 words per call of ``system_equations`` on exp1), groupe
 whose argument block (``sub $N, %rsp``) they fall in.
 
 Needs ``perf`` (user-space sampling, ``perf_event_paranoid`` <= 2) and binutils (``nm``,
-``objdump``); numba's cache must be warm (run the model once first). Not part of the test suite.
+``objdump``); numba's cache must be warm (run the model once first). ``-N``: perf keeps no copies of
+the binaries in ``~/.debug``. The map files stay in /tmp for later reports. Not part of the test suite.
 """
 
 from __future__ import annotations
