@@ -8,6 +8,7 @@
     python benchmarks/joint_cost.py loop [REPS] [ancf]  # as hinge on the FFR (or ANCF) plates, the loop alone
     python benchmarks/joint_cost.py pieces         # the joint's share of one residual and one call of the powers
     python benchmarks/joint_cost.py ages [MODES] [STEPS]  # third iterations by the age of a drifted patch
+    python benchmarks/joint_cost.py powers [REPS]  # case R's plate on a spring hinge: the step's powers skipped or not
 
 For each model: the time loop alone (:class:`hubbeam.simulation.CompiledSteps`, process time per
 step, median and range of REPS runs that alternate with the other models in this one process: on a
@@ -35,6 +36,11 @@ kinematics to order 2 and 1, and each part's equations and powers alone (:func:`
 
 ``ages``: exp1 on the hinge (default 4 modes, 3000 steps) in Python steps: the steps that carry
 a drifted patch, by its age, and how many of them took a third Newton iteration (:func:`ages`).
+
+``powers``: case R's plate (4 modes, fixed hub, no drag) on case J's spring flap hinge, 10 s: the
+compiled loop with the joint laws' declaration that a spring alone has no power (the time loop
+then skips the step's powers) and with the declaration ignored (the kind's ``powers_possible``
+unset: powers evaluated every step, as before it), alternating; the final states compared.
 
 ``newton``: exp1 with the nodal FFR beam, clamped and on the hinge. (1) The spectral radius of
 I - A^-1 D at step 300 (t = 0.3 s), A the code's Newton matrix at step 300 - lag, D central
@@ -440,6 +446,41 @@ def ages(modes: int, steps: int) -> None:
             print(f"  age <= {b:4d}: {count:5d} steps, {third:4d} ({third / count:.3f})")
 
 
+def powers(reps: int) -> None:
+    """The ``powers`` comparison (module docstring)."""
+    from hubbeam.io.scenario import load_scenario
+    from hubbeam.system import joints, terms
+
+    kind = next(k for k in terms.KINDS if k.pack is joints.JointLaws)
+    declared = kind.powers_possible
+    scenario = load_scenario(os.path.join(os.path.dirname(os.path.abspath(__file__)), "case_a.toml"),
+                             ['beam.formulation="ffr"', "beam.modes=4", HINGE])
+    p, built = ga.AlphaParameters.from_spectral_radius(0.8), {}
+    try:
+        for label, possible in (("declared", declared), ("ignored", None)):
+            object.__setattr__(kind, "powers_possible", possible)  # a frozen dataclass: the benchmark's switch
+            system = api.build_system(scenario)
+            built[label] = (system, initial_state(system), system.model().powers)
+    finally:
+        object.__setattr__(kind, "powers_possible", declared)
+    runs = {label: [] for label in built}
+    for _ in range(reps):
+        for label, (system, state, _) in built.items():
+            loop = CompiledSteps(system, p, ga.NewtonOptions(), 1e-3, state)
+            t = time.process_time()
+            end, n, _, _, err, _ = loop.advance(state, 10000, 0, 10, 10000)
+            if err is not None:
+                raise err
+            runs[label].append((1e6 * (time.process_time() - t) / n, end.x.copy(), loop.work_done.copy()))
+    for label, rows in runs.items():
+        times = [r[0] for r in rows]
+        print(f"joint powers {label}: model.powers {built[label][2]}, {statistics.median(times):.2f} us/step "
+              f"({min(times):.2f}-{max(times):.2f}), dissipated / drive work {rows[0][2][0]:.3g} / "
+              f"{rows[0][2][1]:.3g} J")
+    a, b = (rows[0][1] for rows in runs.values())
+    print(f"final states identical: {bool(np.array_equal(a, b))}")
+
+
 def main() -> None:
     what = sys.argv[1] if len(sys.argv) > 1 else "hinge"
     reps = int(sys.argv[2]) if len(sys.argv) > 2 else 3
@@ -452,6 +493,8 @@ def main() -> None:
         stale()
     elif what == "pieces":
         pieces()
+    elif what == "powers":
+        powers(reps)
     elif what == "ages":
         ages(int(sys.argv[2]) if len(sys.argv) > 2 else 4, int(sys.argv[3]) if len(sys.argv) > 3 else 3000)
     elif what == "loop":

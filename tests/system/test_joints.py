@@ -222,6 +222,38 @@ def test_the_time_loop_looks_for_latch_events_only_when_a_free_axis_has_a_latch(
     assert not locked.model().events
 
 
+@pytest.mark.parametrize("law", ["spring", "damper", "motor", "locked damper"])
+def test_the_time_loop_skips_the_powers_only_where_no_joint_can_have_one(law):
+    """An FFR beam without drag, damping or tip load on a fixed hub has no power; on a hinge with a
+    spring alone neither (``model.powers`` False: the time loop skips the step's powers); with a
+    damper or a motor it has, and a locked joint's damper none (its rate is held at zero). The flag
+    against the powers computed in full (the model with the flag forced on) at a state with random
+    coordinates, rates and multipliers (the fixed hub's and the lock's rates zero): both exactly
+    zero where the flag is off, not both zero where it is on, so that a damper or a motor declared
+    powerless fails here."""
+    values = {"spring": {"stiffness": (50.0,)}, "damper": {"stiffness": (50.0,), "damping": (3.0,)},
+              "motor": {"torque": TorqueLaw.constant(2.0)}, "locked damper": {"damping": (3.0,)}}[law]
+    joint = Joint.named("flap", **values)
+    system = _system(joint, "ffr", gravity=(0.0, 0.0, 0.0))
+    if law == "locked damper":
+        x, F = system.initial_state()
+        system = latch_joints(system, [0], 0.0, x, np.zeros(system.nx), F)[0]
+    model = system.model()
+    x, F = system.initial_state()
+    rng = np.random.default_rng(25)
+    x, v, lam = x + 1e-3 * rng.normal(size=x.shape), rng.normal(size=x.shape), rng.normal(size=system.layout.n_lambda)
+    v[system.layout.theta] = 0.0
+    if law == "locked damper":
+        v[system.layout.joint_x(0)] = 0.0
+    dissipated, drive = system.functions.step_powers(model._replace(powers=True), np.ascontiguousarray(F), 0.5, x,
+                                                     v, lam)
+    assert model.powers == (law in ("damper", "motor"))
+    if model.powers:
+        assert abs(dissipated) + abs(drive) > 1e-3, (dissipated, drive)
+    else:
+        assert dissipated == 0.0 and drive == 0.0
+
+
 def test_layout_places_locks_between_joint_angles_and_clamps():
     layout = Layout((16, 24), True, joint_dofs=(2, 1), clamped=(True, False), locks=(0, 1))
     assert layout.n_lambda == 1 + 6 + 1

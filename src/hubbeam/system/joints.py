@@ -296,9 +296,19 @@ def joint_latches_pending(pack) -> bool:
     return bool(np.any((pack.places[:, LOCK] < 0) & (pack.constants[:, SIDE] != 0.0)))
 
 
+def joint_powers_possible(pack, ctx) -> bool:
+    """Whether a free axis of ``pack`` has a damper or a motor (else :func:`joint_power` and
+    :func:`joint_drive_power` are zero at every state: a spring stores, a lock does no work, its
+    rate being zero), so that a system whose other parts have no power either skips the step's
+    powers (:func:`hubbeam.system.terms.with_powers`)."""
+    free = pack.places[:, LOCK] < 0
+    return bool(np.any(free & ((pack.constants[:, DAMPING] != 0.0) | (pack.places[:, MOTOR] >= 0))))
+
+
 KIND = terms.register(JointLaws, pack_joint_laws, joint_equations, joint_energies, joint_power,
                       bandwidth=joint_bandwidth, drive_power=joint_drive_power, events=joint_events,
-                      events_possible=joint_latches_pending, counts_references=False)
+                      events_possible=joint_latches_pending, powers_possible=joint_powers_possible,
+                      counts_references=False)
 
 
 # ================================================================ Python: what the sensors and the latch read
