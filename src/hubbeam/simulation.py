@@ -326,6 +326,10 @@ def latch(system: MultibodySystem, state: ga.AlphaState, work: dict, time: float
 PROGRESS_UPDATES = 100
 #: ... and returns to Python at least about this often (s), so that a signal is noticed
 CHUNK_SECONDS = 0.25
+#: ... but a chunk lasts at least about this long (s) once the speed is known: a short run (a
+#: 10 s modal model takes 0.04 s) is not cut into 100 chunks whose returns to Python (the
+#: records' measures, the calls' argument checks: about 60 us each) cost 15 % of its time
+MIN_CHUNK_SECONDS = 0.05
 
 
 def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral_radius: float = 0.8,
@@ -333,9 +337,9 @@ def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral
              state: ga.AlphaState | None = None, recorder=None) -> Trajectory:
     """Integrate from ``state`` (default: :func:`initial_state`) to t_end.
 
-    Steps run in compiled code, in chunks of about 1/100 of the run and of at most about
-    CHUNK_SECONDS of computing, when the system has a compiled model (:class:`CompiledSteps`),
-    else step by step in Python (:class:`PythonSteps`); sensors are evaluated at the output
+    Steps run in compiled code, in chunks of about 1/100 of the run (but of at least about
+    MIN_CHUNK_SECONDS of computing) and of at most about CHUNK_SECONDS, when the system has a
+    compiled model (:class:`CompiledSteps`), else step by step in Python (:class:`PythonSteps`); sensors are evaluated at the output
     times from the states the steps kept, output time k being the double nearest the decimal
     t0 + k output_dt. ``progress(t)`` is called after every chunk when given. On failure a
     ComputationError names the time and step and carries the trajectory so far in
@@ -385,7 +389,8 @@ def simulate(system: MultibodySystem, sensors, t_end: float, dt: float, spectral
             # between chunks); the chunk boundaries do not change the steps, so runs stay bit-for-bit repeatable
             seconds = time.perf_counter() - chunk_start
             if done:
-                chunk = max(1, min(chunk_size, 2 * chunk, int(CHUNK_SECONDS * done / max(seconds, 1e-9))))
+                rate = done / max(seconds, 1e-9)  # steps per second
+                chunk = max(1, min(max(chunk_size, int(MIN_CHUNK_SECONDS * rate)), 2 * chunk, int(CHUNK_SECONDS * rate)))
             record(records)
             k += done
             traj.steps = k

@@ -91,3 +91,33 @@ def test_control_returns_to_python_at_least_every_half_second(monkeypatch):
     gaps = np.diff(calls)
     assert gaps.max() < 0.9, gaps.max()
     assert gaps.max() > 0.1, gaps.max()  # chunks are not needlessly short either
+
+
+def test_a_short_run_is_not_cut_into_a_hundred_chunks(monkeypatch):
+    """A chunk lasts at least about MIN_CHUNK_SECONDS of computing once the speed is known, so a
+    run that takes less than that is not cut into 1 % chunks (each return to Python measures the
+    records and checks the compiled call's arguments anew): with both bounds far above this run's
+    time the chunks only double from 8 steps (8, 16, ..., 256: 7 chunks for 1000 steps, where
+    1 % chunks are 100 or more), and the records are the same bit for bit as with 1 % chunks."""
+    import hubbeam.simulation as simulation
+
+    sc = load_example("exp1", ["beam.elements=2", "analysis.t_end=1.0", "analysis.dt=0.001",
+                               "analysis.output_dt=0.01"])
+    a = sc.analysis
+
+    def run():
+        calls = []
+        traj = simulate(api.build_system(sc), sc.sensors, a.t_end, a.dt, a.spectral_radius, sc.output_dt,
+                        progress=calls.append)
+        return len(calls), results.trajectory_table(traj, sc)[:2]
+
+    monkeypatch.setattr(simulation, "CHUNK_SECONDS", 1e9)
+    monkeypatch.setattr(simulation, "MIN_CHUNK_SECONDS", 1e9)
+    chunks, (times, long_chunks) = run()
+    assert chunks == 7  # 8 + 16 + ... + 256 = 504, then the remaining 496
+    monkeypatch.setattr(simulation, "MIN_CHUNK_SECONDS", 0.0)
+    chunks_1, (times_1, short_chunks) = run()
+    assert chunks_1 >= 100
+    assert np.array_equal(times, times_1)
+    for name, (values, _) in long_chunks.items():
+        assert np.array_equal(values, short_chunks[name][0]), name
