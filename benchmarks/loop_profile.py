@@ -127,12 +127,13 @@ def run(label: str, reps: int, prefix: str) -> None:
     from hubbeam.io.scenario import load_example
     from hubbeam.simulation import CompiledSteps, initial_state
     from hubbeam.solvers import generalized_alpha as ga
+    from hubbeam.solvers import newton_control as nc
 
     system = api.build_system(load_example("exp1", [HINGE if o == "HINGE" else o for o in MODELS[label]]))
     state, p = initial_state(system), ga.AlphaParameters.from_spectral_radius(0.8)
     times = []
     for _ in range(reps):
-        loop = CompiledSteps(system, p, ga.NewtonOptions(), 1e-3, state)
+        loop = CompiledSteps(system, p, nc.NewtonOptions(), 1e-3, state)
         t = time.process_time()
         _, n, its, _, err, _ = loop.advance(state, 10000, 0, 10, 10000)
         if err is not None:
