@@ -466,7 +466,7 @@ def powers(reps: int) -> None:
     runs = {label: [] for label in built}
     for _ in range(reps):
         for label, (system, state, _) in built.items():
-            loop = CompiledSteps(system, p, ga.NewtonOptions(), 1e-3, state)
+            loop = CompiledSteps(system, p, nc.NewtonOptions(), 1e-3, state)
             t = time.process_time()
             end, n, _, _, err, _ = loop.advance(state, 10000, 0, 10, 10000)
             if err is not None:
