@@ -14,6 +14,7 @@ import time
 
 import numpy as np
 
+from hubbeam.elements.ffr import constants as fc
 from hubbeam.elements.ffr import kernels as fk
 from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.elements.section import Section, saint_venant_torsion_constant
@@ -55,7 +56,7 @@ def main() -> None:
     q = 2e-3 * rng.normal(size=nf)
     vb, vdot = 0.3 * rng.normal(size=6 + nf), 10.0 * rng.normal(size=6 + nf)
     damping = (0.4, 1.7)
-    arrays = fk.pack(p)
+    arrays = fc.pack(p)
     n = 6 + nf
     fv, Mv, Cv, K_el = np.empty(n), np.empty((n, n)), np.empty((n, n)), np.empty((nf, nf))
     inv, tip, drag, work = arrays.inv, arrays.tip, arrays.drag(damping), arrays.work()

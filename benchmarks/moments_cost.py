@@ -11,6 +11,7 @@ import numpy as np
 from numba import njit
 
 from hubbeam import api
+from hubbeam.elements.ffr import constants as fc
 from hubbeam.elements.ffr import kernels as fk
 from hubbeam.io.scenario import load_example
 from hubbeam.system.ffr_part import FfrPart
@@ -26,7 +27,7 @@ def loop(n, inv, p, pd, nf, St, Q2, Q2d, R2):
 for name, overrides in (("exp1 nodal", ['beam.formulation="ffr"']), ("exp1 4 modes", ['beam.formulation="ffr"', 'beam.modes=4'])):
     system = api.build_system(load_example("exp1", overrides))
     part = next(b for b in system.beams if isinstance(b, FfrPart))
-    arrays = fk.pack(part)
+    arrays = fc.pack(part)
     nf = arrays.Mff.shape[0]
     rng = np.random.default_rng(1)
     p, pd = rng.standard_normal(nf), rng.standard_normal(nf)

@@ -7,6 +7,7 @@ system's (tests/system/test_ffr_system.py)."""
 import numpy as np
 import pytest
 
+from hubbeam.elements.ffr import constants as fc
 from hubbeam.elements.ffr import kernels as fk
 from hubbeam.elements.ffr.body import FfrBeam
 from hubbeam.system.rotations import rotation_vector_matrix
@@ -74,7 +75,7 @@ def test_kernel_is_the_python_forces(case):
     opts = dict(CASES[case])
     damping = opts.pop("damping", (0.0, 0.0))
     part = make_part(**opts)
-    arrays = fk.pack(part)
+    arrays = fc.pack(part)
     rng = np.random.default_rng(list(CASES).index(case))
     nf = part.ndof
     for factor in (1.0, 0.6):
@@ -105,7 +106,7 @@ def test_inertia_part_of_the_force_alone():
 
     beam = FfrBeam(L, 3, Section(0.05, 0.0025, 2700.0, 1.0, 0.4, 1e-9), tip_body=BODY)
     part = FfrPart(beam, Mount(0.1))
-    arrays = fk.pack(part)
+    arrays = fc.pack(part)
     rng = np.random.default_rng(5)
     A, p, vb, vdot = random_state(part, rng, deform=0.05, rate=8.0)
     vb[6:] *= 10.0
@@ -122,7 +123,7 @@ def test_modally_reduced_beam(stiffening, real_blade):
     beam = FfrBeam(L, 4, plate(), geometric_stiffening=stiffening, tip_body=BODY, modes=5, **extra)
     part = FfrPart(beam, Mount(0.2, 0.1), tip_force=np.array([3.0, -20.0, 12.0]),
                    tip_moment=np.array([0.4, -1.5, 2.0]))
-    arrays = fk.pack(part)
+    arrays = fc.pack(part)
     A, p, vb, vdot = random_state(part, np.random.default_rng(1))
     f_py, (M_py, C_py, K_py) = part.vspace_forces(A, p, vb, vdot, GRAVITY, (0.4, 1.7), tangent=True, factor=0.8)
     f_k, M_k, C_k, K_k, _ = kernel(arrays, A, p, vb, vdot, GRAVITY, (0.4, 1.7), 0.8)
@@ -159,7 +160,7 @@ def test_padded_arrays_give_the_same_numbers():
     """Arrays zero-padded beyond nf (stacking beams of different meshes) read only nf."""
     part = make_part(stiffening=True, tip_loads=True, tip_body=BODY, sections=tapered_sections(),
                      structural_damping=2e-3)
-    a = fk.pack(part)
+    a = fc.pack(part)
     extra = 6
 
     def pad(x, axes, rows=0):
@@ -190,7 +191,7 @@ def test_dissipated_power_alone_is_the_python_dissipated_power(damping, structur
     """ffr_dissipated_power (the energy balance after each compiled step: drag and structural
     damping) gives FfrPart's dissipated power without evaluating the rest of the body terms."""
     part = make_part(stiffening=True, tip_body=BODY, structural_damping=structural)
-    arrays = fk.pack(part)
+    arrays = fc.pack(part)
     rng = np.random.default_rng(7)
     for _ in range(3):
         A, p, vb, _ = random_state(part, rng)

@@ -268,9 +268,10 @@ def test_the_stacked_pack_gives_each_beam_its_own_terms():
     """FfrBeams stacks every FFR beam's constants zero-padded to the largest (II by its nonzero
     entries in compressed rows, the drag points' spans): a nodal beam of 4 elements beside one
     of 2 (different numbers of entries, rows and coordinates). Each beam's kernel terms from the
-    stacked pack are bit for bit those from its own constants (kernels.pack), which the kernel
+    stacked pack are bit for bit those from its own constants (constants.pack), which the kernel
     tests hold against the dense Python FfrPart."""
     from hubbeam import api
+    from hubbeam.elements.ffr import constants as fc
     from hubbeam.elements.ffr import kernels as fk
     from hubbeam.io.scenario import load_example
     from hubbeam.system.ffr_beams import FfrBeams, ffr_arguments
@@ -283,7 +284,7 @@ def test_the_stacked_pack_gives_each_beam_its_own_terms():
     drag_c = (0.4, 1.7)
     for k in range(2):
         part = system.beams[pack.places[k, 0]]
-        own = fk.pack(part)
+        own = fc.pack(part)
         nf, npts = part.ndof, own.x_pts.size
         n = 6 + nf
         A = np.linalg.qr(rng.standard_normal((3, 3)))[0]

@@ -17,7 +17,8 @@ import numpy as np
 import pytest
 
 from hubbeam import api
-from hubbeam.elements.ffr.kernels import ffr_energies, ffr_vspace_terms, pack
+from hubbeam.elements.ffr.constants import pack
+from hubbeam.elements.ffr.kernels import ffr_energies, ffr_vspace_terms
 from hubbeam.system.rotations import rotation_vector_matrix
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import initial_state

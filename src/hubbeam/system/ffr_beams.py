@@ -33,14 +33,14 @@ from numba import njit
 
 from hubbeam.elements.ffr.kernels import (ffr_dissipated_power, ffr_energies, ffr_momentum, ffr_vspace_terms,
                                           kernel_work, tip_lever, tip_load_power)
-from hubbeam.elements.ffr.kernels import pack as ffr_constants
+from hubbeam.elements.ffr.constants import pack as ffr_constants
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
 from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.frame_motions import chain_columns, displacement_in_reference, frame_motion
 from hubbeam.system.frames import chain_kinematics, chain_state
 
-#: the constants of :class:`hubbeam.elements.ffr.kernels.FfrArrays` that :class:`FfrBeams` holds
+#: the constants of :class:`hubbeam.elements.ffr.constants.FfrArrays` that :class:`FfrBeams` holds
 #: in one array per group of equal shapes, each field in its slot (its place in the group) along
 #: the axis after the beam's: every array of the pack costs its reference count each time compiled
 #: code passes the model or the pack (measured: 11 more arrays, +0.5 us per step_powers on exp1)
@@ -58,7 +58,7 @@ INDEX, X0, NF = 0, 1, 2
 
 
 class FfrBeams(NamedTuple):
-    """The FFR beams' constants (:func:`hubbeam.elements.ffr.kernels.pack`), one row per FFR
+    """The FFR beams' constants (:func:`hubbeam.elements.ffr.constants.pack`), one row per FFR
     beam, zero-padded to the largest beam (the kernels read the leading nf entries); fields of
     equal shape grouped (:data:`FFR_GROUPS`, slots as listed there; :func:`ffr_arguments`)."""
 
