@@ -11,6 +11,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+#: what is evaluated of a chain (:attr:`ChainTable.orders`, :func:`hubbeam.system.frames.chain_kinematics_into`):
+#: its pose and Jacobians; and its velocity products h_r = sum_il Hr[:, i, l] c'_i c'_l, h_w
+#: likewise; and its derivatives Hr, Hw themselves
+POSE, PRODUCTS, HESSIANS = 1, 2, 3
 #: columns of a chain's scratch rows (:func:`hubbeam.system.frames.chain_kinematics_into`)
 W_WIDTH = 15
 
@@ -173,9 +177,13 @@ class ChainTable(NamedTuple):
     pose: np.ndarray  # (n_chains, 3, 4): each chain's origin (column 0) and axes (1:4) at the state
     jac: np.ndarray  # (n_chains, 2, 3, w): Jr, Jw of each chain's columns (w: the widest chain's)
     hess: np.ndarray  # (n_chains, 2, 3, w, w): Hr, Hw
+    products: np.ndarray  # (n_chains, 2, 3): the velocity products h_r, h_w (:func:`evaluate_motion`)
     work: np.ndarray  # (w, W_WIDTH): scratch of :func:`chain_kinematics_into` for the widest chain
     maps: np.ndarray  # (n,): the FFR tips' rows M (6 x nf, row-major), each from its link's params[1]
-    orders: np.ndarray  # int64 (n_chains,): 2 for a chain whose hess the equations read, else 1 (:func:`evaluate_chains`)
+    # int64 (n_chains,): what the system's equations read of each chain beyond its pose and
+    # Jacobians (:func:`evaluate_motion`): nothing (POSE), its velocity products (PRODUCTS) or
+    # its derivatives hess too (HESSIANS)
+    orders: np.ndarray
     # the link kinds beyond constants and revolutes that some chain holds: True, or None when none
     # does, so that numba compiles the kinematics without that kind's code (:func:`evaluate_chains`)
     free_links: bool | None
@@ -183,9 +191,11 @@ class ChainTable(NamedTuple):
     ffr_tips: bool | None
 
     @classmethod
-    def of(cls, chains, second=None) -> "ChainTable":
-        """The table of ``chains``; ``second``: the indices of the chains whose derivatives
-        hess the system's equations read (default every chain's), :func:`evaluate_chains`."""
+    def of(cls, chains, second=None, hessians=None) -> "ChainTable":
+        """The table of ``chains``; ``second``: the indices of the chains whose second-order
+        terms the system's equations read (default every chain's), their velocity products
+        only unless among ``hessians`` (default all of ``second``), whose derivatives hess
+        they read too (:func:`hubbeam.system.frames.evaluate_motion`)."""
         links, params, start, columns, cstart, maps = [], [], [0], [], [0], []
         for chain in chains:
             for link in chain.merged().links:
@@ -205,9 +215,11 @@ class ChainTable(NamedTuple):
         w = max((cstart[k + 1] - cstart[k] for k in range(n)), default=0)
         return cls(ints(links, (len(links), 3)), np.array(params, dtype=float).reshape(len(params), 13),
                    ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)),
-                   np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((w, W_WIDTH)),
-                   np.array(maps, dtype=float),
-                   np.array([2 if second is None or k in second else 1 for k in range(n)], dtype=np.int64),
+                   np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((n, 2, 3)),
+                   np.zeros((w, W_WIDTH)), np.array(maps, dtype=float),
+                   np.array([(POSE if second is not None and k not in second else
+                              HESSIANS if hessians is None or k in hessians else PRODUCTS) for k in range(n)],
+                            dtype=np.int64),
                    present(LinkKind.FREE), present(LinkKind.ANCF_TIP), present(LinkKind.FFR_TIP))
 
     def width(self, k: int) -> int:
