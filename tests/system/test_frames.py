@@ -224,3 +224,29 @@ def test_velocity_products_against_differences_of_the_jacobians(which):
         table.hess[...] = np.nan if hessians is not None and which in (0, 1) else 0.0  # the one pass reads no H
         fr.evaluate_motion(table, x, v, np.ascontiguousarray(F), False)
         assert np.allclose(table.products[0], expected, rtol=1e-7, atol=1e-7 * np.max(np.abs(expected))), name
+
+
+def test_chains_that_begin_with_another_continue_from_its_pose():
+    """In one table, a chain whose links begin with an earlier chain's (a free base's frames: the
+    base, the hub on it, the roots on the hub) continues from that chain's pose and Jacobians
+    (ChainTable.prefix): its pose, Jacobians and velocity products equal those of the chain
+    evaluated alone, from its first link (round-off apart); one that holds a tip shares
+    nothing."""
+    rng = np.random.default_rng(5)
+    x, v = rng.normal(size=20), rng.normal(size=20)
+    const = lambda: ch.constant(rng.normal(size=3), _random_rotation(rng))  # noqa: E731
+    base = ch.Chain((ch.free(0), const()))
+    hub = base.then(ch.revolute(7, (0.0, 1.0, 0.0), -1.0))
+    chains = [base, hub, hub.then(const()), hub.then(const(), ch.revolute(8, rng.normal(size=3)), const()), hub,
+              hub.then(ch.ffr_tip(9, 1.5, rng.normal(size=(3, 4)), rng.normal(size=(3, 4))))]
+    table = ch.ChainTable.of(chains, set(range(len(chains))), set())
+    assert list(table.prefix) == [-1, 0, 1, 1, 1, -1]
+    F = np.zeros((1, 3, 3))
+    fr.evaluate_motion(table, x, v, F, False)
+    for k, chain in enumerate(chains):
+        alone = ch.ChainTable.of([chain], {0}, set())
+        fr.evaluate_motion(alone, x, v, F, False)
+        nc = table.width(k)
+        for mine, its in ((table.pose[k], alone.pose[0]), (table.jac[k][:, :, :nc], alone.jac[0][:, :, :nc]),
+                          (table.products[k], alone.products[0])):
+            np.testing.assert_allclose(mine, its, rtol=0, atol=1e-13 * max(1.0, np.max(np.abs(its))))

@@ -164,6 +164,20 @@ class Chain:
         return out
 
 
+def _prefix(merged, k: int) -> int:
+    """The earlier chain of ``merged`` (each a tuple of merged links) with the most links whose
+    links begin chain k's (-1: none; nor where either holds an ANCF or FFR tip)."""
+    tips = (LinkKind.ANCF_TIP, LinkKind.FFR_TIP)
+    if any(link.kind in tips for link in merged[k]):
+        return -1
+    best, size = -1, 0
+    for j in range(k):
+        n = len(merged[j])
+        if size < n <= len(merged[k]) and merged[k][:n] == merged[j]:
+            best, size = j, n
+    return best
+
+
 class ChainTable(NamedTuple):
     """Every chain of a system in arrays for compiled code (:meth:`of`), and the place where
     their kinematics at the current state are kept (:func:`evaluate_chains`: once per evaluation
@@ -184,6 +198,11 @@ class ChainTable(NamedTuple):
     # Jacobians (:func:`evaluate_motion`): nothing (POSE), its velocity products (PRODUCTS) or
     # its derivatives hess too (HESSIANS)
     orders: np.ndarray
+    # int64 (n_chains,): an earlier chain whose links (merged) begin this chain's, the longest,
+    # or -1; neither of them holds an ANCF or FFR tip. Where the earlier chain is evaluated in
+    # the same call, this one continues from its pose and Jacobians (:func:`evaluate_motion`,
+    # to its velocity products at most): a free base's frames share the base's pose
+    prefix: np.ndarray
     # the link kinds beyond constants and revolutes that some chain holds: True, or None when none
     # does, so that numba compiles the kinematics without that kind's code (:func:`evaluate_chains`)
     free_links: bool | None
@@ -197,6 +216,7 @@ class ChainTable(NamedTuple):
         only unless among ``hessians`` (default all of ``second``), whose derivatives hess
         they read too (:func:`hubbeam.system.frames.evaluate_motion`)."""
         links, params, start, columns, cstart, maps = [], [], [0], [], [0], []
+        merged = [chain.merged().links for chain in chains]
         for chain in chains:
             for link in chain.merged().links:
                 links.append((int(link.kind), link.coordinate, len(params)))
@@ -219,7 +239,7 @@ class ChainTable(NamedTuple):
                    np.zeros((w, W_WIDTH)), np.array(maps, dtype=float),
                    np.array([(POSE if second is not None and k not in second else
                               HESSIANS if hessians is None or k in hessians else PRODUCTS) for k in range(n)],
-                            dtype=np.int64),
+                            dtype=np.int64), ints([_prefix(merged, k) for k in range(n)], (n,)),
                    present(LinkKind.FREE), present(LinkKind.ANCF_TIP), present(LinkKind.FFR_TIP))
 
     def width(self, k: int) -> int:

@@ -157,7 +157,7 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
     pose, jac, hess = np.empty((1, 3, 4)), np.empty((1, 2, 3, nc)), np.empty((1, 2, 3, nc, nc))
     chain_kinematics_into(table, np.int64(k), k + 1, x, F, np.int64(HESSIANS if order >= 2 else POSE),
                           np.full(1, HESSIANS, np.int64), pose, jac, hess, np.empty((nc, W_WIDTH)), table.free_links,
-                          table.ancf_tips, table.ffr_tips, x, np.empty((1, 2, 3)), order < 0)
+                          table.ancf_tips, table.ffr_tips, x, np.empty((1, 2, 3)), x.shape[0] < 0)
     P, J, H = pose[0], jac[0], hess[0]
     for i in range(3):
         r[i] = P[i, 0]
@@ -251,16 +251,34 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
         nc = table.column_start[k + 1] - table.column_start[k]
         par = table.params
         maps = table.maps
-        for i in range(3):
-            P[i, 0] = 0.0
-            for j in range(3):
-                P[i, 1 + j] = 1.0 if i == j else 0.0
         root_columns = 0  # the first link's own columns (their mutual derivatives are explicit)
         root_kind = -1
         col = 0
         slope_length = 1.0
         tau0 = tau1 = tau2 = 0.0  # an ANCF tip's section axis (later links turn P)
-        for li in range(l0, l1):
+        shared = table.prefix[k]  # a chain evaluated before whose links begin this one's
+        if shared >= first and (chain_order == POSE or (chain_order == PRODUCTS and with_products)):
+            Ps, Js = pose[shared - first], jac[shared - first]
+            for i in range(3):
+                for j in range(4):
+                    P[i, j] = Ps[i, j]
+            col = table.column_start[shared + 1] - table.column_start[shared]
+            for c in range(col):
+                for i in range(3):
+                    J[1, i, c] = Js[1, i, c]
+            if free_links is not None and table.links[l0, KIND] == LinkKind.FREE:
+                root_kind = LinkKind.FREE
+                root_columns = 7
+            l_start = l0 + table.start[shared + 1] - table.start[shared]
+        else:
+            shared = -1
+            for i in range(3):
+                P[i, 0] = 0.0
+                for j in range(3):
+                    P[i, 1 + j] = 1.0 if i == j else 0.0
+            l_start = l0
+        own = col  # the columns before own: the shared chain's (their Jr moved to this origin below)
+        for li in range(l_start, l1):
             kind = table.links[li, KIND]
             c0 = table.links[li, COORD]
             pr = table.links[li, PARAM]
@@ -346,7 +364,15 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
         # origin velocities: a translation's axis, or a rotation's axis x (r - the point it turns
         # about) (added to an FFR tip column's translations)
         has_tip = False
-        for i in range(nc):
+        if shared >= 0:  # Jr_i = Jw_i x (r - o_i) = Jr_i of the shared chain + Jw_i x (r - its r)
+            Ps, Js = pose[shared - first], jac[shared - first]
+            d0, d1, d2 = P[0, 0] - Ps[0, 0], P[1, 0] - Ps[1, 0], P[2, 0] - Ps[2, 0]
+            for i in range(own):
+                w0, w1, w2 = J[1, 0, i], J[1, 1, i], J[1, 2, i]
+                J[0, 0, i] = Js[0, 0, i] + (w1 * d2 - w2 * d1)
+                J[0, 1, i] = Js[0, 1, i] + (w2 * d0 - w0 * d2)
+                J[0, 2, i] = Js[0, 2, i] + (w0 * d1 - w1 * d0)
+        for i in range(own, nc):
             if work[i, W_TYPE] == TRANSLATION:
                 for a in range(3):
                     J[0, a, i] = 1.0 if a == work[i, W_DIRECTION] else 0.0
@@ -564,9 +590,10 @@ def evaluate_chains(table, x, F, order):
     ``order`` as an int64 and the first chain as np.int64(0), not the literals that the callers
     write: numba compiles a function once more for every literal argument that a compiled caller
     passes (the powers and measures pass 1)."""
-    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, HESSIANS if order >= 2 else POSE,
-                          table.orders, table.pose, table.jac, table.hess, table.work, table.free_links,
-                          table.ancf_tips, table.ffr_tips, x, table.products, order < 0)
+    level = np.int64(HESSIANS if order >= 2 else POSE)
+    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, level, table.orders, table.pose,
+                          table.jac, table.hess, table.work, table.free_links, table.ancf_tips, table.ffr_tips, x,
+                          table.products, x.shape[0] < 0)
 
 
 @njit(cache=True, inline="always")
@@ -581,9 +608,10 @@ def evaluate_motion(table, x, v, F, hessians):
     body and screws are summed in one pass over its columns, without its derivatives (case M's
     free bus, three of its five frames: 1.0 us to Hessians, measured by
     ``benchmarks/bus_cost.py``). Inlined, as :func:`evaluate_chains`."""
-    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, HESSIANS if hessians else PRODUCTS,
-                          table.orders, table.pose, table.jac, table.hess, table.work, table.free_links,
-                          table.ancf_tips, table.ffr_tips, v, table.products, v.shape[0] >= 0)
+    level = np.int64(HESSIANS if hessians else PRODUCTS)
+    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, level, table.orders, table.pose,
+                          table.jac, table.hess, table.work, table.free_links, table.ancf_tips, table.ffr_tips, v,
+                          table.products, v.shape[0] >= 0)
 
 
 @njit(cache=True, inline="always")
