@@ -5,8 +5,10 @@
     python benchmarks/bus_cost.py
 
 residual / matrix: one evaluation of the system's equations without / with the Newton matrix;
-powers: the step's powers; chains2 / chains1: every frame's kinematics to order 2 (the
-equations') / 1 (the powers'); eq / pow KIND: one kind's terms alone (its residual rows; its
+powers: the step's powers; motion / chains1 / hessians: every frame's kinematics as the
+equations evaluate them (evaluate_motion: velocity products where read, Hessians only where
+read) / to order 1 (the powers') / with every marked frame's Hessians (evaluate_chains order
+2, the controllers'); eq / pow KIND: one kind's terms alone (its residual rows; its
 dissipated and drive power). Prints the frames' count, orders and widths of each model.
 """
 import os, sys, tempfile
@@ -16,7 +18,7 @@ from engines import case_m_text
 from probes import best, evaluation_point, part_loop, part_powers_loop
 from hubbeam.io.scenario import load_scenario
 from hubbeam.system.equations import system_equations, step_powers
-from hubbeam.system.frames import evaluate_chains
+from hubbeam.system.frames import evaluate_chains, evaluate_motion
 
 @njit(_nrt=False)  # as the system's functions: the kinds' terms count no references
 def loop_eq(n, want, model, F, x, v, a, lam, res, ab, brow, bcol, bb):
@@ -39,6 +41,11 @@ def loop_chains(n, table, x, F, order):
     for i in range(n):
         evaluate_chains(table, x, F, order)
 
+@njit(_nrt=False)
+def loop_motion(n, table, x, v, F):
+    for i in range(n):
+        evaluate_motion(table, x, v, F, n < 0)
+
 def scenario_of(free_base):
     text = case_m_text(free_base, slew=True)
     with tempfile.TemporaryDirectory() as tmp:
@@ -55,8 +62,9 @@ for free_base in (True, False):
     out["residual"] = best(lambda n: loop_eq(n, False, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 50000)
     out["matrix"] = best(lambda n: loop_eq(n, True, model, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 10000)
     out["powers"] = best(lambda n: loop_pow(n, model, F, x, v, lam), 50000)
-    out["chains2"] = best(lambda n: loop_chains(n, tab, x, F, 2), 50000)
+    out["motion"] = best(lambda n: loop_motion(n, tab, x, v, F), 50000)
     out["chains1"] = best(lambda n: loop_chains(n, tab, x, F, 1), 50000)
+    out["hessians"] = best(lambda n: loop_chains(n, tab, x, F, 2), 50000)
     for pack in model.parts:
         nm = type(pack).__name__
         out["eq " + nm] = best(lambda n: part_loop(n, pack, ctx, F, x, v, a, lam, res, mat.ab, mat.brow, mat.bcol, mat.bb), 50000)

@@ -201,3 +201,30 @@ def test_a_fixed_hubs_inertia_is_unused_on_a_table_base(tmp_path):
     heavy = run(strip_model({"motion": "table", "file": table}, (0.0, -9.81, 0.0), {"inertia": 5.0}, t_end=0.5))
     for column in ("energy_kinetic", "energy_drive", "tip0_vertical"):
         np.testing.assert_array_equal(heavy[column], plain[column])
+
+
+def test_the_attitude_reference_is_computed_afresh_for_every_new_time():
+    """The PD law keeps its reference for the last time it was asked (the step's residuals and
+    powers share it): its torque at t1 after asking at t2 is bit for bit that of a pack that never
+    saw t2, and at a new time it differs (a reference kept across times would give the same
+    torque for every time at the same state). At the slew's midpoint, a base resting at its
+    starting attitude feels the torque -kp phi - kd (0 - w_ref) with phi = -s about the axis."""
+    from hubbeam import api
+    from hubbeam.io.scenario import load_example
+    from hubbeam.system.base_laws import BaseLaws, _scratch, attitude_torque
+
+    system = api.build_system(load_example("spacecraft3d"))
+    pack = next(p for p in system.model().parts if isinstance(p, BaseLaws))
+    law = system.base.torque
+    e = pack.reference.copy()  # the starting attitude, at rest
+    w = np.zeros(3)
+    t1, t2 = 0.5 * law.slew_T, 0.25 * law.slew_T
+    fresh = attitude_torque(pack._replace(work=_scratch()), t1, e, w)
+    attitude_torque(pack, t2, e, w)
+    again = attitude_torque(pack, t1, e, w)
+    np.testing.assert_array_equal(again, fresh)
+    assert not np.array_equal(attitude_torque(pack, t2, e, w), again)
+    s, ds = 0.5 * law.slew_angle, 2.0 * law.slew_angle / law.slew_T  # the rest-to-rest profile at T / 2
+    axis = np.asarray(law.slew_axis)
+    np.testing.assert_allclose(fresh, np.asarray(law.kp) * s * axis + np.asarray(law.kd) * ds * axis, rtol=1e-12,
+                               atol=1e-12 * np.max(np.abs(fresh)))

@@ -8,6 +8,7 @@ import pytest
 from hubbeam import api
 from hubbeam.io.scenario import load_example
 from hubbeam.simulation import CompiledSteps, initial_state
+from hubbeam.system.chains import HESSIANS, POSE, PRODUCTS
 from hubbeam.solvers import generalized_alpha as ga
 from hubbeam.solvers import newton_control as nc
 
@@ -81,12 +82,14 @@ def test_the_energy_changes_at_the_rate_of_the_drive_minus_the_dissipated_power(
     ("articulated", ['beams[1].formulation="ffr"']),
 ])
 def test_the_equations_read_no_hessian_that_evaluate_chains_leaves_out(example, overrides):
-    """:func:`hubbeam.system.frames.evaluate_chains` takes a chain's Hessians only where the
-    system marks it (the beams' root frames, the rigid bodies'); every other chain's hess keeps
-    what an earlier evaluation left there. At a moving state, with every chain's hess first
-    filled with garbage, the residual and the Newton matrix are bit for bit those of the same
-    equations with every chain evaluated to order 2: a part that read an unmarked chain's
-    Hessians would read the garbage."""
+    """:func:`hubbeam.system.frames.evaluate_motion` takes a chain's Hessians only where the
+    system marks it (the ANCF roots, the controllers' inputs) and its velocity products only
+    where it marks those (the FFR roots, the rigid bodies'); every other chain's hess and
+    products keep what an earlier evaluation left there. At a moving state, with every chain's
+    hess and products first filled with garbage, the residual and the Newton matrix are those of
+    the same equations with every chain's Hessians evaluated (its velocity products contracted
+    from them: round-off apart): a part that read an unmarked chain's Hessians or products would
+    read the garbage."""
     from hubbeam.system.assembly import BorderedBandMatrix
     from hubbeam.system.equations import system_equations
 
@@ -98,21 +101,22 @@ def test_the_equations_read_no_hessian_that_evaluate_chains_leaves_out(example, 
     lam = rng.standard_normal(state.lam.size)
     model = system.model()
     table = model.context.chains
-    assert 1 in table.orders and 2 in table.orders  # the case has both kinds of chain
+    assert POSE in table.orders and PRODUCTS in table.orders  # chains left out and chains of products alone
     every = model._replace(context=model.context._replace(chains=table._replace(
-        orders=np.full_like(table.orders, 2), hess=table.hess.copy())))
+        orders=np.full_like(table.orders, HESSIANS), hess=table.hess.copy(), products=table.products.copy())))
     layout = system.layout
     out = []
     for m in (model, every):
         m.context.chains.hess[...] = 1e300  # garbage where no evaluation writes
+        m.context.chains.products[...] = 1e300
         res = np.empty(layout.nz)
         mat = BorderedBandMatrix.empty(layout.nz, layout.border, m.bandwidth)
         system_equations(m, F, x, v, acc, lam, 0.1, 1.0, 0.5, 0.3e-6, 1.0, 1.0, False, True, res, mat.ab, mat.brow,
                          mat.bcol, mat.bb)
         out.append((res, mat.to_dense()))
-    assert np.all(np.isfinite(out[0][0]))
-    np.testing.assert_array_equal(out[0][0], out[1][0])
-    np.testing.assert_array_equal(out[0][1], out[1][1])
+    assert np.all(np.isfinite(out[0][0])) and np.all(np.isfinite(out[0][1]))
+    np.testing.assert_allclose(out[0][0], out[1][0], rtol=0, atol=1e-12 * np.max(np.abs(out[1][0])))
+    np.testing.assert_allclose(out[0][1], out[1][1], rtol=0, atol=1e-12 * np.max(np.abs(out[1][1])))
 
 
 LEAK_CHECK = """

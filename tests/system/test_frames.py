@@ -162,7 +162,7 @@ def test_the_pruned_kinematics_equal_the_whole_code(which):
     for flags in (table[-3:], (True, True, True)):
         pose, jac, hess = np.zeros_like(table.pose), np.zeros_like(table.jac), np.zeros_like(table.hess)
         fr.chain_kinematics_into(table, 0, table.orders.shape[0], x, F, 2, table.orders, pose, jac, hess,
-                                 np.zeros_like(table.work), *flags)
+                                 np.zeros_like(table.work), *flags, x, np.zeros_like(table.products), False)
         out.append((pose, jac, hess))
     for a, b in zip(*out):
         assert np.array_equal(a, b), name
@@ -196,7 +196,57 @@ def test_exp1_compiles_its_chains_without_the_other_kinds():
     tip_displacements(model, F, x, np.empty((1, 3)))
     fr.chain_pose(model.context.chains, 0, x, F, 2)
     signatures = [s for s in fr.chain_kinematics_into.signatures if s[0] == table_type]
-    assert any(all(t == types.none for t in s[11:]) for s in signatures)
+    assert any(all(t == types.none for t in s[11:14]) for s in signatures)
     assert not any(isinstance(t, types.Literal) for s in signatures for t in s)  # a copy per literal
     assert all(t.layout == "C" for s in signatures for t in s if isinstance(t, types.Array))
     assert len(signatures) - len(before) <= 1
+
+
+@pytest.mark.parametrize("which", range(6))
+def test_velocity_products_against_differences_of_the_jacobians(which):
+    """evaluate_motion's velocity products h = sum_il H[:, i, l] c'_i c'_l of a chain marked for
+    them alone (a free body and screws: summed in one pass without H; an ANCF or FFR tip:
+    contracted from H) and of one marked for its Hessians equal d(J c')/dt at fixed c' = (J(x +
+    e v) - J(x - e v)) / (2 e) c', from the Jacobians of the pose alone (no second derivative).
+    A wrong sign or a missed pair of columns in the one-pass sum (the free body's own columns,
+    the pairs l > i) would show."""
+    rng = np.random.default_rng(31 + which)
+    name, chain, x, F = _chains(rng)[which]
+    v = rng.normal(size=x.size)
+    cols = chain.coordinates
+    eps = 1e-6
+    *_, Jrp, Jwp, _, _ = fr.chain_pose(ch.ChainTable.of([chain]), 0, x + eps * v, F)
+    *_, Jrm, Jwm, _, _ = fr.chain_pose(ch.ChainTable.of([chain]), 0, x - eps * v, F)
+    expected = np.array([(Jrp - Jrm) @ v[cols], (Jwp - Jwm) @ v[cols]]) / (2 * eps)
+    for hessians in (None, set()):  # marked for its Hessians, for its products alone
+        table = ch.ChainTable.of([chain], {0}, hessians)
+        assert table.orders[0] == (ch.HESSIANS if hessians is None else ch.PRODUCTS)
+        table.hess[...] = np.nan if hessians is not None and which in (0, 1) else 0.0  # the one pass reads no H
+        fr.evaluate_motion(table, x, v, np.ascontiguousarray(F), False)
+        assert np.allclose(table.products[0], expected, rtol=1e-7, atol=1e-7 * np.max(np.abs(expected))), name
+
+
+def test_chains_that_begin_with_another_continue_from_its_pose():
+    """In one table, a chain whose links begin with an earlier chain's (a free base's frames: the
+    base, the hub on it, the roots on the hub) continues from that chain's pose and Jacobians
+    (ChainTable.prefix): its pose, Jacobians and velocity products equal those of the chain
+    evaluated alone, from its first link (round-off apart); one that holds a tip shares
+    nothing."""
+    rng = np.random.default_rng(5)
+    x, v = rng.normal(size=20), rng.normal(size=20)
+    const = lambda: ch.constant(rng.normal(size=3), _random_rotation(rng))  # noqa: E731
+    base = ch.Chain((ch.free(0), const()))
+    hub = base.then(ch.revolute(7, (0.0, 1.0, 0.0), -1.0))
+    chains = [base, hub, hub.then(const()), hub.then(const(), ch.revolute(8, rng.normal(size=3)), const()), hub,
+              hub.then(ch.ffr_tip(9, 1.5, rng.normal(size=(3, 4)), rng.normal(size=(3, 4))))]
+    table = ch.ChainTable.of(chains, set(range(len(chains))), set())
+    assert list(table.prefix) == [-1, 0, 1, 1, 1, -1]
+    F = np.zeros((1, 3, 3))
+    fr.evaluate_motion(table, x, v, F, False)
+    for k, chain in enumerate(chains):
+        alone = ch.ChainTable.of([chain], {0}, set())
+        fr.evaluate_motion(alone, x, v, F, False)
+        nc = table.width(k)
+        for mine, its in ((table.pose[k], alone.pose[0]), (table.jac[k][:, :, :nc], alone.jac[0][:, :, :nc]),
+                          (table.products[k], alone.products[0])):
+            np.testing.assert_allclose(mine, its, rtol=0, atol=1e-13 * max(1.0, np.max(np.abs(its))))

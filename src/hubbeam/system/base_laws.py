@@ -228,17 +228,22 @@ def attitude_torque_into(pack, t, e, w_base, tau):
         tau[i] = 0.0
     if pack.attitude == AttitudeKind.NONE:
         return
-    s, ds = 0.0, 0.0
-    if pack.attitude == AttitudeKind.SLEW:
-        drv = pack.slew
-        s, ds, _ = drive_values(drv[0], drv[1], drv[2], drv[3], t)
     a = pack.axis
     quaternions = pack.work[3]
     q_ref, e_unit, err, turn, conj = quaternions[0], quaternions[1], quaternions[2], quaternions[3], quaternions[4]
-    turn[0] = math.cos(0.5 * s)
-    for i in range(3):
-        turn[1 + i] = math.sin(0.5 * s) * a[i]
-    quaternion_product(pack.reference, turn, q_ref)
+    known = quaternions[5]  # the time (NaN: none) whose reference q_ref holds, and its slew rate s'
+    if not known[0] == t:  # the reference once per time: the step's residuals and powers share it
+        s, ds = 0.0, 0.0
+        if pack.attitude == AttitudeKind.SLEW:
+            drv = pack.slew
+            s, ds, _ = drive_values(drv[0], drv[1], drv[2], drv[3], t)
+        turn[0] = math.cos(0.5 * s)
+        for i in range(3):
+            turn[1 + i] = math.sin(0.5 * s) * a[i]
+        quaternion_product(pack.reference, turn, q_ref)
+        known[0] = t
+        known[1] = ds
+    ds = known[1]
     norm = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3])
     for i in range(4):
         e_unit[i] = e[i] / norm
@@ -288,7 +293,8 @@ class BaseLaws(NamedTuple):
     #: equations, which count no references, :func:`hubbeam.system.terms.register`):
     #: [0] the drive's pose, rows r, r', r'', q, q', q'' (r's in columns 0-2; :func:`driven_pose_into`);
     #: [1] the pose table's values (:func:`table_values_into`); [2] G (rows 0-2) and the attitude
-    #: law's Newton-matrix product R^T Jw on e (rows 3-5); [3] the attitude law's quaternions and
+    #: law's Newton-matrix product R^T Jw on e (rows 3-5); [3] the attitude law's quaternions (its
+    #: reference q_ref in row 0 for the time in [5, 0], NaN before the first, with its slew rate in [5, 1]) and
     #: [4] its R_err (:func:`attitude_torque_into`); [5] w, w_base, tau and R tau (rows 0-3)
     work: np.ndarray
 
@@ -311,7 +317,14 @@ def pack_base_laws(system, layout) -> BaseLaws | None:
         np.array(law.kp if law is not None else (0.0,) * 3, dtype=float),
         np.array(law.kd if law is not None else (0.0,) * 3, dtype=float), reference,
         np.array(law.slew_axis if law is not None and law.slew_axis is not None else (1.0, 0.0, 0.0), dtype=float),
-        tuple((law.slew() if law is not None else DriveProfile("rest")).compiled()), np.zeros((6, 6, 4)))
+        tuple((law.slew() if law is not None else DriveProfile("rest")).compiled()), _scratch())
+
+
+def _scratch() -> np.ndarray:
+    """The terms' scratch (:attr:`BaseLaws.work`), with no attitude reference known yet."""
+    work = np.zeros((6, 6, 4))
+    work[3, 5, 0] = np.nan
+    return work
 
 
 @njit(cache=True)

@@ -11,6 +11,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+#: what is evaluated of a chain (:attr:`ChainTable.orders`, :func:`hubbeam.system.frames.chain_kinematics_into`):
+#: its pose and Jacobians; and its velocity products h_r = sum_il Hr[:, i, l] c'_i c'_l, h_w
+#: likewise; and its derivatives Hr, Hw themselves
+POSE, PRODUCTS, HESSIANS = 1, 2, 3
 #: columns of a chain's scratch rows (:func:`hubbeam.system.frames.chain_kinematics_into`)
 W_WIDTH = 15
 
@@ -160,6 +164,20 @@ class Chain:
         return out
 
 
+def _prefix(merged, k: int) -> int:
+    """The earlier chain of ``merged`` (each a tuple of merged links) with the most links whose
+    links begin chain k's (-1: none; nor where either holds an ANCF or FFR tip)."""
+    tips = (LinkKind.ANCF_TIP, LinkKind.FFR_TIP)
+    if any(link.kind in tips for link in merged[k]):
+        return -1
+    best, size = -1, 0
+    for j in range(k):
+        n = len(merged[j])
+        if size < n <= len(merged[k]) and merged[k][:n] == merged[j]:
+            best, size = j, n
+    return best
+
+
 class ChainTable(NamedTuple):
     """Every chain of a system in arrays for compiled code (:meth:`of`), and the place where
     their kinematics at the current state are kept (:func:`evaluate_chains`: once per evaluation
@@ -173,9 +191,18 @@ class ChainTable(NamedTuple):
     pose: np.ndarray  # (n_chains, 3, 4): each chain's origin (column 0) and axes (1:4) at the state
     jac: np.ndarray  # (n_chains, 2, 3, w): Jr, Jw of each chain's columns (w: the widest chain's)
     hess: np.ndarray  # (n_chains, 2, 3, w, w): Hr, Hw
+    products: np.ndarray  # (n_chains, 2, 3): the velocity products h_r, h_w (:func:`evaluate_motion`)
     work: np.ndarray  # (w, W_WIDTH): scratch of :func:`chain_kinematics_into` for the widest chain
     maps: np.ndarray  # (n,): the FFR tips' rows M (6 x nf, row-major), each from its link's params[1]
-    orders: np.ndarray  # int64 (n_chains,): 2 for a chain whose hess the equations read, else 1 (:func:`evaluate_chains`)
+    # int64 (n_chains,): what the system's equations read of each chain beyond its pose and
+    # Jacobians (:func:`evaluate_motion`): nothing (POSE), its velocity products (PRODUCTS) or
+    # its derivatives hess too (HESSIANS)
+    orders: np.ndarray
+    # int64 (n_chains,): an earlier chain whose links (merged) begin this chain's, the longest,
+    # or -1; neither of them holds an ANCF or FFR tip. Where the earlier chain is evaluated in
+    # the same call, this one continues from its pose and Jacobians (:func:`evaluate_motion`,
+    # to its velocity products at most): a free base's frames share the base's pose
+    prefix: np.ndarray
     # the link kinds beyond constants and revolutes that some chain holds: True, or None when none
     # does, so that numba compiles the kinematics without that kind's code (:func:`evaluate_chains`)
     free_links: bool | None
@@ -183,10 +210,13 @@ class ChainTable(NamedTuple):
     ffr_tips: bool | None
 
     @classmethod
-    def of(cls, chains, second=None) -> "ChainTable":
-        """The table of ``chains``; ``second``: the indices of the chains whose derivatives
-        hess the system's equations read (default every chain's), :func:`evaluate_chains`."""
+    def of(cls, chains, second=None, hessians=None) -> "ChainTable":
+        """The table of ``chains``; ``second``: the indices of the chains whose second-order
+        terms the system's equations read (default every chain's), their velocity products
+        only unless among ``hessians`` (default all of ``second``), whose derivatives hess
+        they read too (:func:`hubbeam.system.frames.evaluate_motion`)."""
         links, params, start, columns, cstart, maps = [], [], [0], [], [0], []
+        merged = [chain.merged().links for chain in chains]
         for chain in chains:
             for link in chain.merged().links:
                 links.append((int(link.kind), link.coordinate, len(params)))
@@ -205,9 +235,11 @@ class ChainTable(NamedTuple):
         w = max((cstart[k + 1] - cstart[k] for k in range(n)), default=0)
         return cls(ints(links, (len(links), 3)), np.array(params, dtype=float).reshape(len(params), 13),
                    ints(start, (len(start),)), ints(columns, (len(columns),)), ints(cstart, (len(cstart),)),
-                   np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((w, W_WIDTH)),
-                   np.array(maps, dtype=float),
-                   np.array([2 if second is None or k in second else 1 for k in range(n)], dtype=np.int64),
+                   np.zeros((n, 3, 4)), np.zeros((n, 2, 3, w)), np.zeros((n, 2, 3, w, w)), np.zeros((n, 2, 3)),
+                   np.zeros((w, W_WIDTH)), np.array(maps, dtype=float),
+                   np.array([(POSE if second is not None and k not in second else
+                              HESSIANS if hessians is None or k in hessians else PRODUCTS) for k in range(n)],
+                            dtype=np.int64), ints([_prefix(merged, k) for k in range(n)], (n,)),
                    present(LinkKind.FREE), present(LinkKind.ANCF_TIP), present(LinkKind.FFR_TIP))
 
     def width(self, k: int) -> int:

@@ -26,7 +26,7 @@ from numba import literal_unroll, njit
 
 from hubbeam.elements.ancf import coordinates
 from hubbeam.elements.ancf.strain import strain_measures
-from hubbeam.system.frames import evaluate_chains
+from hubbeam.system.frames import evaluate_chains, evaluate_motion
 from hubbeam.system.terms import (CHART_SINGULAR, Context, part_drive_power, part_energies, part_equations,
                                   part_events, part_momenta, part_power, part_tips)
 
@@ -67,7 +67,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     with kl = ku = model.bandwidth). ``F`` holds every beam's chart. The parts' terms:
     :mod:`hubbeam.system.terms`.
 
-    Every frame's kinematics are evaluated first, once (:func:`~hubbeam.system.frames.evaluate_chains`),
+    Every frame's kinematics are evaluated first, once (:func:`~hubbeam.system.frames.evaluate_motion`),
     and the parts read them. Returns (chart margin min(1 + d.tau) over all Gauss points,
     dissipated power W). A margin at or below :data:`CHART_SINGULAR` means the residual is not
     valid.
@@ -80,7 +80,7 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     0.7 us of the 1.6 us of a call of the step's powers there.
     """
     ctx = model.context
-    evaluate_chains(ctx.chains, x, F, 2)
+    evaluate_motion(ctx.chains, x, v, F, exact_stiffness)
     for i in range(res.shape[0]):
         res[i] = 0.0
     if want_matrix:

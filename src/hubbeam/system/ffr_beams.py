@@ -38,7 +38,7 @@ from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
 from hubbeam.system.ffr_part import FfrPart
 from hubbeam.system.frame_motions import chain_columns, displacement_in_reference, frame_motion
-from hubbeam.system.frames import chain_kinematics, chain_state
+from hubbeam.system.frames import chain_kinematics, chain_products, chain_state, contracted_products
 
 #: the constants of :class:`hubbeam.elements.ffr.constants.FfrArrays` that :class:`FfrBeams` holds
 #: in one array per group of equal shapes, each field in its slot (its place in the group) along
@@ -166,23 +166,26 @@ def _kernel_work(pack):
 
 
 @njit(cache=True)
-def _fresh_frame(ctx, F, chain, x):
-    """(columns, r, R, Jr, Jw, Hr, Hw) of a chain evaluated at x (not the cached state: the
-    differences of the exact stiffness move x)."""
+def _fresh_frame(ctx, F, chain, x, v):
+    """(columns, r, R, Jr, Jw, products) of a chain evaluated at x and rates v (not the cached
+    state: the differences of the exact stiffness move x; products: its velocity products
+    h_r, h_w, :func:`~hubbeam.system.frames.evaluate_motion`)."""
     cols = chain_columns(ctx.chains, chain)
     nc = cols.shape[0]
     r, R = np.empty(3), np.empty((3, 3))
     Jr, Jw = np.empty((3, nc)), np.empty((3, nc))
     Hr, Hw = np.empty((3, nc, nc)), np.empty((3, nc, nc))
     chain_kinematics(ctx.chains, chain, x, F, 2, r, R, Jr, Jw, Hr, Hw)
-    return cols, r, R, Jr, Jw, Hr, Hw
+    products = np.empty((2, 3))
+    contracted_products(Hr, Hw, cols, v, products)
+    return cols, r, R, Jr, Jw, products
 
 
 @njit(cache=True, _nrt=False)
-def _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, motion, vb, vdot):
+def _vspace_rates(R, Jr, Jw, products, cols, v, acc, x0, nf, motion, vb, vdot):
     """vb = H [c', p'] and vdot = H [c'', p''] + [h_r, A0^T h_w, 0] (module docstring);
     ``motion`` (4, 3) scratch."""
-    frame_motion(Jr, Jw, Hr, Hw, cols, v, acc, motion[0], motion[1], motion[2], motion[3])
+    frame_motion(Jr, Jw, products, cols, v, acc, motion[0], motion[1], motion[2], motion[3])
     for i in range(3):
         vb[i] = motion[0, i]
         vdot[i] = motion[2, i]
@@ -198,7 +201,7 @@ def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, for
     """FFR beam k's generalized force on its columns [c (the frame's nc), p (nf)] into ``force``
     (nc + nf; module docstring) and, when ``want_matrix``, its projection H ((6 + nf) x (nc +
     nf)), M_v, C_v and K_el (:func:`ffr_vspace_terms`; ``elastic`` False leaves the
-    elastic force out). ``frame`` = (columns, r, R, Jr, Jw, Hr, Hw): its frame at x, as the
+    elastic force out). ``frame`` = (columns, r, R, Jr, Jw, products): its frame at x, as the
     system evaluated it (:func:`~hubbeam.system.frames.chain_state`) or afresh
     (:func:`_fresh_frame`). Returns the dissipated power (W).
 
@@ -209,12 +212,12 @@ def ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, for
     nf = pack.places[k, NF]
     x0 = pack.places[k, X0]
     n = 6 + nf
-    cols, r, R, Jr, Jw, Hr, Hw = frame
+    cols, r, R, Jr, Jw, products = frame
     nc = cols.shape[0]
     p = x[x0:x0 + nf]
     vecs = pack.vectors_work
     vb, vdot, fv = vecs[0, :n], vecs[1, :n], vecs[2, :n]
-    _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, acc, x0, nf, vecs[3:7, :3], vb, vdot)
+    _vspace_rates(R, Jr, Jw, products, cols, v, acc, x0, nf, vecs[3:7, :3], vb, vdot)
     inv, tip, drag = ffr_arguments(pack, k, ctx.drag)
     power = ffr_vspace_terms(inv, R, p, vb, vdot, ctx.gravity, tip, drag, load_factor, want_matrix, fv, Mv, Cv, K_el,
                              _kernel_work(pack), elastic)
@@ -264,8 +267,8 @@ def _beam_residual(pack, ctx, k, x, v, acc, load_factor, want_matrix, coef_k, re
     nf = pack.places[k, NF]
     x0 = pack.places[k, X0]
     force, H, Mv, Cv, K_el = _beam_scratch(pack, ctx, k, want_matrix)
-    frame = chain_state(ctx.chains, pack.chains[k, 0])
-    cols = frame[0]
+    cols, r, R, Jr, Jw, _, _ = chain_state(ctx.chains, pack.chains[k, 0])
+    frame = (cols, r, R, Jr, Jw, chain_products(ctx.chains, pack.chains[k, 0]))
     nc = cols.shape[0]
     power = ffr_beam_terms(pack, ctx, frame, k, x, v, acc, load_factor, want_matrix, force, H, Mv, Cv, K_el)
     rows = pack.rows_work[0]
@@ -300,10 +303,10 @@ def _difference_stiffness(pack, ctx, F, k, x, v, acc, load_factor, coef_k, block
         c = cols[j] if j < nc else x0 + j - nc
         h = 1e-6 * max(1.0, abs(x[c]))
         xp[c] = x[c] + h
-        ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp), k, xp, v, acc, load_factor,
+        ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp, v), k, xp, v, acc, load_factor,
                        False, fp, H2, M2, C2, K2, False)
         xp[c] = x[c] - h
-        ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp), k, xp, v, acc, load_factor,
+        ffr_beam_terms(pack, ctx, _fresh_frame(ctx, F, pack.chains[k, 0], xp, v), k, xp, v, acc, load_factor,
                        False, fm, H2, M2, C2, K2, False)
         xp[c] = x[c]
         for i in range(m):
@@ -383,7 +386,8 @@ def _frame_rates(pack, ctx, k, x, v, F):
     cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
     vecs = pack.vectors_work
     vb = vecs[0, :6 + nf]
-    _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, v, x0, nf, vecs[3:7, :3], vb, vecs[1, :6 + nf])
+    _vspace_rates(R, Jr, Jw, chain_products(ctx.chains, pack.chains[k, 0]), cols, v, v, x0, nf, vecs[3:7, :3], vb,
+                  vecs[1, :6 + nf])
     return r, R, vb
 
 
@@ -429,7 +433,8 @@ def _dissipated_power(pack, ctx, v, x):
         x0 = places[k, X0]
         cols, r, R, Jr, Jw, Hr, Hw = chain_state(ctx.chains, pack.chains[k, 0])
         vb = vecs[0, :6 + nf]
-        _vspace_rates(R, Jr, Jw, Hr, Hw, cols, v, v, x0, nf, vecs[3:7, :3], vb, vecs[1, :6 + nf])
+        _vspace_rates(R, Jr, Jw, chain_products(ctx.chains, pack.chains[k, 0]), cols, v, v, x0, nf, vecs[3:7, :3],
+                      vb, vecs[1, :6 + nf])
         power += ffr_dissipated_power(R, x[x0:x0 + nf], vb, pack.squares[k, 2], pack.scalars[k, 2],
                                       ffr_drag_arguments(pack, k, ctx.drag))
     return power

@@ -19,10 +19,11 @@ def chain_columns(table, k):
 
 
 @njit(cache=True)
-def frame_motion(Jr, Jw, Hr, Hw, cols, v, acc_x, vel, w, acc, alpha):
+def frame_motion(Jr, Jw, products, cols, v, acc_x, vel, w, acc, alpha):
     """The frame's origin velocity vel = Jr c' and angular velocity w = Jw c' (global), and its
-    accelerations acc = Jr c'' + sum_il Hr[:, i, l] c'_i c'_l and alpha likewise (the velocity
-    products of the chain, exact); c' = v[cols], c'' = acc_x[cols]."""
+    accelerations acc = Jr c'' + h_r and alpha = Jw c'' + h_w, h_r = products[0] and h_w =
+    products[1] the velocity products of its chain (sum_il Hr[:, i, l] c'_i c'_l, exact:
+    :func:`~hubbeam.system.frames.evaluate_motion`); c' = v[cols], c'' = acc_x[cols]."""
     nc = Jr.shape[1]
     for a in range(3):
         sv = sw = sa = sal = 0.0
@@ -33,18 +34,10 @@ def frame_motion(Jr, Jw, Hr, Hw, cols, v, acc_x, vel, w, acc, alpha):
             sw += Jw[a, i] * cd
             sa += Jr[a, i] * cdd
             sal += Jw[a, i] * cdd
-            if cd != 0.0:
-                hr = hw = 0.0
-                for l in range(nc):
-                    cl = v[cols[l]]
-                    hr += Hr[a, i, l] * cl
-                    hw += Hw[a, i, l] * cl
-                sa += hr * cd
-                sal += hw * cd
         vel[a] = sv
         w[a] = sw
-        acc[a] = sa
-        alpha[a] = sal
+        acc[a] = sa + products[0, a]
+        alpha[a] = sal + products[1, a]
 
 
 @njit(cache=True)
@@ -57,9 +50,11 @@ def chain_motions(table, k, X, V, F, r, R, vel, w):
     pose, jac, hess = np.empty((1, 3, 4)), np.empty((1, 2, 3, nc)), np.empty((1, 2, 3, nc, nc))
     P, J = pose[0], jac[0]
     work, orders = np.empty((nc, W_WIDTH)), np.full(1, 1, np.int64)
+    products = np.empty((1, 2, 3))
     for s in range(X.shape[0]):
         chain_kinematics_into(table, np.int64(k), k + 1, X[s], F, np.int64(1), orders, pose, jac, hess, work,
-                              table.free_links, table.ancf_tips, table.ffr_tips)  # no literal: one signature
+                              table.free_links, table.ancf_tips, table.ffr_tips, X[s], products,
+                              nc < 0)  # no literal: one signature
         for i in range(3):
             r[s, i] = P[i, 0]
             for j in range(3):

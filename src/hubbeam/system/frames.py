@@ -55,7 +55,7 @@ import math
 import numpy as np
 from numba import njit
 
-from hubbeam.system.chains import COORD, KIND, PARAM, W_WIDTH, ChainTable, LinkKind
+from hubbeam.system.chains import COORD, HESSIANS, KIND, PARAM, POSE, PRODUCTS, W_WIDTH, ChainTable, LinkKind
 from hubbeam.system.rotations import cross3, euler_rotation_into
 
 
@@ -155,8 +155,9 @@ def chain_kinematics(table, k, x, F, order, r, R, Jr, Jw, Hr, Hw):
     (its arrays allocated here: for tests, front ends and differences, not for every step)."""
     nc = table.column_start[k + 1] - table.column_start[k]
     pose, jac, hess = np.empty((1, 3, 4)), np.empty((1, 2, 3, nc)), np.empty((1, 2, 3, nc, nc))
-    chain_kinematics_into(table, np.int64(k), k + 1, x, F, np.int64(order), np.full(1, 2, np.int64), pose, jac,
-                          hess, np.empty((nc, W_WIDTH)), table.free_links, table.ancf_tips, table.ffr_tips)
+    chain_kinematics_into(table, np.int64(k), k + 1, x, F, np.int64(HESSIANS if order >= 2 else POSE),
+                          np.full(1, HESSIANS, np.int64), pose, jac, hess, np.empty((nc, W_WIDTH)), table.free_links,
+                          table.ancf_tips, table.ffr_tips, x, np.empty((1, 2, 3)), x.shape[0] < 0)
     P, J, H = pose[0], jac[0], hess[0]
     for i in range(3):
         r[i] = P[i, 0]
@@ -213,15 +214,21 @@ def _root_translation(x, c0, col, P, J, work):
 
 @njit(cache=True, _nrt=False)
 def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, hess, work, free_links, ancf_tips,
-                          ffr_tips):
+                          ffr_tips, v, products, with_products):
     """The poses of chains first, ..., last - 1 at the coordinates x (charts F for ANCF tips),
-    chain k into pose[k - first], jac[k - first], hess[k - first] to the order min(``order``,
-    orders[k - first]) (0: left as it was). Its pose P (3 x 4): origin r (column 0, m) and
+    chain k into pose[k - first], jac[k - first], hess[k - first], products[k - first]. What is
+    evaluated of chain k (:data:`~hubbeam.system.chains.POSE`, ``PRODUCTS``, ``HESSIANS``):
+    POSE where ``order`` or orders[k - first] is POSE; else orders[k - first] for ``order``
+    PRODUCTS, HESSIANS for ``order`` HESSIANS (0: left as it was). Its pose P (3 x 4): origin r (column 0, m) and
     axes R (columns 1-3, global); for each of its nc coordinate columns (the chain's order:
     :attr:`ChainTable.columns`) J[0, :, i] = Jr[:, i] (m or m/rad per unit coordinate) and
     J[1, :, i] = Jw[:, i] (rad per unit coordinate, global axes). To order 2 also H[0, :, i, l]
     = Hr[:, i, l] = dJr[:, i]/dc_l and H[1, :, i, l] = Hw[:, i, l] = dJw[:, i]/dc_l (module
-    docstring). J (2, 3, >= nc) and H (2, 3, >= nc, >= nc) are overwritten on their first nc
+    docstring); with ``with_products`` (and the rates v of x) beyond POSE also the velocity
+    products h_r = sum_il Hr[:, i, l] c'_i c'_l and h_w likewise (c' = v at the chain's columns)
+    into products[k - first, 0] and [1]: where only they are asked (PRODUCTS) and the chain has
+    neither an ANCF tip nor an FFR tip, in one pass over its columns without H (:func:`_direct_products`),
+    else contracted from H. J (2, 3, >= nc) and H (2, 3, >= nc, >= nc) are overwritten on their first nc
     columns; ``work`` (>= nc, W_WIDTH): scratch (a column's type, a translation's axis, the
     point a rotation turns about, an FFR tip's axes). Scalars only: no allocation and, compiled
     without numba's reference counting, no count of the table's arrays (a step evaluates every
@@ -233,7 +240,10 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
     before it types and compiles it (exp1's chains, constants and revolutes only, compile in a
     fraction of the time)."""
     for k in range(first, last):
-        chain_order = min(order, orders[k - first])
+        level = orders[k - first]
+        chain_order = level if (order == PRODUCTS or level <= POSE) else min(order, HESSIANS)
+        if order == POSE:
+            chain_order = POSE
         if chain_order <= 0:
             continue
         P, J, H = pose[k - first], jac[k - first], hess[k - first]
@@ -241,16 +251,34 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
         nc = table.column_start[k + 1] - table.column_start[k]
         par = table.params
         maps = table.maps
-        for i in range(3):
-            P[i, 0] = 0.0
-            for j in range(3):
-                P[i, 1 + j] = 1.0 if i == j else 0.0
         root_columns = 0  # the first link's own columns (their mutual derivatives are explicit)
         root_kind = -1
         col = 0
         slope_length = 1.0
         tau0 = tau1 = tau2 = 0.0  # an ANCF tip's section axis (later links turn P)
-        for li in range(l0, l1):
+        shared = table.prefix[k]  # a chain evaluated before whose links begin this one's
+        if shared >= first and (chain_order == POSE or (chain_order == PRODUCTS and with_products)):
+            Ps, Js = pose[shared - first], jac[shared - first]
+            for i in range(3):
+                for j in range(4):
+                    P[i, j] = Ps[i, j]
+            col = table.column_start[shared + 1] - table.column_start[shared]
+            for c in range(col):
+                for i in range(3):
+                    J[1, i, c] = Js[1, i, c]
+            if free_links is not None and table.links[l0, KIND] == LinkKind.FREE:
+                root_kind = LinkKind.FREE
+                root_columns = 7
+            l_start = l0 + table.start[shared + 1] - table.start[shared]
+        else:
+            shared = -1
+            for i in range(3):
+                P[i, 0] = 0.0
+                for j in range(3):
+                    P[i, 1 + j] = 1.0 if i == j else 0.0
+            l_start = l0
+        own = col  # the columns before own: the shared chain's (their Jr moved to this origin below)
+        for li in range(l_start, l1):
             kind = table.links[li, KIND]
             c0 = table.links[li, COORD]
             pr = table.links[li, PARAM]
@@ -336,7 +364,15 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
         # origin velocities: a translation's axis, or a rotation's axis x (r - the point it turns
         # about) (added to an FFR tip column's translations)
         has_tip = False
-        for i in range(nc):
+        if shared >= 0:  # Jr_i = Jw_i x (r - o_i) = Jr_i of the shared chain + Jw_i x (r - its r)
+            Ps, Js = pose[shared - first], jac[shared - first]
+            d0, d1, d2 = P[0, 0] - Ps[0, 0], P[1, 0] - Ps[1, 0], P[2, 0] - Ps[2, 0]
+            for i in range(own):
+                w0, w1, w2 = J[1, 0, i], J[1, 1, i], J[1, 2, i]
+                J[0, 0, i] = Js[0, 0, i] + (w1 * d2 - w2 * d1)
+                J[0, 1, i] = Js[0, 1, i] + (w2 * d0 - w0 * d2)
+                J[0, 2, i] = Js[0, 2, i] + (w0 * d1 - w1 * d0)
+        for i in range(own, nc):
             if work[i, W_TYPE] == TRANSLATION:
                 for a in range(3):
                     J[0, a, i] = 1.0 if a == work[i, W_DIRECTION] else 0.0
@@ -354,7 +390,11 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
                     J[0, 0, i] = w1 * d2 - w2 * d1
                     J[0, 1, i] = w2 * d0 - w0 * d2
                     J[0, 2, i] = w0 * d1 - w1 * d0
-        if chain_order < 2:
+        if chain_order < PRODUCTS:
+            continue
+        if with_products and chain_order == PRODUCTS and not has_tip and (ancf_tips is None
+                                                                          or root_kind != LinkKind.ANCF_TIP):
+            _direct_products(table, k, x, v, P, J, nc, root_columns, products[k - first])
             continue
         for i in range(nc):
             for l in range(nc):
@@ -373,48 +413,122 @@ def chain_kinematics_into(table, first, last, x, F, order, orders, pose, jac, he
         if ffr_tips is not None:
             if has_tip:
                 _tip_blocks(table, P, work, nc, H)
-        if free_links is None and ancf_tips is None:
-            continue
-        if root_columns == 0:
-            continue
-        # the first link's own columns among each other
-        for i in range(root_columns):
-            for l in range(root_columns):
-                for a in range(3):
-                    H[1, a, i, l] = 0.0
-                    H[0, a, i, l] = 0.0
-        c0 = table.links[l0, COORD]
-        dr0, dr1, dr2 = P[0, 0] - x[c0], P[1, 0] - x[c0 + 1], P[2, 0] - x[c0 + 2]
-        if free_links is not None and root_kind == LinkKind.FREE:
-            e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
-            s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
-            for l in range(4):
-                # dE/de_l: E of the unit
-                u0, u1, u2, u3 = 1.0 * (l == 0), 1.0 * (l == 1), 1.0 * (l == 2), 1.0 * (l == 3)
-                el = x[c0 + 3 + l]
-                for i in range(4):
+        if (free_links is not None or ancf_tips is not None) and root_columns > 0:
+            # the first link's own columns among each other
+            for i in range(root_columns):
+                for l in range(root_columns):
                     for a in range(3):
-                        H[1, a, 3 + i, 3 + l] = (2.0 * _euler_rate_entry(u0, u1, u2, u3, a, i) / s
-                                                 - 4.0 * el * _euler_rate_entry(e0, e1, e2, e3, a, i) / (s * s))
-        elif ancf_tips is not None:  # ANCF_TIP: rotation columns r0' (3) and theta_1 (1)
-            Fc = F[int(par[table.links[l0, PARAM], 0])]
-            for i in range(3):  # d(A e_i)/du_b
-                for b in range(3):
-                    o0, o1, o2 = _ancf_rate_derivative(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length,
-                                                       i, b)
-                    H[1, 0, 3 + i, 3 + b], H[1, 1, 3 + i, 3 + b], H[1, 2, 3 + i, 3 + b] = o0, o1, o2
-            tau = (tau0, tau1, tau2)
-            for b in range(3):  # d tau / d u_b
-                for a in range(3):
-                    H[1, a, 6, 3 + b] = ((1.0 if a == b else 0.0) - tau[a] * tau[b]) / slope_length
-        # Hr of the first link's rotations: dHw x (r - r_root) + Jw_i x Jr_l
-        for i in range(3, 7):
-            for l in range(3, 7):
-                h0, h1, h2 = H[1, 0, i, l], H[1, 1, i, l], H[1, 2, i, l]
-                H[0, 0, i, l] = h1 * dr2 - h2 * dr1
-                H[0, 1, i, l] = h2 * dr0 - h0 * dr2
-                H[0, 2, i, l] = h0 * dr1 - h1 * dr0
-                _cross_columns(J, 1, i, 0, l, H, 0, i, l, True)
+                        H[1, a, i, l] = 0.0
+                        H[0, a, i, l] = 0.0
+            c0 = table.links[l0, COORD]
+            dr0, dr1, dr2 = P[0, 0] - x[c0], P[1, 0] - x[c0 + 1], P[2, 0] - x[c0 + 2]
+            if free_links is not None and root_kind == LinkKind.FREE:
+                e0, e1, e2, e3 = x[c0 + 3], x[c0 + 4], x[c0 + 5], x[c0 + 6]
+                s = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3
+                for l in range(4):
+                    # dE/de_l: E of the unit
+                    u0, u1, u2, u3 = 1.0 * (l == 0), 1.0 * (l == 1), 1.0 * (l == 2), 1.0 * (l == 3)
+                    el = x[c0 + 3 + l]
+                    for i in range(4):
+                        for a in range(3):
+                            H[1, a, 3 + i, 3 + l] = (2.0 * _euler_rate_entry(u0, u1, u2, u3, a, i) / s
+                                                     - 4.0 * el * _euler_rate_entry(e0, e1, e2, e3, a, i) / (s * s))
+            elif ancf_tips is not None:  # ANCF_TIP: rotation columns r0' (3) and theta_1 (1)
+                Fc = F[int(par[table.links[l0, PARAM], 0])]
+                for i in range(3):  # d(A e_i)/du_b
+                    for b in range(3):
+                        o0, o1, o2 = _ancf_rate_derivative(Fc[0, 0], Fc[1, 0], Fc[2, 0], tau0, tau1, tau2, slope_length,
+                                                           i, b)
+                        H[1, 0, 3 + i, 3 + b], H[1, 1, 3 + i, 3 + b], H[1, 2, 3 + i, 3 + b] = o0, o1, o2
+                tau = (tau0, tau1, tau2)
+                for b in range(3):  # d tau / d u_b
+                    for a in range(3):
+                        H[1, a, 6, 3 + b] = ((1.0 if a == b else 0.0) - tau[a] * tau[b]) / slope_length
+            # Hr of the first link's rotations: dHw x (r - r_root) + Jw_i x Jr_l
+            for i in range(3, 7):
+                for l in range(3, 7):
+                    h0, h1, h2 = H[1, 0, i, l], H[1, 1, i, l], H[1, 2, i, l]
+                    H[0, 0, i, l] = h1 * dr2 - h2 * dr1
+                    H[0, 1, i, l] = h2 * dr0 - h0 * dr2
+                    H[0, 2, i, l] = h0 * dr1 - h1 * dr0
+                    _cross_columns(J, 1, i, 0, l, H, 0, i, l, True)
+        if with_products:
+            contracted_products(H[0], H[1], table.columns[table.column_start[k]:table.column_start[k + 1]], v,
+                                products[k - first])
+
+
+@njit(cache=True, inline="always")
+def contracted_products(Hr, Hw, cols, v, out):
+    """out[0] = h_r = sum_il Hr[:, i, l] c'_i c'_l and out[1] = h_w likewise, c' = v[cols] (the
+    velocity products of a chain from its derivatives)."""
+    nc = cols.shape[0]
+    for a in range(3):
+        hr = hw = 0.0
+        for i in range(nc):
+            cd = v[cols[i]]
+            if cd != 0.0:
+                sr = sw = 0.0
+                for l in range(nc):
+                    cl = v[cols[l]]
+                    sr += Hr[a, i, l] * cl
+                    sw += Hw[a, i, l] * cl
+                hr += sr * cd
+                hw += sw * cd
+        out[0, a] = hr
+        out[1, a] = hw
+
+
+@njit(cache=True, inline="always")
+def _direct_products(table, k, x, v, P, J, nc, root_columns, out):
+    """The velocity products of chain k (a free body's link, if any, then screws: no ANCF or FFR
+    tip) in one pass over its columns, without H (out[0] = h_r, out[1] = h_w; module docstring's
+    rule summed over c'_i c'_l). With W_i = sum_{l<i} Jw_l c'_l (every column before i, the first
+    link's included) and a_i = Jw_i c'_i, b_i = Jr_i c'_i for the columns i after the first
+    link: h_w = sum_i W_i x a_i and h_r = sum_i (2 W_i + a_i) x b_i (the pairs l <= i give
+    W_i x b_i + a_i x b_i, the pairs l > i, turned round, W_i x b_i again). A free body's own
+    columns add theirs: with w_e = sum Jw_j e'_j over its Euler parameters (Jw_j = 2 E_j / |e|^2,
+    E linear in e and E(e') e' = 0), h_w = -2 (e . e') / |e|^2 w_e and h_r = h_w x d + w_e x (w_e x
+    d), d = r - r_b."""
+    cs = table.column_start[k]
+    cols = table.columns
+    w0 = w1 = w2 = 0.0
+    hw0 = hw1 = hw2 = 0.0
+    hr0 = hr1 = hr2 = 0.0
+    if root_columns > 0:  # a free body (an ANCF tip never comes here)
+        c0 = table.links[table.start[k], COORD]
+        s = ed = 0.0
+        for j in range(3, 7):
+            cd = v[cols[cs + j]]
+            e = x[c0 + j]
+            s += e * e
+            ed += e * cd
+            w0 += J[1, 0, j] * cd
+            w1 += J[1, 1, j] * cd
+            w2 += J[1, 2, j] * cd
+        f = -2.0 * ed / s
+        hw0, hw1, hw2 = f * w0, f * w1, f * w2
+        d0, d1, d2 = P[0, 0] - x[c0], P[1, 0] - x[c0 + 1], P[2, 0] - x[c0 + 2]
+        u0, u1, u2 = cross3(w0, w1, w2, d0, d1, d2)
+        p0, p1, p2 = cross3(hw0, hw1, hw2, d0, d1, d2)
+        q0, q1, q2 = cross3(w0, w1, w2, u0, u1, u2)
+        hr0, hr1, hr2 = p0 + q0, p1 + q1, p2 + q2
+    for i in range(root_columns, nc):
+        cd = v[cols[cs + i]]
+        a0, a1, a2 = J[1, 0, i] * cd, J[1, 1, i] * cd, J[1, 2, i] * cd
+        b0, b1, b2 = J[0, 0, i] * cd, J[0, 1, i] * cd, J[0, 2, i] * cd
+        c0, c1, c2 = cross3(w0, w1, w2, a0, a1, a2)
+        hw0 += c0
+        hw1 += c1
+        hw2 += c2
+        c0, c1, c2 = cross3(2.0 * w0 + a0, 2.0 * w1 + a1, 2.0 * w2 + a2, b0, b1, b2)
+        hr0 += c0
+        hr1 += c1
+        hr2 += c2
+        w0 += a0
+        w1 += a1
+        w2 += a2
+    out[0, 0], out[0, 1], out[0, 2] = hr0, hr1, hr2
+    out[1, 0], out[1, 1], out[1, 2] = hw0, hw1, hw2
 
 
 @njit(cache=True, inline="always")
@@ -465,21 +579,39 @@ def _tip_blocks(table, P, work, nc, H):
 @njit(cache=True, inline="always")
 def evaluate_chains(table, x, F, order):
     """Every chain's kinematics at the coordinates x (charts F) into the table's pose, jac and
-    hess: once per evaluation of the system's functions, before its parts read them
-    (:func:`chain_state`). Chain k is evaluated to the order min(``order``, table.orders[k]):
-    its hess only where the system's equations read it (the root frames of beams and the
-    frames of rigid bodies: their velocity products and the clamps' second derivatives;
-    :meth:`hubbeam.system.system_frames.Frames.table`); 1 for the functions of the state alone
-    (powers, energies, momenta, tips). The Hessians cost most (case M's 10 frames: 3.0 us
-    to order 2, 0.7 us to order 1, measured); a chain evaluated to order 1 leaves its hess
-    as it was. Inlined into its callers, which call :func:`chain_kinematics_into` once for all
-    chains with the table's flags of the link kinds it holds (:class:`ChainTable`) as
-    arguments: numba compiles the kinematics of those kinds only; ``order`` as an int64,
-    min(order, 2), and the first chain as np.int64(0), not the literals that the callers
-    write: numba compiles a function once more for every literal argument that a compiled
-    caller passes (the equations pass 2, the powers and measures 1)."""
-    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, min(order, 2), table.orders, table.pose,
-                          table.jac, table.hess, table.work, table.free_links, table.ancf_tips, table.ffr_tips)
+    hess: once per evaluation of the system's functions of the state alone (powers, energies,
+    momenta, tips: ``order`` 1, the poses and Jacobians), before its parts read them
+    (:func:`chain_state`); ``order`` 2: the derivatives hess too of every chain the equations
+    read beyond its Jacobians (:attr:`ChainTable.orders` PRODUCTS or HESSIANS: the controllers'
+    inputs). No velocity products (:func:`evaluate_motion`: the equations'). A chain evaluated to
+    a lower order leaves the rest as it was. Inlined into its callers, which call
+    :func:`chain_kinematics_into` once for all chains with the table's flags of the link kinds it
+    holds (:class:`ChainTable`) as arguments: numba compiles the kinematics of those kinds only;
+    ``order`` as an int64 and the first chain as np.int64(0), not the literals that the callers
+    write: numba compiles a function once more for every literal argument that a compiled caller
+    passes (the powers and measures pass 1)."""
+    level = np.int64(HESSIANS if order >= 2 else POSE)
+    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, level, table.orders, table.pose,
+                          table.jac, table.hess, table.work, table.free_links, table.ancf_tips, table.ffr_tips, x,
+                          table.products, x.shape[0] < 0)
+
+
+@njit(cache=True, inline="always")
+def evaluate_motion(table, x, v, F, hessians):
+    """Every chain's kinematics at the coordinates x and rates v (charts F), as the system's
+    equations read them (:attr:`ChainTable.orders`): the pose and Jacobians of every chain, the
+    velocity products (table.products) of the chains marked PRODUCTS (the FFR beams' and the rigid
+    bodies' frames: their accelerations, :func:`hubbeam.system.frame_motions.frame_motion`) and
+    the derivatives hess and velocity products of those marked HESSIANS (the ANCF clamps' roots,
+    the controllers' inputs); with ``hessians`` (statics and modes: the exact load stiffness) the
+    derivatives of every chain marked PRODUCTS too. The velocity products of a chain of a free
+    body and screws are summed in one pass over its columns, without its derivatives (case M's
+    free bus, three of its five frames: 1.0 us to Hessians, measured by
+    ``benchmarks/bus_cost.py``). Inlined, as :func:`evaluate_chains`."""
+    level = np.int64(HESSIANS if hessians else PRODUCTS)
+    chain_kinematics_into(table, np.int64(0), table.orders.shape[0], x, F, level, table.orders, table.pose,
+                          table.jac, table.hess, table.work, table.free_links, table.ancf_tips, table.ffr_tips, v,
+                          table.products, v.shape[0] >= 0)
 
 
 @njit(cache=True, inline="always")
@@ -495,6 +627,13 @@ def chain_state(table, k):
             J[1, :, :nc], H[0, :, :nc, :nc], H[1, :, :nc, :nc])
 
 
+@njit(cache=True, inline="always")
+def chain_products(table, k):
+    """The velocity products (h_r, h_w) of chain k (2, 3) as :func:`evaluate_motion` left them (a
+    view of the table's)."""
+    return table.products[k]
+
+
 def chain_pose(table: ChainTable, k: int, x, F=None, order: int = 1):
     """(r, R, Jr, Jw, Hr, Hw) of chain k at x (Python front end; Hr, Hw zero unless ``order`` is
     2). ``F``: the charts (n, 3, 3) of ANCF tips (default none). The chain is evaluated into
@@ -505,9 +644,10 @@ def chain_pose(table: ChainTable, k: int, x, F=None, order: int = 1):
     pose, jac, hess = np.zeros((1,) + table.pose.shape[1:]), np.zeros((1,) + table.jac.shape[1:]), \
         np.zeros((1,) + table.hess.shape[1:])
     F = np.zeros((1, 3, 3)) if F is None else np.ascontiguousarray(F, dtype=float)
-    chain_kinematics_into(table, k, k + 1, np.ascontiguousarray(x, dtype=float), F, min(int(order), 2),
-                          np.full(1, 2, dtype=np.int64), pose, jac, hess, np.zeros_like(table.work), table.free_links,
-                          table.ancf_tips, table.ffr_tips)
+    x = np.ascontiguousarray(x, dtype=float)
+    chain_kinematics_into(table, k, k + 1, x, F, HESSIANS if int(order) >= 2 else POSE,
+                          np.full(1, HESSIANS, dtype=np.int64), pose, jac, hess, np.zeros_like(table.work),
+                          table.free_links, table.ancf_tips, table.ffr_tips, x, np.zeros((1, 2, 3)), False)
     P, J, H = pose[0], jac[0], hess[0]
     return (P[:, 0].copy(), P[:, 1:4].copy(), J[0, :, :nc].copy(), J[1, :, :nc].copy(), H[0, :, :nc, :nc].copy(),
             H[1, :, :nc, :nc].copy())

@@ -99,6 +99,8 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         self.frames = Frames(base, placement, self.beams, self.layout)
         if base.moves and self.controllers:  # their base torques and rates read the base frame's Hessians
             self.frames.needs_hessian(self.frames.base)
+        for k in range(len(self.beams) if self.controllers else 0):  # a tip deflection's its root's
+            self.frames.needs_hessian(self.frames.root(k))
         for controller in self.controllers:  # and a tip deflection's rate its reference frame's
             for chain in hessian_chains(self, controller.inputs):
                 self.frames.needs_hessian(chain)
@@ -112,13 +114,13 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         bodies = []
         if self.hub.inertia > 0.0:
             J = float(self.hub.inertia)
-            bodies.append(RigidBody("hub", self.frames.needs_hessian(self.frames.hub), 0.0,
+            bodies.append(RigidBody("hub", self.frames.needs_products(self.frames.hub), 0.0,
                                     ((0.0, 0.0, 0.0), (0.0, J, 0.0), (0.0, 0.0, 0.0))))
         if self.base.moves and self.base.mass > 0.0:
             from hubbeam.system.chains import constant
 
             chain = self.frames.chain(self.frames.base).then(constant(self.base.centre_of_mass))
-            bodies.append(RigidBody("base", self.frames.needs_hessian(self.frames.add(chain)), self.base.mass,
+            bodies.append(RigidBody("base", self.frames.needs_products(self.frames.add(chain)), self.base.mass,
                                     tuple(map(tuple, self.base.inertia_matrix()))))
         return bodies
 

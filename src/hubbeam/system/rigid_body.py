@@ -31,8 +31,9 @@ from numba import njit
 
 from hubbeam.system import terms
 from hubbeam.system.assembly import add_entry
+from hubbeam.system.chains import PRODUCTS
 from hubbeam.system.frame_motions import frame_motion
-from hubbeam.system.frames import chain_state
+from hubbeam.system.frames import chain_products, chain_state
 
 
 @dataclass(frozen=True)
@@ -63,9 +64,9 @@ def pack_rigid_bodies(system, layout) -> RigidBodies | None:
     if not bodies:
         return None
     orders = system.frames.table.orders
-    for b in bodies:  # their velocity products and gravity stiffness read the frame's Hessians
-        if orders[b.chain] < 2:
-            raise ValueError(f"rigid body {b.name!r}: its frame {b.chain} was not marked by Frames.needs_hessian")
+    for b in bodies:  # their accelerations read the frame's velocity products (and statics its Hessians)
+        if orders[b.chain] < PRODUCTS:
+            raise ValueError(f"rigid body {b.name!r}: its frame {b.chain} was not marked by Frames.needs_products")
     return RigidBodies(np.array([b.chain for b in bodies], dtype=np.int64),
                        np.array([b.mass for b in bodies], dtype=float),
                        np.array([b.inertia_matrix() for b in bodies], dtype=float).reshape(len(bodies), 3, 3),
@@ -108,7 +109,7 @@ def rigid_body_equations(pack, ctx, F, x, v, acc, lam, t, coef_m, coef_c, coef_k
         cols, r, R, Jr, Jw, Hr, Hw = _body_state(pack, ctx, b, x, F, Ig)
         nc = cols.shape[0]
         m = pack.mass[b]
-        frame_motion(Jr, Jw, Hr, Hw, cols, v, acc, vel, w, a, alpha)
+        frame_motion(Jr, Jw, chain_products(ctx.chains, pack.chain[b]), cols, v, acc, vel, w, a, alpha)
         for i in range(3):
             f[i] = m * (a[i] - load_factor * g[i])
             Iw[i] = Ig[i, 0] * w[0] + Ig[i, 1] * w[1] + Ig[i, 2] * w[2]
@@ -161,7 +162,7 @@ def rigid_body_energies(pack, ctx, F, x, v, beams):
     vel, w, a, alpha = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
     for b in range(pack.chain.shape[0]):
         cols, r, R, Jr, Jw, Hr, Hw = _body_state(pack, ctx, b, x, F, Ig)
-        frame_motion(Jr, Jw, Hr, Hw, cols, v, v, vel, w, a, alpha)
+        frame_motion(Jr, Jw, chain_products(ctx.chains, pack.chain[b]), cols, v, v, vel, w, a, alpha)
         T += 0.5 * pack.mass[b] * (vel[0] ** 2 + vel[1] ** 2 + vel[2] ** 2) + 0.5 * (w @ (Ig @ w))
         V -= pack.mass[b] * (g[0] * r[0] + g[1] * r[1] + g[2] * r[2])
     return T, 0.0, V
@@ -173,7 +174,7 @@ def rigid_body_momenta(pack, ctx, F, x, v, out):
     vel, w, a, alpha = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
     for b in range(pack.chain.shape[0]):
         cols, r, R, Jr, Jw, Hr, Hw = _body_state(pack, ctx, b, x, F, Ig)
-        frame_motion(Jr, Jw, Hr, Hw, cols, v, v, vel, w, a, alpha)
+        frame_motion(Jr, Jw, chain_products(ctx.chains, pack.chain[b]), cols, v, v, vel, w, a, alpha)
         m = pack.mass[b]
         Iw = Ig @ w
         out[0] += m

@@ -47,7 +47,12 @@ class Frames:
             self._joint.append(self.add(axis))
             self._root.append(self.add(root))
             tips.append(part.tip_frame(layout.beam_x(k).start, k, root))
-        self._second: set[int] = set()  # chains whose Hessians the equations read, besides the roots
+        # chains whose Hessians (second) or velocity products only (products) the equations read:
+        # the roots of beams clamped by constraints (the ANCF clamps' second derivatives) and of
+        # the others (the FFR beams' accelerations), and what :meth:`needs_hessian` and
+        # :meth:`needs_products` add
+        self._second: set[int] = {self._root[k] for k in range(len(self._root)) if layout.clamped[k]}
+        self._products: set[int] = {self._root[k] for k in range(len(self._root)) if not layout.clamped[k]}
         self._table: ChainTable | None = None
 
     def add(self, chain: Chain) -> int:
@@ -83,19 +88,28 @@ class Frames:
 
     def needs_hessian(self, index: int) -> int:
         """Mark chain ``index`` as one whose derivatives Hr, Hw the system's equations read
-        (:func:`hubbeam.system.frames.evaluate_chains` evaluates only those to order 2);
-        returns the index."""
+        (:func:`hubbeam.system.frames.evaluate_motion` evaluates only those, and the velocity
+        products of those marked by :meth:`needs_products`); returns the index."""
         self._second.add(index)
+        self._table = None
+        return index
+
+    def needs_products(self, index: int) -> int:
+        """Mark chain ``index`` as one whose velocity products h_r, h_w (its acceleration: a rigid
+        body's frame) the system's equations read, and its derivatives only for statics and
+        modes (:func:`hubbeam.system.frames.evaluate_motion`); returns the index."""
+        self._products.add(index)
         self._table = None
         return index
 
     @property
     def table(self) -> ChainTable:
-        """Every chain in arrays; the Hessians of the beams' root frames (their velocity
-        products, the ANCF clamps' second derivatives) and of the chains marked by
-        :meth:`needs_hessian` (the rigid bodies') are evaluated in the equations."""
+        """Every chain in arrays; the Hessians of the roots of beams clamped by constraints (the
+        ANCF clamps' second derivatives) and of the chains marked by :meth:`needs_hessian`, and
+        the velocity products of the other roots (the FFR beams') and of the chains marked by
+        :meth:`needs_products` (the rigid bodies'), are evaluated in the equations."""
         if self._table is None:
-            self._table = ChainTable.of(self._chains, self._second | set(self._root))
+            self._table = ChainTable.of(self._chains, self._second | self._products, self._second)
         return self._table
 
     def pose(self, index: int, x, F=None) -> tuple[np.ndarray, np.ndarray]:
