@@ -17,6 +17,14 @@ import numpy as np
 POSE, PRODUCTS, HESSIANS = 1, 2, 3
 #: columns of a chain's scratch rows (:func:`hubbeam.system.frames.chain_kinematics_into`)
 W_WIDTH = 15
+#: column types: how a column moves the frame (for the derivative rules); TIP_COMBINATION: a
+#: column of an FFR tip (its translations and rotations combined, :mod:`hubbeam.system.frames`)
+SCREW, TRANSLATION, ROOT_ROTATION, TIP_COMBINATION = 0, 1, 2, 3
+#: the scratch rows' columns (one row per coordinate column of a chain): the column's type, a
+#: translation's axis (an FFR tip's column: its link's params row), the point a rotation turns
+#: about (3); an FFR tip's column: its index j among the tip's columns, and on the tip's first
+#: column the tip's three rotation axes w_x, w_y', w_z'' (9)
+W_TYPE, W_DIRECTION, W_ORIGIN, W_INDEX, W_AXES = 0, 1, 2, 5, 6  # W_WIDTH columns in all
 
 
 class LinkKind(enum.IntEnum):
