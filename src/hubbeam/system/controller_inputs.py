@@ -237,9 +237,12 @@ def _tip(system, spec: ControllerInput, rows: InputRows) -> list[int]:
 
 
 def hessian_chains(system, specs) -> set[int]:
-    """The chains whose derivatives Hr, Hw the inputs ``specs`` read besides the beams' roots
-    (:meth:`~hubbeam.system.system_frames.Frames.needs_hessian`): a tip deflection's reference frame."""
-    return {system.frames.reference(s.beam) for s in specs if s.kind == "tip_deflection"}
+    """The chains whose derivatives Hr, Hw the inputs ``specs`` read
+    (:meth:`~hubbeam.system.system_frames.Frames.needs_hessian`): a tip deflection's root section
+    frame and its reference frame (:mod:`hubbeam.system.pose_inputs`; an FFR beam's root is
+    otherwise evaluated to its velocity products only)."""
+    frames = system.frames
+    return {k for s in specs if s.kind == "tip_deflection" for k in (frames.root(s.beam), frames.reference(s.beam))}
 
 
 def pack_inputs(system, specs) -> tuple:

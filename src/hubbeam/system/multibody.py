@@ -99,9 +99,7 @@ class MultibodySystem(SystemStatics, SystemMeasures):
         self.frames = Frames(base, placement, self.beams, self.layout)
         if base.moves and self.controllers:  # their base torques and rates read the base frame's Hessians
             self.frames.needs_hessian(self.frames.base)
-        for k in range(len(self.beams) if self.controllers else 0):  # a tip deflection's its root's
-            self.frames.needs_hessian(self.frames.root(k))
-        for controller in self.controllers:  # and a tip deflection's rate its reference frame's
+        for controller in self.controllers:  # and a tip deflection's rate its root's and reference frame's
             for chain in hessian_chains(self, controller.inputs):
                 self.frames.needs_hessian(chain)
         self.rigid_bodies = self._rigid_bodies()
