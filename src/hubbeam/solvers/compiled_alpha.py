@@ -2,7 +2,7 @@
 
 :func:`advance` runs many steps without returning to Python: predictor, Newton iterations
 on the compiled equations of the hub and its beams
-(:func:`hubbeam.system.equations.system_equations`), the bordered band LU
+(:func:`hubbeam.system.equations.equations_at`, the model passed by reference), the bordered band LU
 (:func:`hubbeam.system.assembly.bordered_factor`), and the work integrals of the energy
 balance. Its Newton control is the shared controller (:func:`.newton_control.newton_start`,
 :func:`.newton_control.newton_decide`), as is the Python step's, so the two give the same
@@ -25,7 +25,8 @@ from hubbeam.solvers.generalized_alpha import Outcome, algorithmic_acceleration,
 from hubbeam.solvers.newton_control import (REUSE_PATCH, REUSE_PATCH_AGE, REUSE_PATCHED, REUSE_VALID, NewtonAction,
                                             factorised, newton_decide, newton_start, patch_drifts, patch_made)
 from hubbeam.system.assembly import bordered_factor, bordered_solve
-from hubbeam.system.equations import CHART_SINGULAR, step_powers, system_equations, system_events
+from hubbeam.system.by_reference import address_of
+from hubbeam.system.equations import CHART_SINGULAR, equations_at, events_at, powers_at
 
 
 def cache_is_cold(function=None) -> bool:
@@ -94,18 +95,21 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     res = np.empty(n)
     size = 0.0
     # run-time booleans, not the literals False and True: numba compiles a function once per
-    # literal argument, and system_equations is the largest compile of all (each literal passed
+    # literal argument, and equations_at is the largest compile of all (each literal passed
     # to it below compiled it once more: ~8 s of CPU each on the first run)
     exact = n < 0  # no exact load stiffness in a time step
     no_matrix = n < 0  # the patch's difference quotients need the residual only
     new_matrix = n >= 0
+    # the model by reference: passed by value, every call of the equations copied its ~550 words
+    # (on exp1; hubbeam.system.by_reference)
+    model_at = address_of(model)
     for k in range(n_steps):
         t1 = t + h
         predict(x, v, xdd, a, h, am, af, beta, gamma, x1, v1, xdd1)
         _copy(lam1, lam)
         stale = newton_start(update, reuse)
         fresh = not stale
-        margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
+        margin, _ = equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
                                      fresh, res, ab, brow, bcol, bb)
         patched = False
         drifts = patch_drifts(reuse, stale)
@@ -120,7 +124,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 x1[j] = xj + d
                 v1[j] = vj + gprime * d
                 xdd1[j] = aj + bprime * d
-                system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
+                equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
                                  no_matrix, res_patch, ab, brow, bcol, bb)
                 x1[j], v1[j], xdd1[j] = xj, vj, aj
                 for i in range(n):
@@ -137,14 +141,14 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             else:  # the patched matrix is singular: refactorise
                 stale = False
                 fresh = True
-                margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
+                margin, _ = equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
                                              exact, new_matrix, res, ab, brow, bcol, bb)
         elif drifts:  # the patch, extrapolated to this step (hubbeam.solvers.column_update)
             drifted(G_last, Ut_last, G_drift, Ut_drift, reuse[REUSE_PATCH_AGE], G, Ut)
             if capacitance(G, H, Ut, z_columns, S, K_inverse) != 0:  # singular: refactorise
                 stale = False
                 fresh = True
-                margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
+                margin, _ = equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
                                              exact, new_matrix, res, ab, brow, bcol, bb)
         previous = np.inf
         converged = False
@@ -185,7 +189,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             if fresh:
                 stale = False
                 patched = False
-            margin, _ = system_equations(model, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
+            margin, _ = equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
                                          exact, fresh, res, ab, brow, bcol, bb)
             previous = np.inf if fresh else size
         if not converged:
@@ -199,8 +203,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         _copy(lam, lam1)
         t = t1
         p_d, p_h = 0.0, 0.0
-        if model.powers:  # else no part can have a power (a call that passes the model costs ~0.2-0.5 us)
-            p_d, p_h = step_powers(model, F, t, x, v, lam)
+        if model.powers:  # else no part can have a power (a call costs ~0.2-0.5 us)
+            p_d, p_h = powers_at(model_at, F, t, x, v, lam)
         work[0] += 0.5 * h * (power[0] + p_d)
         work[1] += 0.5 * h * (power[1] + p_h)
         power[0] = p_d
@@ -210,7 +214,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         if step % every == 0 or step == total:
             _record(records, counters[3], t, x, v, xdd, a, lam, work)
             counters[3] += 1
-        if model.events and system_events(model, x):  # a call that passes the model costs ~0.5-1 us
+        if model.events and events_at(model_at, x):  # ~0.3-1 us a step where no event can happen
             return Outcome.EVENT_REACHED, size, t
         if margin < chart_limit:
             return Outcome.CHART_LIMIT_REACHED, size, t
@@ -253,7 +257,7 @@ def loop_for(system):
     defined outside hubbeam an uncached copy of it that calls the uncached equations
     (:func:`hubbeam.system.equations.uncached_twins`)."""
     functions = system.functions
-    if functions.system_equations is system_equations:
+    if functions.equations_at is equations_at:
         return advance
     return _uncached_loop(functions)
 

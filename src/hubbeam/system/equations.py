@@ -26,6 +26,7 @@ from numba import literal_unroll, njit
 
 from hubbeam.elements.ancf import coordinates
 from hubbeam.elements.ancf.strain import strain_measures
+from hubbeam.system.by_reference import address_of, held_at
 from hubbeam.system.frames import evaluate_chains, evaluate_motion
 from hubbeam.system.terms import (CHART_SINGULAR, Context, part_drive_power, part_energies, part_equations,
                                   part_events, part_momenta, part_power, part_tips)
@@ -55,6 +56,14 @@ def context(layout, bandwidth: int, gravity, drag, chains) -> Context:
 @njit(cache=True, _nrt=False)
 def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
                      want_matrix, res, ab, brow, bcol, bb):
+    """:func:`equations_at` for the model itself (the calls from Python)."""
+    return equations_at(address_of(model), F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor,
+                        exact_stiffness, want_matrix, res, ab, brow, bcol, bb)
+
+
+@njit(cache=True, _nrt=False)
+def equations_at(model_at, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale, load_factor, exact_stiffness,
+                 want_matrix, res, ab, brow, bcol, bb):
     """Scaled residual and (when ``want_matrix``) Newton matrix of the system.
 
     Force rows: coef_k (M(x) acc + f_int - Q_ext - Q_v - Q_d + Phi_x^T lambda) on every
@@ -77,8 +86,12 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
     nothing, and the kinds whose terms do are called as functions of their own
     (:func:`hubbeam.system.terms.register`'s ``counts_references``). Counting the references
     of the model's arrays (43 on exp1 with 4 modes) and of the packs each term is given cost
-    0.7 us of the 1.6 us of a call of the step's powers there.
+    0.7 us of the 1.6 us of a call of the step's powers there. The model comes by reference,
+    ``model_at`` = :func:`~hubbeam.system.by_reference.address_of` (model), as the time loop
+    passes it: by value it cost 550 words copied per call on exp1
+    (:mod:`hubbeam.system.by_reference`).
     """
+    model = held_at(model_at)
     ctx = model.context
     evaluate_motion(ctx.chains, x, v, F, exact_stiffness)
     for i in range(res.shape[0]):
@@ -102,15 +115,22 @@ def system_equations(model, F, x, v, acc, lam, t, coef_m, coef_c, coef_k, scale,
 
 @njit(cache=True, _nrt=False)
 def step_powers(model, F, t, x, v, lam):
+    """:func:`powers_at` for the model itself (the calls from Python)."""
+    return powers_at(address_of(model), F, t, x, v, lam)
+
+
+@njit(cache=True, _nrt=False)
+def powers_at(model_at, F, t, x, v, lam):
     """(dissipated, drive) power at the state (t, x, v, lambda) in the charts F (W): the power
     of the drag of Eq. 37 and of the structural damping of every part (>= 0), and the power of
     the applied torques and the prescribed motions (the hub's drive reaction and torque law,
     ...). One function for both, called after every step. Not inlined into the compiled
-    loop (which would save the ~0.5 us of passing the model): inlined, its unrolled loop over
+    loop (the model comes by reference, which costs little): inlined, its unrolled loop over
     the parts took stack that the loop's frame never gave back, ~1.3 kB a step, and a chunk of
     ~6000 steps died of SIGSEGV (tests/solvers/test_compiled_alpha.py). Without reference
     counting (:func:`system_equations`). (0, 0) without evaluating anything where no part can
-    have a power (``model.powers`` False)."""
+    have a power (``model.powers`` False). The model by reference, as :func:`equations_at`."""
+    model = held_at(model_at)
     if not model.powers:
         return 0.0, 0.0
     ctx = model.context
@@ -125,10 +145,17 @@ def step_powers(model, F, t, x, v, lam):
 
 @njit(cache=True, _nrt=False)
 def system_events(model, x):
+    """:func:`events_at` for the model itself (the calls from Python)."""
+    return events_at(address_of(model), x)
+
+
+@njit(cache=True, _nrt=False)
+def events_at(model_at, x):
     """Whether any part's event (a joint reaching its latch angle) is reached at x
     (:func:`hubbeam.system.terms.part_events`), after every step of the time loop. Not inlined
-    into the loop, as :func:`step_powers`: its unrolled loop over the parts would take stack
-    that the loop's frame never gives back."""
+    into the loop, as :func:`powers_at`: its unrolled loop over the parts would take stack
+    that the loop's frame never gives back. The model by reference, as :func:`equations_at`."""
+    model = held_at(model_at)
     ctx = model.context
     event = False
     for pack in literal_unroll(model.parts):
@@ -213,20 +240,23 @@ def record_measures(model, F, xs, vs, count, energies, gauges, hub, beams, tips,
 
 
 #: the functions here that take the model, which holds the parts' packs
-MODEL_FUNCTIONS = ("system_equations", "step_powers", "beam_energies", "tip_displacements", "system_momenta",
-                   "record_measures", "system_events")
+MODEL_FUNCTIONS = ("system_equations", "equations_at", "step_powers", "powers_at", "beam_energies",
+                   "tip_displacements", "system_momenta", "record_measures", "system_events", "events_at")
 
 
 class Compiled(NamedTuple):
     """The compiled functions of this module that take the model."""
 
     system_equations: object
+    equations_at: object
     step_powers: object
+    powers_at: object
     beam_energies: object
     tip_displacements: object
     system_momenta: object
     record_measures: object
     system_events: object
+    events_at: object
 
 
 def uncached_twins(functions: dict, others: dict | None = None) -> dict:
