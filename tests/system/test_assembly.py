@@ -46,7 +46,7 @@ def test_band_matrix_factorisation_solves_and_keeps_its_matrix():
     assert np.array_equal(ab, before)
 
 
-@pytest.mark.parametrize("border", [1, 2])
+@pytest.mark.parametrize("border", [1, 2, 3, 7])
 def test_bordered_matrix_solves_like_the_dense_matrix(border):
     """Dense border rows, columns and corner around a band (the hub angle and drive multiplier
     coupling to several beams): the Schur-complement solve equals a dense solve."""

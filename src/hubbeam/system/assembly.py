@@ -202,17 +202,30 @@ def bordered_solve(ab, bw, ipiv, brow, Y, schur, r):
     band_solve(ab, bw, bw, ipiv, interior)
     if nb == 0:
         return
-    rb = np.empty(nb)
-    for a in range(nb):
-        acc = r[a]
+    if nb <= 2:  # a fixed or driven hub's border: no array (an allocation a solve, ~0.1 us a step)
+        r0 = r[0]
+        r1 = r[1] if nb == 2 else 0.0
         for i in range(interior.shape[0]):
-            acc -= brow[a, i] * interior[i]
-        rb[a] = acc
-    for a in range(nb):
-        acc = 0.0
-        for b in range(nb):
-            acc += schur[a, b] * rb[b]
-        r[a] = acc
+            r0 -= brow[0, i] * interior[i]
+            if nb == 2:
+                r1 -= brow[1, i] * interior[i]
+        if nb == 1:
+            r[0] = schur[0, 0] * r0
+        else:
+            r[0] = schur[0, 0] * r0 + schur[0, 1] * r1
+            r[1] = schur[1, 0] * r0 + schur[1, 1] * r1
+    else:
+        rb = np.empty(nb)
+        for a in range(nb):
+            acc = r[a]
+            for i in range(interior.shape[0]):
+                acc -= brow[a, i] * interior[i]
+            rb[a] = acc
+        for a in range(nb):
+            acc = 0.0
+            for b in range(nb):
+                acc += schur[a, b] * rb[b]
+            r[a] = acc
     for i in range(interior.shape[0]):
         acc = 0.0
         for a in range(nb):
