@@ -59,8 +59,9 @@ def reference_C(model, scenario, h=1e-6):
     return np.array(columns).T
 
 
-@pytest.mark.parametrize("overrides, torque", [(BENT, ', {name = "torque", kind = "applied_torque"}'),
-                                               (SMALL + SPIN, ', {name = "drive", kind = "hub_torque"}')],
+@pytest.mark.parametrize("overrides, torque", [
+    pytest.param(BENT, ', {name = "torque", kind = "applied_torque"}', marks=pytest.mark.slow),  # a long run: CI's slow run
+    (SMALL + SPIN, ', {name = "drive", kind = "hub_torque"}')],
                          ids=["free-bent-ancf-ffr", "rotating"])
 def test_grouped_differences_equal_every_sensor_differenced_along_every_state(overrides, torque):
     sc = load_example("spacecraft", overrides + [SENSORS.replace("{torque}", torque)])

@@ -235,6 +235,8 @@ def turned_models() -> dict[str, dict]:
             "both turned": invariant(R_0 @ R_h @ upright, HUB_TURN, BASE_TURN)}
 
 
+# slow: a long validation run (CI runs it: python -m pytest -q -m slow)
+@pytest.mark.slow
 def test_a_turned_model_runs_as_the_upright_one_under_the_gravity_turned_back():
     """0.3 s from straight: every tip deflection part (to 1e-12 of the 1 m beams), strain (to
     1e-10 of its peak) and the hub angle (0.14 rad: the tilted axis makes gravity turn the free

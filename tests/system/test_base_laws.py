@@ -160,6 +160,8 @@ def spin_table(path) -> str:
 SPIN, SPIN_T = 3.0, 2.0
 
 
+# slow: a long validation run (CI runs it: python -m pytest -q -m slow)
+@pytest.mark.slow
 def test_a_base_turned_by_a_table_is_a_hub_driven_by_the_same_profile(tmp_path):
     """A fixed hub on a table base turned by Kane's spin-up (sampled every 10 ms) against a hub
     driven by the profile itself (its own inertia ~0), both under gravity for 2.5 s (4.5 rad):

@@ -65,6 +65,8 @@ def test_two_ancf_links_clamped_are_one_beam():
     assert np.allclose(F1, F2, atol=1e-9)
 
 
+# slow: a long validation run (CI runs it: python -m pytest -q -m slow)
+@pytest.mark.slow
 @pytest.mark.parametrize("parent, child", [("ancf", "ffr"), ("ffr", "ancf"), ("ffr", "ffr")])
 def test_links_of_other_formulations_clamped_are_one_beam_in_the_linear_limit(parent, child):
     """FFR is linear in its elastic coordinates on its own frame, so two FFR-linked links differ

@@ -184,7 +184,8 @@ def bus(tmp_path, controllers=(), torque=None, t_end=8.0):
 BRACKETS = {"eps": (1e2, 2e4), "tip_tangential": (-30.0, -1.0)}
 
 
-@pytest.mark.parametrize("column", ["eps", "tip_tangential"])
+@pytest.mark.parametrize("column", [pytest.param("eps", marks=pytest.mark.slow),  # a long run: CI's slow run
+                                    "tip_tangential"])
 def test_rate_feedback_designed_on_the_linear_model_damps_the_run_as_designed(tmp_path, column):
     # Design: on `linearize --open-loop` (10 states), the gain k of the hub torque -k u' (u the
     # root strain eps, or the tip's tangential deflection of panel_a, m: a tip-velocity feedback)

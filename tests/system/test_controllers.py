@@ -54,6 +54,8 @@ def lag(tmp_path):
             "inputs": ["omega"], "outputs": ["hub_torque"]}
 
 
+# slow: a long validation run (CI runs it: python -m pytest -q -m slow)
+@pytest.mark.slow
 def test_static_gain_on_omega_is_the_pd_law_with_kp_0(tmp_path):
     # the same torque -kd omega at the same instant and Newton iteration: the runs agree to round-off
     # (measured: theta 4.8e-15 rad, omega 6.8e-14 rad/s apart, of 0.15 rad and 0.14 rad/s)

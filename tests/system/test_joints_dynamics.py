@@ -37,6 +37,8 @@ def _arm(forearm="ancf"):
     return MultibodySystem([upper, fore], Hub("free", 0.3))
 
 
+# slow: a long validation run (CI runs it: python -m pytest -q -m slow)
+@pytest.mark.slow
 @pytest.mark.parametrize("forearm", ["ancf", "ffr"])
 def test_an_elbow_motor_on_a_free_hub_keeps_the_angular_momentum_and_the_energy_balance(forearm):
     """The motor's torque acts between the links: the angular momentum about the hub axis stays

@@ -250,6 +250,8 @@ def test_the_rates_are_the_recorded_sensors_time_derivatives_along_a_run(tmp_pat
     assert checked >= 6
 
 
+# slow: a long validation run (CI runs it: python -m pytest -q -m slow)
+@pytest.mark.slow
 def test_a_static_gain_on_the_base_rotation_and_rate_is_the_bases_attitude_law(tmp_path):
     # The base's own PD attitude law toward the identity (no target, no slew) is tau = -kp phi -
     # kd w in base axes, phi the rotation vector of the base's rotation R (R phi = phi: the same
