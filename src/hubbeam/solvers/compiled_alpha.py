@@ -110,7 +110,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         stale = newton_start(update, reuse)
         fresh = not stale
         margin, _ = equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
-                                     fresh, res, ab, brow, bcol, bb)
+                                 fresh, res, ab, brow, bcol, bb)
         patched = False
         drifts = patch_drifts(reuse, stale)
         if stale and reuse[REUSE_PATCH] == 1:
@@ -125,7 +125,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 v1[j] = vj + gprime * d
                 xdd1[j] = aj + bprime * d
                 equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0, exact,
-                                 no_matrix, res_patch, ab, brow, bcol, bb)
+                             no_matrix, res_patch, ab, brow, bcol, bb)
                 x1[j], v1[j], xdd1[j] = xj, vj, aj
                 for i in range(n):
                     G[c, i] = (res_patch[i] - res[i]) / d
@@ -142,14 +142,14 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 stale = False
                 fresh = True
                 margin, _ = equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
-                                             exact, new_matrix, res, ab, brow, bcol, bb)
+                                         exact, new_matrix, res, ab, brow, bcol, bb)
         elif drifts:  # the patch, extrapolated to this step (hubbeam.solvers.column_update)
             drifted(G_last, Ut_last, G_drift, Ut_drift, reuse[REUSE_PATCH_AGE], G, Ut)
             if capacitance(G, H, Ut, z_columns, S, K_inverse) != 0:  # singular: refactorise
                 stale = False
                 fresh = True
                 margin, _ = equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
-                                             exact, new_matrix, res, ab, brow, bcol, bb)
+                                         exact, new_matrix, res, ab, brow, bcol, bb)
         previous = np.inf
         converged = False
         for it in range(1, max_iterations + 1):
@@ -190,7 +190,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 stale = False
                 patched = False
             margin, _ = equations_at(model_at, F, x1, v1, xdd1, lam1, t1, coef_m, coef_c, ck, mass_scale, 1.0,
-                                         exact, fresh, res, ab, brow, bcol, bb)
+                                     exact, fresh, res, ab, brow, bcol, bb)
             previous = np.inf if fresh else size
         if not converged:
             reuse[REUSE_VALID] = 0
