@@ -98,10 +98,10 @@ def _factor(n, ab0, ab, bw, ipiv, brow, bcol, bb, Y, schur, copy_only):
 
 
 @njit
-def _solve(n, ab, bw, ipiv, brow, Y, schur, rhs0, rhs):
+def _solve(n, ab, bw, ipiv, brow, Y, schur, rhs0, rhs, scratch):
     for _ in range(n):
         rhs[:] = rhs0
-        bordered_solve(ab, bw, ipiv, brow, Y, schur, rhs)
+        bordered_solve(ab, bw, ipiv, brow, Y, schur, rhs, scratch)
 
 
 @njit
@@ -168,7 +168,8 @@ def call_costs(system, state) -> dict:
     _factor(1, *fargs, False)  # the factors for the solves
     rhs0 = np.ones(layout.nz)
     rhs = rhs0.copy()
-    out["solve"] = _best(lambda n: _solve(n, ab, model.bandwidth, ipiv, m.brow, Y, schur, rhs0, rhs), 5000)
+    scratch = np.zeros(layout.border)
+    out["solve"] = _best(lambda n: _solve(n, ab, model.bandwidth, ipiv, m.brow, Y, schur, rhs0, rhs, scratch), 5000)
     return out
 
 

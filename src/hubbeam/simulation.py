@@ -240,7 +240,7 @@ class CompiledSteps(PythonSteps):
         storage = BorderedBandMatrix.empty(layout.nz, layout.border, system.bandwidth)
         m = storage.ab.shape[1]
         self.matrix = (storage.ab, np.zeros(m, dtype=np.int32), storage.brow, storage.bcol, storage.bb,
-                       np.zeros((layout.border, m)), np.zeros((layout.border, layout.border)))
+                       np.zeros((layout.border, m)), np.zeros((layout.border, layout.border)), np.zeros(layout.border))
         self.reuse = nc.reuse_state()
         self.rate = nc.borrowed_rate()
         columns = joint_columns(layout, newton.update_columns)

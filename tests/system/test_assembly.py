@@ -48,8 +48,8 @@ def test_band_matrix_factorisation_solves_and_keeps_its_matrix():
 
 @pytest.mark.parametrize("border", [1, 2, 3, 7])
 def test_bordered_matrix_solves_like_the_dense_matrix(border):
-    """Dense border rows, columns and corner around a band (the hub angle and drive multiplier
-    coupling to several beams): the Schur-complement solve equals a dense solve."""
+    """Dense border rows, columns and corner around a band (the hub angle and drive multiplier,
+    or a moving base's coordinates and constraints besides, coupling to several beams): the Schur-complement solve equals a dense solve."""
     n, bw = 30, 4
     rng = np.random.default_rng(7)
     ab = random_band(n, bw, 5)

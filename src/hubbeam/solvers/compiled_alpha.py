@@ -52,7 +52,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     refresh iterations, the multipliers' weights of
     :func:`~hubbeam.solvers.generalized_alpha.multiplier_weights`, the factor kappa of the
     rate-based error estimate, NewtonOptions.borrowed_rate_steps). ``matrix`` = (ab, ipiv,
-    brow, bcol, bb, Y, schur): the bordered storage and its factors (:func:`hubbeam.system.assembly.bordered_factor`), and ``reuse``
+    brow, bcol, bb, Y, schur, scratch): the bordered storage, its factors
+    (:func:`hubbeam.system.assembly.bordered_factor`) and the solves' scratch (border), and ``reuse``
     (the reuse state of :func:`hubbeam.solvers.newton_control.reuse_state`; valid means
     the factors are for this h and these charts) carry the factorisation between calls, and
     ``rate`` (1) the contraction rate measured on it
@@ -77,7 +78,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
     """
     am, af, beta, gamma = alpha
     tol, max_iterations, update, refresh_rate, refresh_iterations, mu_weight, kappa, borrowed_steps = newton
-    ab, ipiv, brow, bcol, bb, Y, schur = matrix
+    ab, ipiv, brow, bcol, bb, Y, schur, scratch = matrix
     columns, z_columns, kept, G, H, Ut, G_last, Ut_last, G_drift, Ut_drift, K_inverse, S, w_patch, s_patch, res_patch \
         = patch
     n_columns = columns.shape[0]
@@ -132,8 +133,8 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
             column_change(G, kept, z_columns, Ut)
             unit_rows(H, z_columns)
             for c in range(n_columns):
-                bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, G[c])
-                bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, H[c])
+                bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, G[c], scratch)
+                bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, H[c], scratch)
             if capacitance(G, H, Ut, z_columns, S, K_inverse) == 0:
                 record_drift(G, Ut, G_last, Ut_last, G_drift, Ut_drift, patch_made(reuse))
                 patched = True
@@ -165,7 +166,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
                 factorised(reuse)
             for i in range(n):
                 res[i] = -res[i]
-            bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, res)
+            bordered_solve(ab, model.bandwidth, ipiv, brow, Y, schur, res, scratch)
             if reuse[REUSE_PATCHED] == 1:
                 patch_solve(G, H, Ut, K_inverse, z_columns, res, w_patch, s_patch)
             counters[1] += 1
@@ -214,7 +215,7 @@ def advance(model, F, t, x, v, xdd, a, lam, h, n_steps, alpha, newton, mass_scal
         if step % every == 0 or step == total:
             _record(records, counters[3], t, x, v, xdd, a, lam, work)
             counters[3] += 1
-        if model.events and events_at(model_at, x):  # ~0.3-1 us a step where no event can happen
+        if model.events and events_at(model_at, x):  # a call costs ~0.3-1 us: skipped where no event can happen
             return Outcome.EVENT_REACHED, size, t
         if margin < chart_limit:
             return Outcome.CHART_LIMIT_REACHED, size, t

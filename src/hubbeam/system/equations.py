@@ -128,7 +128,7 @@ def powers_at(model_at, F, t, x, v, lam):
     loop (the model comes by reference, which costs little): inlined, its unrolled loop over
     the parts took stack that the loop's frame never gave back, ~1.3 kB a step, and a chunk of
     ~6000 steps died of SIGSEGV (tests/solvers/test_compiled_alpha.py). Without reference
-    counting (:func:`system_equations`). (0, 0) without evaluating anything where no part can
+    counting (:func:`equations_at`). (0, 0) without evaluating anything where no part can
     have a power (``model.powers`` False). The model by reference, as :func:`equations_at`."""
     model = held_at(model_at)
     if not model.powers:
