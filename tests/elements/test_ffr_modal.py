@@ -159,6 +159,54 @@ def test_kept_frequencies_are_the_nodal_ones_and_the_systems():
     assert nodal.max_frequency_hz is None and nodal.frequencies_hz is None
 
 
+def test_a_mode_of_uncoupled_sections_is_exactly_zero_outside_its_direction():
+    """A straight, untwisted plate's axial, y-bending, z-bending and twist coordinates are not
+    coupled by K or Mff, so each kept mode moves one of them and is exactly zero on the others
+    (the drag's rows and II then hold no round-off entries); the modes still solve the nodal
+    eigenproblem as a whole (numpy's non-symmetric solver), and a square section's equal bending
+    frequencies come as one pure y and one pure z mode, in that order (the groups' order, not
+    the order of the frequencies' round-off)."""
+    groups = {"axial": [0], "y": [1, 2], "z": [3, 4], "twist": [5]}  # a node's six coordinates (DOF_NAMES)
+    for section, n in ((plate(), 12), (plate(0.01, 0.01), 8)):
+        nodal = FfrBeam(L, 6, section)
+        K, M = nodal.stiffness_matrix, nodal.invariants["Mff"]
+        w2 = np.sort(np.linalg.eigvals(np.linalg.solve(M, K)).real)
+        red = FfrBeam(L, 6, section, modes=n)
+        assert np.allclose(red.frequencies_hz, np.sqrt(w2[:n]) / (2 * np.pi), rtol=1e-7, atol=0)
+        phi = red.mode_shapes
+        assert np.allclose(K @ phi, M @ phi * (2 * np.pi * red.frequencies_hz) ** 2, atol=1e-8 * w2[n - 1])
+        assert np.allclose(phi.T @ M @ phi, np.eye(n), atol=1e-12)
+        moved = []
+        for k in range(n):
+            touched = [name for name, own in groups.items()
+                       if np.any(phi[[6 * j + c for j in range(6) for c in own], k] != 0.0)]
+            assert len(touched) == 1, (k, touched)
+            moved.append(touched[0])
+        N = red.centre_line_table["N"]
+        for k, name in enumerate(moved):  # the centre line moves along the mode's direction only
+            others = [i for i, own in enumerate(("axial", "y", "z")) if own != name]
+            assert np.all(N[:, others, k] == 0.0)
+    # the square section (the last one): pairs of equal frequency
+    f = red.frequencies_hz
+    assert moved[:4] == ["y", "z", "y", "z"]
+    assert f[1] == pytest.approx(f[0], rel=1e-9) and f[3] == pytest.approx(f[2], rel=1e-9)
+
+
+def test_coupled_sections_keep_every_coordinate_in_one_eigenproblem():
+    """Pretwist couples the bending along y and z: the modes of the tapered, pretwisted blade are
+    those of the whole pencil (numpy's non-symmetric solver) and move both directions."""
+    nodal = FfrBeam(L, 6, plate(), sections=tapered_sections())
+    K, M = nodal.stiffness_matrix, nodal.invariants["Mff"]
+    assert len(modal.uncoupled_groups(K, M)) == 1
+    w2 = np.sort(np.linalg.eigvals(np.linalg.solve(M, K)).real)
+    red = FfrBeam(L, 6, plate(), sections=tapered_sections(), modes=4)
+    assert np.allclose(red.frequencies_hz, np.sqrt(w2[:4]) / (2 * np.pi), rtol=1e-7, atol=0)
+    phi = red.mode_shapes
+    along_y, along_z = [6 * j + c for j in range(6) for c in (1, 2)], [6 * j + c for j in range(6) for c in (3, 4)]
+    assert np.all(np.abs(phi[along_y]).max(axis=0) > 1e-3 * np.abs(phi).max(axis=0))
+    assert np.all(np.abs(phi[along_z]).max(axis=0) > 1e-3 * np.abs(phi).max(axis=0))
+
+
 def test_modes_must_fit_the_nodal_model():
     for bad in (0, 19, 2.0, True):
         with pytest.raises(ValueError, match="modes"):

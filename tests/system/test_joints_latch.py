@@ -83,7 +83,9 @@ def test_the_projection_removes_what_its_impulse_says_and_keeps_the_momentum():
         assert new.angular_momentum(x, v_plus, F) == pytest.approx(system.angular_momentum(x, v, F), abs=1e-13), name
         assert v_plus[system.layout.joint_x(0).start] == 0.0
         assert event.angle == 0.7 and event.kinetic_before == pytest.approx(before)
-        assert 0.0 < event.energy <= closed, name
+        # (equal to round-off when the panel's modes do not bend it in the hinge's plane: the
+        # square section's one lowest mode bends along its y, which this hinge does not load)
+        assert 0.0 < event.energy <= closed * (1.0 + 1e-12), name
         removed[name] = event.energy
     assert removed["ffr, 1 mode"] > removed["ffr, 3 modes"] > removed["ffr, 4 elements"]
     assert removed["ancf, 1 element"] > removed["ancf, 2 elements"] > removed["ancf, 8 elements"]
