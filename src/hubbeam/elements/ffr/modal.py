@@ -108,11 +108,11 @@ def clamped_modes(stiffness: np.ndarray, mass: np.ndarray, count: int) -> tuple[
 
     Solved group by group of the coordinates K and M do not couple (:func:`uncoupled_groups`),
     so that a mode is exactly zero outside its group: a mode bending along z has no component
-    along y, in twist or stretch. Solved whole, such a mode carried round-off there (up to 1e-10 of its largest
-    component on exp1's plate), which filled every table the basis maps (the drag's centre-line
-    rows, II) with entries the compiled kernels then summed. Frequencies of two groups equal to
-    1e-9 (a square section's bending along y and z) come in the groups' order (y before z), not
-    in the order their round-off happens to give."""
+    along y, in twist or stretch. Solved whole, such a mode carried round-off there (up to 1e-10
+    of its largest component on exp1's plate), which filled every table the basis maps (the
+    drag's centre-line rows, II) with entries the compiled kernels then summed. Frequencies of
+    two groups equal to 1e-9 (a square section's bending along y and z) come in the groups'
+    order (y before z), not in the order their round-off happens to give."""
     w2, columns = [], []
     for group in uncoupled_groups(stiffness, mass):
         kept = min(count, group.size)
