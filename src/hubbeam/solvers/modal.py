@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import eig, eigh, null_space
 
-from hubbeam.numerics import central_difference_jacobian, relative_steps
+from hubbeam.numerics import central_difference_jacobian, coupled_groups, relative_steps
 from hubbeam.solvers.static import StaticSolution
 from hubbeam.system.multibody import MultibodySystem
 
@@ -175,9 +175,6 @@ def coupled_blocks(A: np.ndarray, *matrices: np.ndarray) -> list[tuple[np.ndarra
     matrix, or two coordinates in one constraint row). Returns (coordinates, constraint rows) per
     block, in the order of their first coordinate. A hub held at its drive carrying beams that
     touch nothing but the hub falls apart into one block per beam."""
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import connected_components
-
     A = np.asarray(A)
     n = A.shape[1]
     touched = A != 0.0
@@ -191,13 +188,11 @@ def coupled_blocks(A: np.ndarray, *matrices: np.ndarray) -> list[tuple[np.ndarra
     rows = np.flatnonzero(~single)
     link = touched[rows][:, ~fixed].astype(float)
     pattern = pattern[np.ix_(free, free)] | ((link.T @ link) != 0.0)
-    count, labels = connected_components(csr_matrix(pattern | pattern.T), directed=False)
     blocks = []
-    for c in range(count):
-        coords = free[labels == c]
-        block_rows = rows[touched[np.ix_(rows, coords)].any(axis=1)]
-        blocks.append((coords, block_rows))
-    return sorted(blocks, key=lambda b: b[0][0])
+    for group in coupled_groups(pattern):  # free is ascending: the blocks in the order of their first coordinate
+        coords = free[group]
+        blocks.append((coords, rows[touched[np.ix_(rows, coords)].any(axis=1)]))
+    return blocks
 
 
 def rotating_modal_analysis(system: MultibodySystem, steady: StaticSolution, omega: float, count: int | None = 6,

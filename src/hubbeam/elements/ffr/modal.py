@@ -82,24 +82,23 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.linalg import eigh
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import connected_components
 
 from hubbeam.elements.ffr.shape import NODE_DOFS
+from hubbeam.numerics import coupled_groups
 
 #: position of u0 among a node's six coordinates
 _AXIAL = 0
 
 
 def uncoupled_groups(stiffness: np.ndarray, mass: np.ndarray) -> list[np.ndarray]:
-    """The groups of coordinates that no entry of K or M couples (the connected components of
-    their pattern of entries that are not zero), each ascending, in the order of their first
-    coordinate: for a straight beam without pretwist, whose principal axes are the frame's, the
-    axial coordinates u0, the bending ones along the section's y (v, v') and z (w, w') and the
-    twist theta (:data:`~hubbeam.elements.ffr.shape.DOF_NAMES`); one group when pretwist or the
-    sections couple them."""
-    count, label = connected_components(csr_matrix((stiffness != 0.0) | (mass != 0.0)), directed=False)
-    return [np.flatnonzero(label == c) for c in range(count)]
+    """The groups of coordinates that no entry of K or M couples
+    (:func:`~hubbeam.numerics.coupled_groups` of their entries that are not zero), each
+    ascending, in the order of their first coordinate: for a straight beam without pretwist,
+    whose principal axes are the frame's, the axial coordinates u0, the bending ones along the
+    section's y (v, v') and z (w, w') and the twist theta
+    (:data:`~hubbeam.elements.ffr.shape.DOF_NAMES`); one group when pretwist or the sections
+    couple them."""
+    return coupled_groups((stiffness != 0.0) | (mass != 0.0))
 
 
 def clamped_modes(stiffness: np.ndarray, mass: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
