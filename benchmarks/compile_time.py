@@ -2,6 +2,8 @@
 
     python benchmarks/compile_time.py [EXAMPLE] [KEY=VALUE ...]   # default: exp1, about 35 s
 
+    python benchmarks/compile_time.py exp1 then rotor3 [then EXAMPLE [KEY=VALUE ...] ...]
+
 Runs the bundled example (default ``exp1``) for one output step in this process, with numba's
 on-disk cache pointed at a new empty directory so that everything compiles, and prints
 
@@ -15,6 +17,14 @@ on-disk cache pointed at a new empty directory so that everything compiles, and 
   into its caller's and finalises each module to machine code), and how many functions were
   made machine code in all (counting a function once in every module that holds it: a number
   of the code, not of the machine's load, to compare two versions on a busy machine).
+
+Each ``then EXAMPLE`` runs one more example in the same process afterwards and prints what it
+compiled on top (CPU seconds, compiles, its largest functions by their own time): the cost of
+one more *model* whose kinds are already compiled. numba compiles the system's equations, the
+time loop, the step's powers and the records once per model type (the tuple of the kinds'
+packs a system holds), and each of these links its callees' modules into its own and optimises
+and makes machine code of the whole again; that, not the kinds, is what every further model
+of a test run or a session pays.
 
 The LLVM parts are timed by wrapping three methods of numba's ``JITCodeLibrary``
 (``add_llvm_module``, ``_optimize_final_module``, ``_finalize_specific``): numba internals,
@@ -31,35 +41,13 @@ import tempfile
 import time
 
 
-def main(argv: list[str]) -> None:
-    example = argv[0] if argv and "=" not in argv[0] else "exp1"
-    overrides = [a for a in argv if "=" in a]
-    os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="hubbeam-compile-")
-    from numba.core import codegen, event
+def run_recorded(example: str, overrides: list[str]):
+    """Run ``example`` for one output step (unless ``analysis.t_end`` is given) with numba's compile
+    events recorded in CPU time (numba's own ``install_recorder`` stamps wall time): the events
+    as (CPU seconds, event), and the process's CPU and wall seconds of the run."""
+    from numba.core import event
 
-    llvm = collections.defaultdict(lambda: [0.0, 0.0, 0.0, 0])  # module: function opt, module opt, machine code, fns
-    library = getattr(codegen, "JITCodeLibrary", None)
-    parts = ("add_llvm_module", "_optimize_final_module", "_finalize_specific")
-    wrapped = library is not None and all(hasattr(library, p) for p in parts)
-
-    def timed(slot, method):
-        def wrapper(self, *args):
-            start = time.process_time()
-            out = method(self, *args)
-            llvm[self.name][slot] += time.process_time() - start
-            if slot == 2:
-                llvm[self.name][3] = sum(1 for f in self._final_module.functions if not f.is_declaration)
-            return out
-        return wrapper
-
-    if wrapped:
-        for slot, name in enumerate(parts):
-            setattr(library, name, timed(slot, getattr(library, name)))
-    else:
-        print("numba's JITCodeLibrary has changed: LLVM's share is not timed")
-
-    start_cpu, start_wall = time.process_time(), time.perf_counter()
-    class CpuRecorder(event.Listener):  # numba's install_recorder stamps wall time
+    class CpuRecorder(event.Listener):
         def __init__(self):
             self.buffer = []
 
@@ -70,6 +58,7 @@ def main(argv: list[str]) -> None:
             self.buffer.append((time.process_time(), ev))
 
     recorder = CpuRecorder()
+    start_cpu, start_wall = time.process_time(), time.perf_counter()
     with event.install_listener("numba:compile", recorder):
         from hubbeam import api
         from hubbeam.io.scenario import load_example
@@ -78,10 +67,14 @@ def main(argv: list[str]) -> None:
         if not any(o.split("=", 1)[0].strip() == "analysis.t_end" for o in overrides):  # one output step is enough
             scenario = load_example(example, overrides + [f"analysis.t_end={scenario.output_dt}"])
         api.run(scenario)
-    cpu, wall = time.process_time() - start_cpu, time.perf_counter() - start_wall
+    return recorder.buffer, time.process_time() - start_cpu, time.perf_counter() - start_wall
 
+
+def compile_spans(buffer):
+    """Each compile as (function, start, end, depth) from the recorded events, and per function
+    its own seconds (without what it compiled on the way), its total and its number of compiles."""
     stack, spans = [], []
-    for stamp, ev in recorder.buffer:
+    for stamp, ev in buffer:
         if ev.is_start:
             dispatcher = ev.data.get("dispatcher")
             stack.append((dispatcher.py_func.__qualname__ if dispatcher is not None else str(ev.data.get("args")),
@@ -95,6 +88,47 @@ def main(argv: list[str]) -> None:
         own[name] += b - a - children
         total[name] += b - a
         count[name] += 1
+    return spans, own, total, count
+
+
+def main(argv: list[str]) -> None:
+    groups = [[]]
+    for a in argv:
+        if a == "then":
+            groups.append([])
+        else:
+            groups[-1].append(a)
+    first = groups[0]
+    example = first[0] if first and "=" not in first[0] else "exp1"
+    overrides = [a for a in first if "=" in a]
+    os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="hubbeam-compile-")
+    from numba.core import codegen
+
+    llvm = collections.defaultdict(lambda: [0.0, 0.0, 0.0, 0])  # module: function opt, module opt, machine code, fns
+    made = [0]  # functions made machine code, summed over every module finalised
+    library = getattr(codegen, "JITCodeLibrary", None)
+    parts = ("add_llvm_module", "_optimize_final_module", "_finalize_specific")
+    wrapped = library is not None and all(hasattr(library, p) for p in parts)
+
+    def timed(slot, method):
+        def wrapper(self, *args):
+            start = time.process_time()
+            out = method(self, *args)
+            llvm[self.name][slot] += time.process_time() - start
+            if slot == 2:
+                llvm[self.name][3] = sum(1 for f in self._final_module.functions if not f.is_declaration)
+                made[0] += llvm[self.name][3]  # every module, also one of a name seen before
+            return out
+        return wrapper
+
+    if wrapped:
+        for slot, name in enumerate(parts):
+            setattr(library, name, timed(slot, getattr(library, name)))
+    else:
+        print("numba's JITCodeLibrary has changed: LLVM's share is not timed")
+
+    buffer, cpu, wall = run_recorded(example, overrides)
+    spans, own, total, count = compile_spans(buffer)
     compiled = sum(b - a for _, a, b, depth in spans if depth == 0)
     print(f"{example} {' '.join(overrides)}: process {wall:.1f} s wall, {cpu:.1f} s CPU; compiling {compiled:.1f} s "
           f"of CPU in {len(own)} compiled functions")
@@ -115,6 +149,18 @@ def main(argv: list[str]) -> None:
         print(f"{'functions':>9} {'module opt s':>12} {'machine s':>9}  module (the 8 largest)")
         for name, (_, opt, code, functions) in sorted(llvm.items(), key=lambda kv: -kv[1][3])[:8]:
             print(f"{functions:9d} {opt:12.2f} {code:9.2f}  {name}")
+    for group in groups[1:]:
+        before = [sum(v[i] for v in llvm.values()) for i in range(3)] + [made[0]]
+        buffer, cpu, wall = run_recorded(group[0], group[1:])
+        spans, own, total, count = compile_spans(buffer)
+        after = [sum(v[i] for v in llvm.values()) for i in range(3)] + [made[0]]
+        share = (f"; LLVM {sum(after[:3]) - sum(before[:3]):.1f} s (module with its callees linked in "
+                 f"{after[1] - before[1]:.1f} s, machine code {after[2] - before[2]:.1f} s), "
+                 f"{after[3] - before[3]} functions made machine code" if wrapped else "")
+        print(f"\nthen {' '.join(group)}: {cpu:.1f} s CPU ({wall:.1f} s wall), {len(spans)} compiles{share}")
+        print(f"{'self s':>7} {'total s':>8}  function (the 12 largest)")
+        for name, seconds in own.most_common(12):
+            print(f"{seconds:7.2f} {total[name]:8.2f}  {name}" + (f" x{count[name]}" if count[name] > 1 else ""))
 
 
 if __name__ == "__main__":

@@ -65,6 +65,7 @@ def test_a_latch_is_reported_in_the_json_the_dataset_and_on_stderr(tmp_path):
         assert float(abs(ds.torque[after]).max()) > 4.0 * 1.0  # the lock's reaction rings above the spring's torque
 
 
+@pytest.mark.slow  # the only test of its model (a two-motor arm): compiling it is most of a minute
 def test_linearize_takes_each_joint_motor_as_an_input():
     code, out, err = cli("linearize", EXAMPLES / "arm2.toml", "--json")
     assert_contract(code, out, err, json_out=True)

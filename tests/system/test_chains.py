@@ -88,7 +88,11 @@ def test_links_of_other_formulations_clamped_are_one_beam_in_the_linear_limit(pa
     assert np.allclose(f1, f2, rtol=1e-4)
 
 
-@pytest.mark.parametrize("parent, child", [("ancf", "ffr"), ("ffr", "ancf"), ("ffr", "ffr"), ("ancf", "ancf")])
+@pytest.mark.parametrize("parent, child", [
+    ("ancf", "ffr"), ("ancf", "ancf"),
+    # each the only test of its model (compiling it is most of a minute): with the slow runs
+    pytest.param("ffr", "ancf", marks=pytest.mark.slow), pytest.param("ffr", "ffr", marks=pytest.mark.slow),
+])
 def test_newton_matrix_of_a_chain_on_joints_is_the_residuals_derivative(parent, child):
     """A child on a two-axis joint on the parent's tip, the parent on a flap hinge of a free
     hub: the Newton matrix's rows and columns of the joint angles and of the child's own

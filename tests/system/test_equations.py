@@ -75,6 +75,7 @@ def test_the_energy_changes_at_the_rate_of_the_drive_minus_the_dissipated_power(
     assert abs(rate - (drive - dissipated)) < 2e-7 * scale  # measured: 3.6e-8 (spacecraft: round-off), others 6e-11
 
 
+@pytest.mark.slow  # each case is the only test of its model: compiling it is most of a minute
 @pytest.mark.parametrize("example, overrides", [
     # a free base (rigid body), an ANCF panel (clamp) and an FFR panel on modes, with tip bodies
     ("spacecraft3d", ['beams[1].formulation="ffr"', "beams[1].modes=3", "base.initial.angular_velocity=[0.1, 0.3, 0.2]"]),

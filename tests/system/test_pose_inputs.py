@@ -105,7 +105,11 @@ def sensor_value(scenario, system, name, x, v, F):
     return value[name[len(s.name) + 1:]]
 
 
-@pytest.mark.parametrize("config", ["ancf-joint", "ffr-joint", "arm-ffr-parent", "arm-ancf-parent"])
+@pytest.mark.parametrize("config", [
+    "ancf-joint", "ffr-joint",
+    # the arms' models are tested nowhere else in the default run (compiling each is most of a minute)
+    pytest.param("arm-ffr-parent", marks=pytest.mark.slow), pytest.param("arm-ancf-parent", marks=pytest.mark.slow),
+])
 def test_each_input_is_its_sensor_and_its_derivatives_are_exact(tmp_path, config):
     # value: the sensor at the state; rate: a central difference of the sensor along x + s v (the
     # state's motion, h = 1e-6: error ~1e-11); du/dx and du/dv: central differences of the compiled
@@ -144,7 +148,7 @@ def test_each_input_is_its_sensor_and_its_derivatives_are_exact(tmp_path, config
     assert len(turned) >= len(inputs) // 3  # the rates' du/dx are checked where they are not zero
 
 
-@pytest.mark.parametrize("config", ["ffr-joint", "arm-ancf-parent"])
+@pytest.mark.parametrize("config", ["ffr-joint", pytest.param("arm-ancf-parent", marks=pytest.mark.slow)])
 def test_the_newton_matrix_entries_of_tip_and_base_inputs_are_the_residuals_derivatives(tmp_path, config):
     # a random static gain from every new input to the base's torque and the joints' motors: the
     # controller's entries of the Newton matrix (the system's less the same system without the
