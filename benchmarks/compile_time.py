@@ -1,6 +1,6 @@
 """Where the first run's compile time goes: numba's typing and lowering against LLVM.
 
-    python benchmarks/compile_time.py [EXAMPLE] [KEY=VALUE ...]   # default: exp1, about 35 s
+    python benchmarks/compile_time.py [EXAMPLE] [KEY=VALUE ...]   # default: exp1, about 85 s of CPU on a 2-core machine
 
     python benchmarks/compile_time.py exp1 then rotor3 [then EXAMPLE [KEY=VALUE ...] ...]
 
@@ -151,7 +151,8 @@ def main(argv: list[str]) -> None:
             print(f"{functions:9d} {opt:12.2f} {code:9.2f}  {name}")
     for group in groups[1:]:
         before = [sum(v[i] for v in llvm.values()) for i in range(3)] + [made[0]]
-        buffer, cpu, wall = run_recorded(group[0], group[1:])
+        example = group[0] if group and "=" not in group[0] else "exp1"
+        buffer, cpu, wall = run_recorded(example, [a for a in group if "=" in a])
         spans, own, total, count = compile_spans(buffer)
         after = [sum(v[i] for v in llvm.values()) for i in range(3)] + [made[0]]
         share = (f"; LLVM {sum(after[:3]) - sum(before[:3]):.1f} s (module with its callees linked in "
