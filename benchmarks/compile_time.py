@@ -91,6 +91,18 @@ def compile_spans(buffer):
     return spans, own, total, count
 
 
+def example_and_overrides(words: list[str]) -> tuple[str, list[str]]:
+    """The example named in ``words`` (default exp1) and its KEY=VALUE overrides."""
+    return (words[0] if words and "=" not in words[0] else "exp1"), [w for w in words if "=" in w]
+
+
+def print_largest(own, total, count, n: int) -> None:
+    """The ``n`` functions that took the most compile time of their own (CPU s)."""
+    print(f"{'self s':>7} {'total s':>8}  function (the {n} largest)")
+    for name, seconds in own.most_common(n):
+        print(f"{seconds:7.2f} {total[name]:8.2f}  {name}" + (f" x{count[name]}" if count[name] > 1 else ""))
+
+
 def main(argv: list[str]) -> None:
     groups = [[]]
     for a in argv:
@@ -98,14 +110,14 @@ def main(argv: list[str]) -> None:
             groups.append([])
         else:
             groups[-1].append(a)
-    first = groups[0]
-    example = first[0] if first and "=" not in first[0] else "exp1"
-    overrides = [a for a in first if "=" in a]
+    example, overrides = example_and_overrides(groups[0])
     os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="hubbeam-compile-")
     from numba.core import codegen
 
     llvm = collections.defaultdict(lambda: [0.0, 0.0, 0.0, 0])  # module: function opt, module opt, machine code, fns
-    made = [0]  # functions made machine code, summed over every module finalised
+    # functions made machine code, summed over every module finalised (the 'then' reports' count;
+    # the first report's counts each module name once, as the numbers quoted in docs/benchmarks.md)
+    made = [0]
     library = getattr(codegen, "JITCodeLibrary", None)
     parts = ("add_llvm_module", "_optimize_final_module", "_finalize_specific")
     wrapped = library is not None and all(hasattr(library, p) for p in parts)
@@ -132,10 +144,8 @@ def main(argv: list[str]) -> None:
     compiled = sum(b - a for _, a, b, depth in spans if depth == 0)
     print(f"{example} {' '.join(overrides)}: process {wall:.1f} s wall, {cpu:.1f} s CPU; compiling {compiled:.1f} s "
           f"of CPU in {len(own)} compiled functions")
-    print(f"\n{'self s':>7} {'total s':>8}  function (the 25 largest)")
-    for name, seconds in own.most_common(25):
-        times = f" x{count[name]}" if count[name] > 1 else ""
-        print(f"{seconds:7.2f} {total[name]:8.2f}  {name}{times}")
+    print()
+    print_largest(own, total, count, 25)
     again = [f"{name} x{n} ({own[name]:.1f} s)" for name, n in count.most_common() if n > 1]
     print("\ncompiled more than once (one per signature): " + (", ".join(again) or "none"))
     print("\ncalled from Python: " + ", ".join(f"{name} {b - a:.1f} s" for name, a, b, depth in
@@ -151,17 +161,14 @@ def main(argv: list[str]) -> None:
             print(f"{functions:9d} {opt:12.2f} {code:9.2f}  {name}")
     for group in groups[1:]:
         before = [sum(v[i] for v in llvm.values()) for i in range(3)] + [made[0]]
-        example = group[0] if group and "=" not in group[0] else "exp1"
-        buffer, cpu, wall = run_recorded(example, [a for a in group if "=" in a])
+        buffer, cpu, wall = run_recorded(*example_and_overrides(group))
         spans, own, total, count = compile_spans(buffer)
         after = [sum(v[i] for v in llvm.values()) for i in range(3)] + [made[0]]
         share = (f"; LLVM {sum(after[:3]) - sum(before[:3]):.1f} s (module with its callees linked in "
                  f"{after[1] - before[1]:.1f} s, machine code {after[2] - before[2]:.1f} s), "
                  f"{after[3] - before[3]} functions made machine code" if wrapped else "")
         print(f"\nthen {' '.join(group)}: {cpu:.1f} s CPU ({wall:.1f} s wall), {len(spans)} compiles{share}")
-        print(f"{'self s':>7} {'total s':>8}  function (the 12 largest)")
-        for name, seconds in own.most_common(12):
-            print(f"{seconds:7.2f} {total[name]:8.2f}  {name}" + (f" x{count[name]}" if count[name] > 1 else ""))
+        print_largest(own, total, count, 12)
 
 
 if __name__ == "__main__":
